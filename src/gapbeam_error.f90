@@ -1,0 +1,90 @@
+!> Recoverable errors and the text helpers used to build their messages.
+!>
+!> A procedure that can fail for a reason the user can fix (bad deck, LAPACK `info`,
+!> no convergence, file I/O) returns an allocated `error_t` in its last argument;
+!> the caller checks `allocated(err)` at once. Only `app/main.f90` ends the run.
+module gapbeam_error
+   use gapbeam_kinds, only: dp
+   implicit none
+   private
+   public :: error_t, fatal_error, str
+
+   !> A recoverable failure: 'where: what (values)'.
+   type :: error_t
+      character(len=:), allocatable :: message   !! human-readable description
+   end type error_t
+
+   !> Number or logical to text, without surrounding blanks.
+   interface str
+      module procedure str_int, str_real, str_logical
+   end interface str
+
+contains
+
+   !> Allocate `err` with `message` (keeps the first error if one is already set).
+   subroutine fatal_error(err, message)
+      type(error_t), allocatable, intent(inout) :: err   !! error to set
+      character(len=*), intent(in) :: message           !! what went wrong, and where
+      if (allocated(err)) return
+      allocate(err)
+      err%message = message
+   end subroutine fatal_error
+
+   !> Integer to text.
+   pure function str_int(i) result(s)
+      integer, intent(in) :: i                 !! value
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function str_int
+
+   !> Real to text with enough digits to tell values apart (`g0` style, 8 significant digits).
+   pure function str_real(x) result(s)
+      real(dp), intent(in) :: x                !! value
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      if (x /= x) then
+         s = 'NaN'
+      else if (abs(x) > huge(x)) then
+         if (x > 0) then
+            s = 'Infinity'
+         else
+            s = '-Infinity'
+         end if
+      else if (x == 0.0_dp) then
+         s = '0'
+      else if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
+         write(buf, '(g0.8)') x
+         s = trim(adjustl(buf))
+         call strip_zeros(s)
+      else
+         write(buf, '(es15.7e3)') x
+         s = trim(adjustl(buf))
+      end if
+   end function str_real
+
+   !> Logical to text.
+   pure function str_logical(b) result(s)
+      logical, intent(in) :: b                 !! value
+      character(len=:), allocatable :: s
+      if (b) then
+         s = '.true.'
+      else
+         s = '.false.'
+      end if
+   end function str_logical
+
+   !> Remove trailing zeros of a fixed-point number ("4.3000000" -> "4.3").
+   pure subroutine strip_zeros(s)
+      character(len=:), allocatable, intent(inout) :: s
+      integer :: k
+      if (index(s, '.') == 0 .or. scan(s, 'eE') > 0) return
+      k = len(s)
+      do while (k > 1 .and. s(k:k) == '0')
+         k = k - 1
+      end do
+      if (s(k:k) == '.') k = k - 1
+      s = s(1:k)
+   end subroutine strip_zeros
+end module gapbeam_error
