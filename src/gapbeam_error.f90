@@ -54,13 +54,14 @@ contains
          end if
       else if (x == 0.0_dp) then
          s = '0'
-      else if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
+      else if (abs(x) >= 0.1_dp .and. abs(x) < 1.0e6_dp) then
          write(buf, '(g0.8)') x
          s = trim(adjustl(buf))
          call strip_zeros(s)
       else
          write(buf, '(es15.7e3)') x
          s = trim(adjustl(buf))
+         call strip_mantissa_zeros(s)
       end if
    end function str_real
 
@@ -74,6 +75,20 @@ contains
          s = '.false.'
       end if
    end function str_logical
+
+   !> Remove trailing zeros of the mantissa ("1.9125000E-003" -> "1.9125E-003").
+   pure subroutine strip_mantissa_zeros(s)
+      character(len=:), allocatable, intent(inout) :: s
+      integer :: e, k
+      e = scan(s, 'eE')
+      if (e == 0) return
+      k = e - 1
+      do while (k > 1 .and. s(k:k) == '0')
+         k = k - 1
+      end do
+      if (s(k:k) == '.') k = k - 1
+      s = s(1:k) // s(e:)
+   end subroutine strip_mantissa_zeros
 
    !> Remove trailing zeros of a fixed-point number ("4.3000000" -> "4.3").
    pure subroutine strip_zeros(s)

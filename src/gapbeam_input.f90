@@ -1,0 +1,825 @@
+!> Namelist decks: read, apply command-line overrides, validate, and keep the effective text.
+!>
+!> One group per concept: &job, &beam, &root, &springs, &masses, &modes, &calibrate, &stops,
+!> &damping, &forcing, &solver, &initial, &output. Each reader seeds its locals from the type
+!> defaults, reads the group from the deck file and then from every override that names it,
+!> validates, and only then copies into the deck: a half-read configuration never escapes.
+!> Messages read `DECK: group &beam: length = -0.2: must be > 0`.
+module gapbeam_input
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_deck_text, only: source_t, load_file, make_source, group_names, group_block, &
+      split_assignments, lower, basename_stem
+   use gapbeam_model, only: beam_t, root_t, spring_t, point_mass_t, structure_t, dof_code, &
+      dof_w, dof_theta
+   use gapbeam_beam_element, only: rotary_inertia_coefficient, rotary_inertia_words
+   use gapbeam_contact, only: stop_t, stop_side_words, stop_law_words, law_code
+   use gapbeam_damping, only: damping_t, rayleigh_from_ratios, damping_words
+   use gapbeam_excitation, only: forcing_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
+      stop_solution_words, step_control_words, linear_solver_words, method_words, &
+      initial_state_words
+   use gapbeam_calibration, only: calibration_words
+   implicit none
+   private
+   public :: deck_t, job_t, calibrate_t, read_deck, analysis_words, known_groups
+
+   integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
+
+   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient'"
+   character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
+      'calibrate stops damping forcing solver initial output'
+
+   !> &job: what to run and where the results go.
+   type :: job_t
+      character(len=32)  :: analysis = 'modes'   !! analysis word
+      character(len=256) :: title = ''           !! title for plots and files
+      character(len=256) :: output = ''          !! output path prefix ('' -> results/<deck stem>)
+   end type job_t
+
+   !> &calibrate: which parameter to fit to a target first frequency.
+   type :: calibrate_t
+      character(len=16) :: parameter = 'root_k_theta'   !! see calibration_words
+      integer  :: index = 1                             !! spring index for 'spring'
+      real(dp) :: target_f1_hz = 0.0_dp                 !! target first frequency [Hz]
+   end type calibrate_t
+
+   !> Everything a deck says, validated.
+   type :: deck_t
+      character(len=:), allocatable :: path          !! deck path as given
+      character(len=:), allocatable :: text          !! effective text: file plus overrides
+      type(job_t) :: job                             !! &job
+      type(structure_t) :: structure                 !! &beam, &root, &springs, &masses
+      integer :: n_print_modes = 0                   !! &modes n_print (0: all)
+      type(calibrate_t) :: calibrate                 !! &calibrate
+      type(stop_t), allocatable :: stops(:)          !! &stops
+      type(damping_t) :: damping                     !! &damping
+      type(forcing_t) :: forcing                     !! &forcing
+      type(solver_settings_t) :: solver              !! &solver
+      type(initial_state_t) :: initial               !! &initial
+      type(output_settings_t) :: output              !! &output
+   end type deck_t
+
+   abstract interface
+      !> Reads one namelist group from an internal file.
+      subroutine nml_reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+      end subroutine nml_reader
+   end interface
+
+contains
+
+   !> Read, override and validate a deck.
+   subroutine read_deck(path, overrides, deck, err)
+      character(len=*), intent(in) :: path            !! deck file
+      character(len=*), intent(in) :: overrides(:)    !! namelist fragments applied in order
+      type(deck_t), intent(out) :: deck               !! validated deck
+      type(error_t), allocatable, intent(out) :: err  !! first problem found
+      type(source_t), allocatable :: srcs(:)
+      character(len=:), allocatable :: text
+      character(len=32), allocatable :: names(:)
+      integer :: s, i, j
+
+      deck%path = path
+      call load_file(path, text, err)
+      if (allocated(err)) return
+      allocate(srcs(1 + size(overrides)))
+      call make_source(path, text, srcs(1))
+      deck%text = text
+      do s = 1, size(overrides)
+         call make_source('override ' // str(s) // " '" // trim(overrides(s)) // "'", &
+                          trim(overrides(s)), srcs(1 + s))
+         deck%text = deck%text // new_line('a') // '! command-line override ' // str(s) &
+            // new_line('a') // trim(overrides(s)) // new_line('a')
+      end do
+
+      ! every group must be known, and appear at most once per source
+      do s = 1, size(srcs)
+         call group_names(srcs(s), names)
+         if (s > 1 .and. size(names) == 0) then
+            call fatal_error(err, path // ': ' // srcs(s)%label // ': no namelist group ' &
+               // '(an override looks like "&forcing frequency_hz=10.2 /")')
+            return
+         end if
+         do i = 1, size(names)
+            if (index(' ' // known_groups // ' ', ' ' // trim(names(i)) // ' ') == 0) then
+               call fatal_error(err, path // ': ' // where(srcs, s) // 'unknown group &' &
+                  // trim(names(i)) // '; allowed groups: &' // replace_spaces(known_groups))
+               return
+            end if
+            do j = 1, i - 1
+               if (names(j) == names(i)) then
+                  call fatal_error(err, path // ': ' // where(srcs, s) // 'group &' &
+                     // trim(names(i)) // ' appears more than once')
+                  return
+               end if
+            end do
+         end do
+      end do
+      do i = 1, 2
+         if (i == 1) text = 'job'
+         if (i == 2) text = 'beam'
+         if (.not. group_present(srcs, text)) then
+            call fatal_error(err, path // ': required group &' // text // ' is missing')
+            return
+         end if
+      end do
+
+      call read_job(srcs, deck%job, err);              if (failed()) return
+      call read_beam(srcs, deck%structure%beam, err);  if (failed()) return
+      call read_root(srcs, deck%structure%root, err);  if (failed()) return
+      call read_springs(srcs, deck%structure%beam%n_elem, deck%structure%root, &
+                        deck%structure%springs, err);  if (failed()) return
+      call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
+      if (failed()) return
+      call read_modes(srcs, deck%n_print_modes, err);  if (failed()) return
+      call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed()) return
+      call read_stops(srcs, deck%structure, deck%stops, err);  if (failed()) return
+      call read_damping(srcs, deck%damping, err);  if (failed()) return
+      call read_forcing(srcs, deck%forcing, err);  if (failed()) return
+      call read_solver(srcs, deck%solver, err);  if (failed()) return
+      call read_initial(srcs, deck%structure, deck%initial, err);  if (failed()) return
+      call read_output(srcs, deck%output, err);  if (failed()) return
+      if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
+      if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
+         call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
+            // str(deck%calibrate%target_f1_hz) // ": must be > 0 for analysis='calibrate'")
+         return
+      end if
+      if (deck%job%analysis == 'transient' .and. .not. group_present(srcs, 'forcing')) then
+         call fatal_error(err, path // ": group &forcing is missing: analysis='transient' " &
+            // 'needs frequency_hz (use amplitude_pp=0 for free vibration)')
+         return
+      end if
+
+   contains
+
+      logical function failed()
+         failed = allocated(err)
+         if (failed) then
+            if (index(err%message, path // ': ') /= 1) err%message = path // ': ' // err%message
+         end if
+      end function failed
+   end subroutine read_deck
+
+   pure function where(srcs, s) result(w)
+      type(source_t), intent(in) :: srcs(:)
+      integer, intent(in) :: s
+      character(len=:), allocatable :: w
+      if (s == 1) then
+         w = ''
+      else
+         w = srcs(s)%label // ': '
+      end if
+   end function where
+
+   pure function replace_spaces(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: t
+      integer :: i
+      t = ''
+      do i = 1, len(s)
+         if (s(i:i) == ' ') then
+            t = t // ', &'
+         else
+            t = t // s(i:i)
+         end if
+      end do
+   end function replace_spaces
+
+   !> True if any source opens the group.
+   logical function group_present(srcs, name)
+      type(source_t), intent(in) :: srcs(:)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: block(:)
+      integer :: s
+      group_present = .false.
+      do s = 1, size(srcs)
+         call group_block(srcs(s), name, block)
+         if (allocated(block)) group_present = .true.
+      end do
+   end function group_present
+
+   !> Read group `name` from every source that has it; on a read error find the assignment
+   !> at fault and name it.
+   subroutine apply_group(srcs, name, variables, reader, err)
+      type(source_t), intent(in) :: srcs(:)           !! deck file, then overrides
+      character(len=*), intent(in) :: name            !! group name
+      character(len=*), intent(in) :: variables       !! the group's variables, blank separated
+      procedure(nml_reader) :: reader                 !! reads the group into the caller's locals
+      type(error_t), allocatable, intent(out) :: err  !! set on a read error
+      character(len=:), allocatable :: block(:), items(:)
+      character(len=512) :: msg, msg2
+      character(len=:), allocatable :: var, one(:)
+      integer :: s, ios, k, p
+      do s = 1, size(srcs)
+         call group_block(srcs(s), name, block)
+         if (.not. allocated(block)) cycle
+         msg = ''
+         call reader(block, ios, msg)
+         if (ios == 0) cycle
+         call split_assignments(block, items)
+         do k = 1, size(items)
+            p = scan(items(k), '(=')
+            var = lower(adjustl(items(k)(1:max(p - 1, 1))))
+            var = trim(var)
+            if (index(' ' // variables // ' ', ' ' // var // ' ') == 0) then
+               call fatal_error(err, where(srcs, s) // 'group &' // name // ': unknown variable ' &
+                  // var // ' (in "' // trim(items(k)) // '"); the variables of &' // name &
+                  // ' are: ' // variables)
+               return
+            end if
+            allocate(character(len=len_trim(items(k)) + len(name) + 4) :: one(1))
+            one(1) = '&' // name // ' ' // trim(items(k)) // ' /'
+            msg2 = ''
+            call reader(one, ios, msg2)
+            deallocate(one)
+            if (ios /= 0) then
+               call fatal_error(err, where(srcs, s) // 'group &' // name // ': ' &
+                  // trim(items(k)) // ': cannot read the value of ' // var // ' (' &
+                  // trim(msg2) // ')')
+               return
+            end if
+         end do
+         call fatal_error(err, where(srcs, s) // 'group &' // name // ': ' // trim(msg))
+         return
+      end do
+   end subroutine apply_group
+
+   ! ---------------------------------------------------------------- validation helpers
+
+   subroutine require_positive(group, var, x, err)
+      character(len=*), intent(in) :: group, var
+      real(dp), intent(in) :: x
+      type(error_t), allocatable, intent(inout) :: err
+      if (allocated(err)) return
+      if (.not. (x > 0.0_dp) .or. x > huge(x)) call fatal_error(err, 'group &' // group // ': ' &
+         // var // ' = ' // str(x) // ': must be > 0 and finite')
+   end subroutine require_positive
+
+   subroutine require_nonnegative(group, var, x, err)
+      character(len=*), intent(in) :: group, var
+      real(dp), intent(in) :: x
+      type(error_t), allocatable, intent(inout) :: err
+      if (allocated(err)) return
+      if (.not. (x >= 0.0_dp) .or. x > huge(x)) call fatal_error(err, 'group &' // group &
+         // ': ' // var // ' = ' // str(x) // ': must be >= 0 and finite')
+   end subroutine require_nonnegative
+
+   subroutine require_range(group, var, x, lo, hi, err)
+      character(len=*), intent(in) :: group, var
+      real(dp), intent(in) :: x, lo, hi
+      type(error_t), allocatable, intent(inout) :: err
+      if (allocated(err)) return
+      if (.not. (x >= lo .and. x <= hi)) call fatal_error(err, 'group &' // group // ': ' &
+         // var // ' = ' // str(x) // ': must be in [' // str(lo) // ', ' // str(hi) // ']')
+   end subroutine require_range
+
+   subroutine require_int(group, var, i, lo, hi, err, why)
+      character(len=*), intent(in) :: group, var
+      integer, intent(in) :: i, lo, hi
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in), optional :: why
+      character(len=:), allocatable :: extra
+      if (allocated(err)) return
+      extra = ''
+      if (present(why)) extra = ' (' // why // ')'
+      if (i < lo .or. i > hi) then
+         if (hi == huge(hi)) then
+            call fatal_error(err, 'group &' // group // ': ' // var // ' = ' // str(i) &
+               // ': must be >= ' // str(lo) // extra)
+         else
+            call fatal_error(err, 'group &' // group // ': ' // var // ' = ' // str(i) &
+               // ': must be in ' // str(lo) // '..' // str(hi) // extra)
+         end if
+      end if
+   end subroutine require_int
+
+   subroutine require_word(group, var, word, allowed, err)
+      character(len=*), intent(in) :: group, var, word
+      character(len=*), intent(in) :: allowed     !! "'a', 'b'"
+      type(error_t), allocatable, intent(inout) :: err
+      if (allocated(err)) return
+      if (index(allowed, "'" // trim(word) // "'") == 0 .or. len_trim(word) == 0) &
+         call fatal_error(err, 'group &' // group // ': ' // var // " = '" // trim(word) &
+         // "': allowed: " // allowed)
+   end subroutine require_word
+
+   !> Count list entries: the highest index whose node was given (nodes start at -1).
+   integer function list_length(node)
+      integer, intent(in) :: node(:)
+      integer :: i
+      list_length = 0
+      do i = size(node), 1, -1
+         if (node(i) /= -1) then
+            list_length = i;  exit
+         end if
+      end do
+   end function list_length
+
+   subroutine require_node(group, var, i, node, dof, n_elem, root, err)
+      character(len=*), intent(in) :: group, var
+      integer, intent(in) :: i, node, dof, n_elem
+      type(root_t), intent(in) :: root
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: v
+      if (allocated(err)) return
+      v = var // '(' // str(i) // ')'
+      call require_int(group, v, node, 1, n_elem + 1, err, 'the mesh has ' // str(n_elem) &
+         // ' elements, nodes 1..' // str(n_elem + 1) // ' from the root')
+      if (allocated(err)) return
+      if (node == 1 .and. dof == dof_w) then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'w': the " &
+            // 'root translation is fixed')
+      else if (node == 1 .and. dof == dof_theta .and. root%condition == 'clamped') then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'theta': " &
+            // "the root is clamped (use &root condition='spring')")
+      end if
+   end subroutine require_node
+
+   ! ---------------------------------------------------------------- group readers
+
+   subroutine read_job(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(job_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=32) :: analysis
+      character(len=256) :: title, output
+      namelist /job/ analysis, title, output
+      analysis = cfg%analysis;  title = cfg%title;  output = cfg%output
+      call apply_group(srcs, 'job', 'analysis title output', reader, err)
+      if (allocated(err)) return
+      call require_word('job', 'analysis', analysis, analysis_words, err)
+      if (allocated(err)) return
+      cfg = job_t(analysis=analysis, title=title, output=output)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=job, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_job
+
+   subroutine read_beam(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(beam_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      real(dp) :: length, youngs_modulus, density, width, thickness, area, second_moment, &
+         fibre_distance
+      integer :: n_elem
+      character(len=16) :: mass_matrix, rotary_inertia
+      namelist /beam/ length, n_elem, youngs_modulus, density, width, thickness, area, &
+         second_moment, fibre_distance, mass_matrix, rotary_inertia
+      length = cfg%length;  n_elem = cfg%n_elem;  youngs_modulus = cfg%youngs_modulus
+      density = cfg%density;  width = cfg%width;  thickness = cfg%thickness
+      area = cfg%area;  second_moment = cfg%second_moment;  fibre_distance = cfg%fibre_distance
+      mass_matrix = cfg%mass_matrix;  rotary_inertia = cfg%rotary_inertia
+      call apply_group(srcs, 'beam', 'length n_elem youngs_modulus density width thickness ' &
+         // 'area second_moment fibre_distance mass_matrix rotary_inertia', reader, err)
+      if (allocated(err)) return
+      call require_positive('beam', 'length', length, err)
+      call require_int('beam', 'n_elem', n_elem, 1, 10000, err)
+      call require_positive('beam', 'youngs_modulus', youngs_modulus, err)
+      call require_positive('beam', 'density', density, err)
+      if (width /= 0.0_dp .or. thickness /= 0.0_dp) then
+         call require_positive('beam', 'width', width, err)
+         call require_positive('beam', 'thickness', thickness, err)
+      else if (area /= 0.0_dp .or. second_moment /= 0.0_dp .or. fibre_distance /= 0.0_dp) then
+         call require_positive('beam', 'area', area, err)
+         call require_positive('beam', 'second_moment', second_moment, err)
+         call require_positive('beam', 'fibre_distance', fibre_distance, err)
+      else if (.not. allocated(err)) then
+         call fatal_error(err, 'group &beam: the section is missing: give width and thickness ' &
+            // '(rectangle) or area, second_moment and fibre_distance')
+      end if
+      call require_word('beam', 'mass_matrix', mass_matrix, "'lumped', 'consistent'", err)
+      if (rotary_inertia_coefficient(rotary_inertia) < 0.0_dp) &
+         call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
+      if (allocated(err)) return
+      cfg = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
+         density=density, width=width, thickness=thickness, area=area, &
+         second_moment=second_moment, fibre_distance=fibre_distance, mass_matrix=mass_matrix, &
+         rotary_inertia=rotary_inertia)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=beam, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_beam
+
+   subroutine read_root(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(root_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: condition
+      real(dp) :: k_theta
+      namelist /root/ condition, k_theta
+      condition = cfg%condition;  k_theta = cfg%k_theta
+      call apply_group(srcs, 'root', 'condition k_theta', reader, err)
+      if (allocated(err)) return
+      call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
+      if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
+      if (allocated(err)) return
+      cfg = root_t(condition=condition, k_theta=k_theta)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=root, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_root
+
+   subroutine read_springs(srcs, n_elem, root, springs, err)
+      type(source_t), intent(in) :: srcs(:)
+      integer, intent(in) :: n_elem
+      type(root_t), intent(in) :: root
+      type(spring_t), allocatable, intent(out) :: springs(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: node(nmax), n, i, code
+      character(len=8) :: dof(nmax)
+      real(dp) :: stiffness(nmax)
+      namelist /springs/ node, dof, stiffness
+      node = -1;  dof = 'w';  stiffness = 0.0_dp
+      call apply_group(srcs, 'springs', 'node dof stiffness', reader, err)
+      if (allocated(err)) return
+      n = list_length(node)
+      allocate(springs(n))
+      do i = 1, n
+         call require_word('springs', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         code = dof_code(dof(i))
+         call require_node('springs', 'node', i, node(i), code, n_elem, root, err)
+         call require_positive('springs', 'stiffness(' // str(i) // ')', stiffness(i), err)
+         if (allocated(err)) return
+         springs(i) = spring_t(node=node(i), dof=code, stiffness=stiffness(i))
+      end do
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=springs, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_springs
+
+   subroutine read_masses(srcs, n_elem, masses, err)
+      type(source_t), intent(in) :: srcs(:)
+      integer, intent(in) :: n_elem
+      type(point_mass_t), allocatable, intent(out) :: masses(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: node(nmax), n, i
+      real(dp) :: mass(nmax), inertia(nmax)
+      namelist /masses/ node, mass, inertia
+      node = -1;  mass = 0.0_dp;  inertia = 0.0_dp
+      call apply_group(srcs, 'masses', 'node mass inertia', reader, err)
+      if (allocated(err)) return
+      n = list_length(node)
+      allocate(masses(n))
+      do i = 1, n
+         call require_int('masses', 'node(' // str(i) // ')', node(i), 1, n_elem + 1, err, &
+            'the mesh has nodes 1..' // str(n_elem + 1))
+         call require_nonnegative('masses', 'mass(' // str(i) // ')', mass(i), err)
+         call require_nonnegative('masses', 'inertia(' // str(i) // ')', inertia(i), err)
+         if (allocated(err)) return
+         masses(i) = point_mass_t(node=node(i), mass=mass(i), inertia=inertia(i))
+      end do
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=masses, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_masses
+
+   subroutine read_modes(srcs, n_print_modes, err)
+      type(source_t), intent(in) :: srcs(:)
+      integer, intent(inout) :: n_print_modes
+      type(error_t), allocatable, intent(out) :: err
+      integer :: n_print
+      namelist /modes/ n_print
+      n_print = n_print_modes
+      call apply_group(srcs, 'modes', 'n_print', reader, err)
+      if (allocated(err)) return
+      call require_int('modes', 'n_print', n_print, 0, huge(1), err, '0 prints all modes')
+      if (allocated(err)) return
+      n_print_modes = n_print
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=modes, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_modes
+
+   subroutine read_calibrate(srcs, st, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
+      type(calibrate_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: parameter
+      integer :: index
+      real(dp) :: target_f1_hz
+      namelist /calibrate/ parameter, index, target_f1_hz
+      parameter = cfg%parameter;  index = cfg%index;  target_f1_hz = cfg%target_f1_hz
+      call apply_group(srcs, 'calibrate', 'parameter index target_f1_hz', reader, err)
+      if (allocated(err)) return
+      call require_word('calibrate', 'parameter', parameter, calibration_words, err)
+      call require_nonnegative('calibrate', 'target_f1_hz', target_f1_hz, err)
+      if (allocated(err)) return
+      select case (parameter)
+      case ('spring')
+         call require_int('calibrate', 'index', index, 1, size(st%springs), err, &
+            'the deck has ' // str(size(st%springs)) // ' springs in &springs')
+      case ('root_k_theta')
+         if (st%root%condition /= 'spring') call fatal_error(err, "group &calibrate: " &
+            // "parameter = 'root_k_theta' needs &root condition='spring'")
+      case ('thickness', 'width')
+         if (st%beam%width <= 0.0_dp) call fatal_error(err, 'group &calibrate: parameter = ''' &
+            // trim(parameter) // "' needs a rectangular section (&beam width, thickness)")
+      end select
+      if (allocated(err)) return
+      cfg = calibrate_t(parameter=parameter, index=index, target_f1_hz=target_f1_hz)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=calibrate, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_calibrate
+
+   subroutine read_stops(srcs, st, stops, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
+      type(stop_t), allocatable, intent(out) :: stops(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: node(nmax), n, i, code
+      character(len=8) :: dof(nmax)
+      character(len=16) :: side(nmax), law(nmax)
+      real(dp), dimension(nmax) :: gap, stiffness, damping, exponent, rule_factor, &
+         rule_f1_ratio, rule_f1_hz
+      character(len=:), allocatable :: ix
+      type(stop_t) :: d
+      namelist /stops/ node, dof, side, law, gap, stiffness, damping, exponent, rule_factor, &
+         rule_f1_ratio, rule_f1_hz
+      node = -1;  dof = 'w';  side = d%side;  law = d%law;  gap = d%gap
+      stiffness = d%stiffness;  damping = d%damping;  exponent = d%exponent
+      rule_factor = d%rule_factor;  rule_f1_ratio = d%rule_f1_ratio;  rule_f1_hz = d%rule_f1_hz
+      call apply_group(srcs, 'stops', 'node dof side law gap stiffness damping exponent ' &
+         // 'rule_factor rule_f1_ratio rule_f1_hz', reader, err)
+      if (allocated(err)) return
+      n = list_length(node)
+      allocate(stops(n))
+      do i = 1, n
+         ix = '(' // str(i) // ')'
+         call require_word('stops', 'dof' // ix, dof(i), "'w', 'theta'", err)
+         code = dof_code(dof(i))
+         call require_node('stops', 'node', i, node(i), code, st%beam%n_elem, st%root, err)
+         call require_word('stops', 'side' // ix, side(i), stop_side_words, err)
+         call require_word('stops', 'law' // ix, law(i), stop_law_words, err)
+         call require_nonnegative('stops', 'gap' // ix, gap(i), err)
+         call require_nonnegative('stops', 'damping' // ix, damping(i), err)
+         call require_nonnegative('stops', 'rule_factor' // ix, rule_factor(i), err)
+         if (allocated(err)) return
+         if (rule_factor(i) > 0.0_dp) then
+            if (rule_f1_ratio(i) > 0.0_dp) then
+               call require_range('stops', 'rule_f1_ratio' // ix, rule_f1_ratio(i), &
+                  1.0_dp + 1.0e-9_dp, 1.0e6_dp, err)
+            else
+               call require_positive('stops', 'rule_f1_hz' // ix, rule_f1_hz(i), err)
+            end if
+         else
+            call require_positive('stops', 'stiffness' // ix, stiffness(i), err)
+         end if
+         if (law_code(law(i)) == 2) then
+            call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
+            if (damping(i) > 0.0_dp .and. .not. allocated(err)) call fatal_error(err, &
+               'group &stops: damping' // ix // ' = ' // str(damping(i)) // ": a contact " &
+               // "damper is only available with law='bilinear'")
+         end if
+         if (allocated(err)) return
+         stops(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
+            stiffness=stiffness(i), damping=damping(i), exponent=exponent(i), &
+            rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i))
+      end do
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=stops, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_stops
+
+   subroutine read_damping(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(damping_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: model
+      real(dp) :: mass_coefficient, stiffness_coefficient, frequency1_hz, ratio1, &
+         frequency2_hz, ratio2
+      namelist /damping/ model, mass_coefficient, stiffness_coefficient, frequency1_hz, ratio1, &
+         frequency2_hz, ratio2
+      model = cfg%model;  mass_coefficient = cfg%mass_coefficient
+      stiffness_coefficient = cfg%stiffness_coefficient;  frequency1_hz = cfg%frequency1_hz
+      ratio1 = cfg%ratio1;  frequency2_hz = cfg%frequency2_hz;  ratio2 = cfg%ratio2
+      call apply_group(srcs, 'damping', 'model mass_coefficient stiffness_coefficient ' &
+         // 'frequency1_hz ratio1 frequency2_hz ratio2', reader, err)
+      if (allocated(err)) return
+      call require_word('damping', 'model', model, damping_words, err)
+      if (allocated(err)) return
+      select case (model)
+      case ('none')
+         mass_coefficient = 0.0_dp;  stiffness_coefficient = 0.0_dp
+      case ('rayleigh')
+         call require_nonnegative('damping', 'mass_coefficient', mass_coefficient, err)
+         call require_nonnegative('damping', 'stiffness_coefficient', stiffness_coefficient, err)
+      case ('ratios')
+         call require_positive('damping', 'frequency1_hz', frequency1_hz, err)
+         call require_positive('damping', 'frequency2_hz', frequency2_hz, err)
+         call require_nonnegative('damping', 'ratio1', ratio1, err)
+         call require_nonnegative('damping', 'ratio2', ratio2, err)
+         if (allocated(err)) return
+         if (frequency2_hz <= frequency1_hz) then
+            call fatal_error(err, 'group &damping: frequency2_hz = ' // str(frequency2_hz) &
+               // ': must be > frequency1_hz = ' // str(frequency1_hz))
+            return
+         end if
+         call rayleigh_from_ratios(frequency1_hz, ratio1, frequency2_hz, ratio2, &
+            mass_coefficient, stiffness_coefficient)
+         if (mass_coefficient < 0.0_dp .or. stiffness_coefficient < 0.0_dp) then
+            call fatal_error(err, 'group &damping: the ratios (' // str(ratio1) // ' at ' &
+               // str(frequency1_hz) // ' Hz, ' // str(ratio2) // ' at ' // str(frequency2_hz) &
+               // ' Hz) give a negative Rayleigh coefficient (beta = ' // str(mass_coefficient) &
+               // ' 1/s, gamma = ' // str(stiffness_coefficient) // ' s): not allowed')
+         end if
+      end select
+      if (allocated(err)) return
+      cfg = damping_t(model=model, mass_coefficient=mass_coefficient, &
+         stiffness_coefficient=stiffness_coefficient, frequency1_hz=frequency1_hz, &
+         ratio1=ratio1, frequency2_hz=frequency2_hz, ratio2=ratio2)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=damping, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_damping
+
+   subroutine read_forcing(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(forcing_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      real(dp) :: frequency_hz, amplitude_pp
+      namelist /forcing/ frequency_hz, amplitude_pp
+      frequency_hz = cfg%frequency_hz;  amplitude_pp = cfg%amplitude_pp
+      call apply_group(srcs, 'forcing', 'frequency_hz amplitude_pp', reader, err)
+      if (allocated(err)) return
+      call require_positive('forcing', 'frequency_hz', frequency_hz, err)
+      call require_nonnegative('forcing', 'amplitude_pp', amplitude_pp, err)
+      if (allocated(err)) return
+      cfg = forcing_t(frequency_hz=frequency_hz, amplitude_pp=amplitude_pp)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=forcing, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_forcing
+
+   subroutine read_solver(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(solver_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: method, stop_solution, step_control, linear_solver
+      real(dp) :: newmark_delta, newmark_alpha, fp_tolerance, half_step_tolerance, &
+         residual_floor, grow_ratio
+      integer :: fp_max_iterations, steps_per_period, max_halvings, grow_after, &
+         transient_periods, record_periods
+      logical :: locate_events
+      namelist /solver/ method, newmark_delta, newmark_alpha, stop_solution, fp_tolerance, &
+         fp_max_iterations, step_control, steps_per_period, half_step_tolerance, &
+         residual_floor, max_halvings, grow_after, grow_ratio, locate_events, linear_solver, &
+         transient_periods, record_periods
+      method = cfg%method;  newmark_delta = cfg%newmark_delta;  newmark_alpha = cfg%newmark_alpha
+      stop_solution = cfg%stop_solution;  fp_tolerance = cfg%fp_tolerance
+      fp_max_iterations = cfg%fp_max_iterations;  step_control = cfg%step_control
+      steps_per_period = cfg%steps_per_period;  half_step_tolerance = cfg%half_step_tolerance
+      residual_floor = cfg%residual_floor;  max_halvings = cfg%max_halvings
+      grow_after = cfg%grow_after;  grow_ratio = cfg%grow_ratio
+      locate_events = cfg%locate_events;  linear_solver = cfg%linear_solver
+      transient_periods = cfg%transient_periods;  record_periods = cfg%record_periods
+      call apply_group(srcs, 'solver', 'method newmark_delta newmark_alpha stop_solution ' &
+         // 'fp_tolerance fp_max_iterations step_control steps_per_period ' &
+         // 'half_step_tolerance residual_floor max_halvings grow_after grow_ratio ' &
+         // 'locate_events linear_solver transient_periods record_periods', reader, err)
+      if (allocated(err)) return
+      call require_word('solver', 'method', method, method_words, err)
+      call require_range('solver', 'newmark_delta', newmark_delta, 0.5_dp, 1.0_dp, err)
+      call require_range('solver', 'newmark_alpha', newmark_alpha, 1.0e-3_dp, 1.0_dp, err)
+      call require_word('solver', 'stop_solution', stop_solution, stop_solution_words, err)
+      call require_range('solver', 'fp_tolerance', fp_tolerance, 1.0e-15_dp, 0.1_dp, err)
+      call require_int('solver', 'fp_max_iterations', fp_max_iterations, 1, 100000, err)
+      call require_word('solver', 'step_control', step_control, step_control_words, err)
+      call require_int('solver', 'steps_per_period', steps_per_period, 4, 100000000, err)
+      call require_range('solver', 'half_step_tolerance', half_step_tolerance, 1.0e-8_dp, &
+         10.0_dp, err)
+      call require_range('solver', 'residual_floor', residual_floor, 0.0_dp, 1.0_dp, err)
+      call require_int('solver', 'max_halvings', max_halvings, 0, 40, err)
+      call require_int('solver', 'grow_after', grow_after, 1, 100000, err)
+      call require_range('solver', 'grow_ratio', grow_ratio, 0.0_dp, 1.0_dp, err)
+      call require_word('solver', 'linear_solver', linear_solver, linear_solver_words, err)
+      call require_int('solver', 'transient_periods', transient_periods, 0, huge(1), err)
+      call require_int('solver', 'record_periods', record_periods, 1, huge(1), err)
+      if (allocated(err)) return
+      cfg = solver_settings_t(method=method, newmark_delta=newmark_delta, &
+         newmark_alpha=newmark_alpha, stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
+         fp_max_iterations=fp_max_iterations, step_control=step_control, &
+         steps_per_period=steps_per_period, half_step_tolerance=half_step_tolerance, &
+         residual_floor=residual_floor, max_halvings=max_halvings, grow_after=grow_after, &
+         grow_ratio=grow_ratio, locate_events=locate_events, linear_solver=linear_solver, &
+         transient_periods=transient_periods, record_periods=record_periods)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=solver, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_solver
+
+   subroutine read_initial(srcs, st, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
+      type(initial_state_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: kind
+      integer :: node(nmax), n, i, code(nmax)
+      character(len=8) :: dof(nmax)
+      real(dp) :: displacement(nmax), velocity(nmax)
+      namelist /initial/ kind, node, dof, displacement, velocity
+      kind = cfg%kind;  node = -1;  dof = 'w';  displacement = 0.0_dp;  velocity = 0.0_dp
+      call apply_group(srcs, 'initial', 'kind node dof displacement velocity', reader, err)
+      if (allocated(err)) return
+      call require_word('initial', 'kind', kind, initial_state_words, err)
+      n = list_length(node)
+      code = 0
+      do i = 1, n
+         call require_word('initial', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         code(i) = dof_code(dof(i))
+         call require_node('initial', 'node', i, node(i), code(i), st%beam%n_elem, st%root, err)
+      end do
+      if (kind == 'given' .and. n == 0 .and. .not. allocated(err)) call fatal_error(err, &
+         "group &initial: kind = 'given' needs node, dof, displacement and velocity lists")
+      if (allocated(err)) return
+      cfg%kind = kind
+      cfg%node = node(1:n);  cfg%dof = code(1:n)
+      cfg%displacement = displacement(1:n);  cfg%velocity = velocity(1:n)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=initial, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_initial
+
+   subroutine read_output(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(output_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      real(dp) :: poincare_phase_deg
+      integer :: samples_per_period, history_periods
+      logical :: write_text
+      namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text
+      poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
+      history_periods = cfg%history_periods;  write_text = cfg%write_text
+      call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
+         // 'write_text', reader, err)
+      if (allocated(err)) return
+      call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
+         360.0_dp, err)
+      call require_int('output', 'samples_per_period', samples_per_period, 1, 100000, err)
+      call require_int('output', 'history_periods', history_periods, 0, huge(1), err)
+      if (allocated(err)) return
+      cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
+         samples_per_period=samples_per_period, history_periods=history_periods, &
+         write_text=write_text)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=output, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_output
+end module gapbeam_input

@@ -1,0 +1,55 @@
+!> How to solve a transient run and what to record: the settings a deck gives to the solver.
+!>
+!> Defaults live here only; the deck reader starts from them.
+module gapbeam_settings
+   use gapbeam_kinds, only: dp
+   implicit none
+   private
+   public :: solver_settings_t, output_settings_t, initial_state_t
+   public :: stop_solution_words, step_control_words, linear_solver_words, method_words
+   public :: initial_state_words
+
+   character(len=*), parameter :: method_words = "'newmark'"
+   character(len=*), parameter :: stop_solution_words = "'condensed', 'fixed_point'"
+   character(len=*), parameter :: step_control_words = "'fixed', 'half_step'"
+   character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
+   character(len=*), parameter :: initial_state_words = "'rest', 'given'"
+
+   !> Time integration settings.
+   type :: solver_settings_t
+      character(len=16) :: method = 'newmark'         !! integrator
+      real(dp) :: newmark_delta = 0.5_dp              !! Newmark delta (gamma in other texts) [-]
+      real(dp) :: newmark_alpha = 0.25_dp             !! Newmark alpha (beta in other texts) [-]
+      character(len=16) :: stop_solution = 'condensed'   !! 'condensed' or 'fixed_point'
+      real(dp) :: fp_tolerance = 1.0e-6_dp            !! fixed point: relative change of F_NL [-]
+      integer  :: fp_max_iterations = 50              !! fixed point: iterations before a halving
+      character(len=16) :: step_control = 'half_step' !! 'fixed' or 'half_step'
+      integer  :: steps_per_period = 256              !! largest step = T / steps_per_period
+      real(dp) :: half_step_tolerance = 0.01_dp       !! residual / largest force term per dof [-]
+      real(dp) :: residual_floor = 1.0e-3_dp          !! force scale floor, fraction of the largest [-]
+      integer  :: max_halvings = 20                   !! smallest step = largest / 2^max_halvings
+      integer  :: grow_after = 4                      !! comfortable steps before doubling [-]
+      real(dp) :: grow_ratio = 0.25_dp                !! 'comfortable': residual ratio below this [-]
+      logical  :: locate_events = .true.              !! split steps at contact onset/release
+      character(len=16) :: linear_solver = 'auto'     !! 'auto', 'dense' or 'banded'
+      integer  :: transient_periods = 200             !! forcing periods discarded [-]
+      integer  :: record_periods = 1000               !! forcing periods recorded [-]
+   end type solver_settings_t
+
+   !> What is recorded.
+   type :: output_settings_t
+      real(dp) :: poincare_phase_deg = 0.0_dp   !! forcing phase of the Poincare section [deg]
+      integer  :: samples_per_period = 64       !! history samples per forcing period [-]
+      integer  :: history_periods = 20          !! periods of history kept (start of record) [-]
+      logical  :: write_text = .true.           !! gnuplot-ready .dat files next to the HDF5
+   end type output_settings_t
+
+   !> Initial state relative to the base: at rest, or given values at listed dofs.
+   type :: initial_state_t
+      character(len=16) :: kind = 'rest'            !! 'rest' or 'given'
+      integer, allocatable :: node(:)               !! nodes of the given values
+      integer, allocatable :: dof(:)                !! dof codes of the given values
+      real(dp), allocatable :: displacement(:)      !! [m or rad]
+      real(dp), allocatable :: velocity(:)          !! [m/s or rad/s]
+   end type initial_state_t
+end module gapbeam_settings
