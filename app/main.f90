@@ -1,2 +1,217 @@
+!> gapbeam: finite element simulation of vibro-impact and chaotic vibration of beams with gap
+!> supports. Usage: gapbeam DECK [OVERRIDE ...], each OVERRIDE a namelist fragment applied
+!> after the deck file, e.g. gapbeam inputs/x.nml "&forcing frequency_hz=10.2 /".
 program main
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, str
+   use gapbeam_input, only: deck_t, read_deck
+   use gapbeam_assembly, only: system_t, assemble
+   use gapbeam_eigen, only: modes_t, solve_modes
+   use gapbeam_calibration, only: calibrate_parameter, first_frequency
+   use gapbeam_problem, only: problem_t, build_problem, resolve_stop_stiffness, initial_vectors
+   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_damping, only: modal_damping_ratio
+   use gapbeam_model, only: beam_ei, beam_rho_a, beam_mass, structure_t
+   use gapbeam_report, only: write_modes, write_transient, write_calibration
+   implicit none
+   type(deck_t) :: deck
+   type(error_t), allocatable :: err
+   character(len=:), allocatable :: path, arg
+   character(len=:), allocatable :: overrides(:)
+   integer :: i, n_args, length
+
+   n_args = command_argument_count()
+   if (n_args < 1) then
+      write(error_unit, '(a)') 'usage: gapbeam DECK [OVERRIDE ...]'
+      write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. "&forcing frequency_hz=10.2 /"'
+      error stop 2
+   end if
+   allocate(character(len=4096) :: overrides(0))
+   do i = 1, n_args
+      call get_command_argument(i, length=length)
+      allocate(character(len=length) :: arg)
+      call get_command_argument(i, arg)
+      if (i == 1) then
+         path = arg
+      else
+         overrides = [character(len=4096) :: overrides, arg]
+      end if
+      deallocate(arg)
+   end do
+
+   call read_deck(path, overrides, deck, err)
+   if (allocated(err)) call fail(err)
+   write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
+   write(output_unit, '(a)') 'analysis: ' // trim(deck%job%analysis)
+   select case (deck%job%analysis)
+   case ('modes')
+      call run_modes(deck, err)
+   case ('calibrate')
+      call run_calibrate(deck, err)
+   case ('transient')
+      call run_transient_analysis(deck, err)
+   end select
+   if (allocated(err)) call fail(err)
+   write(output_unit, '(a)') 'output: ' // trim(deck%job%output)
+
+contains
+
+   subroutine fail(e)
+      type(error_t), intent(in) :: e
+      write(error_unit, '(a)') 'error: ' // e%message
+      flush(error_unit)
+      error stop 1
+   end subroutine fail
+
+   subroutine describe_structure(st)
+      type(structure_t), intent(in) :: st
+      write(output_unit, '(a)') 'beam: L = ' // str(st%beam%length) // ' m, ' &
+         // str(st%beam%n_elem) // ' elements, EI = ' // str(beam_ei(st%beam)) &
+         // ' N m^2, rho A = ' // str(beam_rho_a(st%beam)) // ' kg/m, mass = ' &
+         // str(beam_mass(st%beam)) // ' kg, ' // trim(st%beam%mass_matrix) // ' mass' &
+         // rotary_text(st)
+      if (st%root%condition == 'spring') then
+         write(output_unit, '(a)') 'root: rotational spring k_theta = ' // str(st%root%k_theta) &
+            // ' N m/rad (kappa = k_theta L / EI = ' &
+            // str(st%root%k_theta * st%beam%length / beam_ei(st%beam)) // ')'
+      else
+         write(output_unit, '(a)') 'root: clamped'
+      end if
+   end subroutine describe_structure
+
+   function rotary_text(st) result(t)
+      type(structure_t), intent(in) :: st
+      character(len=:), allocatable :: t
+      t = ''
+      if (st%beam%mass_matrix == 'lumped') t = ' (rotary inertia: ' &
+         // trim(st%beam%rotary_inertia) // ')'
+   end function rotary_text
+
+   subroutine run_modes(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      type(system_t) :: sys
+      type(modes_t) :: modes
+      real(dp), allocatable :: k_stop(:)
+      real(dp) :: f1_open
+      integer :: j, n_print
+      character(len=120) :: line
+      call describe_structure(dk%structure)
+      call assemble(dk%structure, sys)
+      call solve_modes(sys, modes, e)
+      if (allocated(e)) return
+      n_print = modes%n_modes
+      if (dk%n_print_modes > 0) n_print = min(n_print, dk%n_print_modes)
+      write(output_unit, '(a)') 'dofs: ' // str(sys%n_dof) // ', finite modes: ' &
+         // str(modes%n_modes)
+      write(output_unit, '(a)') ' mode   frequency [Hz]   f/f1      participation [kg^0.5]' &
+         // '   effective mass [%]'
+      do j = 1, n_print
+         write(line, '(i5, f16.4, f10.4, es22.6, f17.3)') j, modes%frequency_hz(j), &
+            modes%frequency_hz(j) / modes%frequency_hz(1), modes%participation(j), &
+            100.0_dp * modes%effective_mass(j) / modes%total_mass
+         write(output_unit, '(a)') trim(line)
+      end do
+      if (dk%damping%model /= 'none') then
+         write(output_unit, '(a)') 'Rayleigh damping: beta = ' // str(dk%damping%mass_coefficient) &
+            // ' 1/s, gamma = ' // str(dk%damping%stiffness_coefficient) // ' s; zeta(f1) = ' &
+            // str(modal_damping_ratio(dk%damping%mass_coefficient, &
+            dk%damping%stiffness_coefficient, modes%frequency_hz(1)))
+      end if
+      call resolve_stop_stiffness(dk%structure, dk%stops, k_stop, f1_open, e)
+      if (allocated(e)) return
+      do j = 1, size(dk%stops)
+         write(output_unit, '(a)') 'stop ' // str(j) // ' at node ' // str(dk%stops(j)%node) &
+            // ': stiffness ' // str(k_stop(j)) // ' N/m' // rule_text(dk%stops(j)%rule_factor)
+      end do
+      call write_modes(dk, sys, modes, k_stop, e)
+   end subroutine run_modes
+
+   function rule_text(factor) result(t)
+      real(dp), intent(in) :: factor
+      character(len=:), allocatable :: t
+      t = ''
+      if (factor > 0.0_dp) t = ' (rule: ' // str(factor) // ' x the lowest spring raising f1 ' &
+         // 'to the target)'
+   end function rule_text
+
+   subroutine run_calibrate(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      real(dp) :: value, f1
+      type(structure_t) :: st
+      character(len=:), allocatable :: units
+      call describe_structure(dk%structure)
+      call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
+                               dk%calibrate%target_f1_hz, value, e)
+      if (allocated(e)) return
+      st = dk%structure
+      select case (dk%calibrate%parameter)
+      case ('root_k_theta')
+         st%root%k_theta = value;  units = 'N m/rad'
+      case ('spring')
+         st%springs(dk%calibrate%index)%stiffness = value;  units = 'N/m or N m/rad'
+      case ('thickness')
+         st%beam%thickness = value;  units = 'm'
+      case ('width')
+         st%beam%width = value;  units = 'm'
+      end select
+      call first_frequency(st, f1, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') 'calibrated ' // trim(dk%calibrate%parameter) // ' = ' &
+         // str(value) // ' ' // units // ' gives f1 = ' // str(f1) // ' Hz (target ' &
+         // str(dk%calibrate%target_f1_hz) // ' Hz)'
+      call write_calibration(dk, value, units, f1, e)
+   end subroutine run_calibrate
+
+   subroutine run_transient_analysis(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      type(problem_t) :: prob
+      type(transient_result_t) :: res
+      real(dp), allocatable :: u0(:), v0(:)
+      integer :: j
+      call describe_structure(dk%structure)
+      call build_problem(dk%structure, dk%stops, dk%damping, dk%forcing, prob, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
+         // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
+         // str(prob%f1_open_hz) // ' Hz; highest mode ' // str(prob%omega_max / 6.283185307179586_dp) &
+         // ' Hz'
+      do j = 1, prob%n_stops
+         write(output_unit, '(a)') 'stop ' // str(j) // ': stiffness ' &
+            // str(prob%stop_stiffness(j)) // ' N/m, gap ' // str(dk%stops(j)%gap) // ' m'
+      end do
+      write(output_unit, '(a)') 'solver: newmark (delta ' // str(dk%solver%newmark_delta) &
+         // ', alpha ' // str(dk%solver%newmark_alpha) // '), stop force ' &
+         // trim(dk%solver%stop_solution) // ', step control ' // trim(dk%solver%step_control) &
+         // ', T/' // str(dk%solver%steps_per_period) // ', events ' &
+         // merge('located', 'ignored', dk%solver%locate_events)
+      call initial_vectors(prob, dk%initial, u0, v0)
+      call run_transient(prob, dk%solver, dk%output, u0, v0, res, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
+         // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &
+         // ' split at contact events; dt from ' // str(res%dt_smallest) // ' to ' &
+         // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations'
+      if (dk%solver%stop_solution == 'fixed_point') write(output_unit, '(a)') &
+         'fixed-point iterations: ' // str(int(res%fp_iterations))
+      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s'
+      do j = 1, prob%n_stops
+         write(output_unit, '(a)') 'stop ' // str(j) // ': ' // str(res%n_impacts(j)) &
+            // ' impacts in ' // str(dk%solver%record_periods) // ' periods, peak force ' &
+            // str(res%peak_force(j)) // ' N, rms ' // str(res%rms_force(j)) // ' N, contact ' &
+            // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
+            // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
+      end do
+      call write_transient(dk, prob, res, e)
+      if (allocated(e)) return
+      if (dk%output%write_text) then
+         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5, .history.dat, ' &
+            // '.poincare.dat'
+      else
+         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5'
+      end if
+   end subroutine run_transient_analysis
 end program main

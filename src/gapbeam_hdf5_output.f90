@@ -17,17 +17,18 @@
 !>
 !> A writer creates `path // '.part'` and renames it to `path` only in a successful `close`:
 !> a run that fails or is killed leaves no half-written file under the final name, and a file
-!> already at `path` from an earlier run is replaced only by a complete one.
+!> already at `path` from an earlier run is replaced only by a complete one (the rename and the
+!> deletion of `.part` files go through `gapbeam_files`).
 !>
 !> Serial HDF5 is not thread-safe: use writers and readers from one thread at a time (outside
 !> OpenMP parallel regions, or inside one named critical section). The library is initialised
 !> on first use and shut down by HDF5 itself at program exit, never by this module, so several
 !> files can be written and read in one program, one after another or at the same time.
 module gapbeam_hdf5_output
-   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_loc, &
-      c_f_pointer, c_associated
+   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_files, only: rename_file, remove_file
    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5iis_valid_f, &
       h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
       h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, &
@@ -47,7 +48,6 @@ module gapbeam_hdf5_output
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an HDF5 identifier not (or no longer) open
-   integer, parameter :: max_c_string = 4096       ! longest C string read back (strerror)
 
    !> Writer of one HDF5 result file, created as `path.part` and renamed to `path` on close.
    !>
@@ -105,36 +105,6 @@ module gapbeam_hdf5_output
       procedure :: read_attr => reader_read_attr       !! a string attribute of a group or dataset
       procedure :: close => reader_close               !! close the file, quietly
    end type h5_reader_t
-
-   interface
-      !> C `rename` from <stdio.h>: 0 on success, -1 with `errno` set on failure.
-      function c_rename(old_name, new_name) bind(c, name='rename') result(status)
-         import :: c_char, c_int
-         character(kind=c_char), intent(in) :: old_name(*)   !! NUL-terminated path
-         character(kind=c_char), intent(in) :: new_name(*)   !! NUL-terminated path
-         integer(c_int) :: status
-      end function c_rename
-
-      !> C `remove` from <stdio.h>: 0 on success.
-      function c_remove(file_name) bind(c, name='remove') result(status)
-         import :: c_char, c_int
-         character(kind=c_char), intent(in) :: file_name(*)  !! NUL-terminated path
-         integer(c_int) :: status
-      end function c_remove
-
-      !> C `strerror` from <string.h>: text of an `errno` value.
-      function c_strerror(errnum) bind(c, name='strerror') result(text)
-         import :: c_int, c_ptr
-         integer(c_int), value, intent(in) :: errnum         !! errno value
-         type(c_ptr) :: text
-      end function c_strerror
-
-      !> Address of the calling thread's `errno` (glibc and musl; macOS names it `__error`).
-      function c_errno_location() bind(c, name='__errno_location') result(location)
-         import :: c_ptr
-         type(c_ptr) :: location
-      end function c_errno_location
-   end interface
 
 contains
 
@@ -402,9 +372,9 @@ contains
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       type(error_t), allocatable, intent(out) :: err     !! set when closing or renaming fails
       character(len=*), parameter :: proc = 'close'
-      character(kind=c_char, len=:), allocatable :: c_old, c_new
+      character(len=*), parameter :: rename_prefix = 'gapbeam_files:rename_file: '
+      type(error_t), allocatable :: rename_err
       integer :: hdferr
-      integer(c_int) :: status, errno_value
 
       if (.not. self%is_open) then
          call fatal_error(err, here(proc) // 'writer has no open file (never created, or ' &
@@ -419,14 +389,10 @@ contains
             // '; it is incomplete and was not renamed to ' // q(self%path))
          return
       end if
-      c_old = self%part_path // c_null_char
-      c_new = self%path // c_null_char
-      status = c_rename(c_old, c_new)
-      if (status /= 0) then
-         errno_value = current_errno()
-         call fatal_error(err, here(proc) // 'cannot rename file ' // q(self%part_path) &
-            // ' to ' // q(self%path) // ': ' // errno_text(errno_value) // ' (errno ' &
-            // str(int(errno_value)) // '); the results are left in ' // q(self%part_path))
+      call rename_file(self%part_path, self%path, rename_err)
+      if (allocated(rename_err)) then   ! "cannot rename file 'a' to 'b': <reason> (errno N)"
+         call fatal_error(err, here(proc) // without_prefix(rename_err%message, rename_prefix) &
+            // '; the results are left in ' // q(self%part_path))
          return
       end if
       deallocate(self%part_path, self%path)
@@ -436,7 +402,6 @@ contains
    subroutine writer_abort(self)
       class(h5_writer_t), intent(inout) :: self          !! writer, open or not
       integer :: hdferr
-      integer(c_int) :: status
 
       if (self%is_open) then
          call h5fclose_f(self%file_id, hdferr)   ! failure ignored: the file is deleted below
@@ -444,7 +409,7 @@ contains
       self%file_id = no_id
       self%is_open = .false.
       if (allocated(self%part_path)) then
-         status = c_remove(self%part_path // c_null_char)   ! a missing file is fine
+         call remove_file(self%part_path)   ! a missing file is fine
          deallocate(self%part_path)
       end if
       if (allocated(self%path)) deallocate(self%path)
@@ -1374,31 +1339,15 @@ contains
       end if
    end function class_name
 
-   !> The calling thread's C `errno`, read right after a failed C call.
-   function current_errno() result(code)
-      integer(c_int) :: code
-      integer(c_int), pointer :: location
-      call c_f_pointer(c_errno_location(), location)
-      code = location
-   end function current_errno
-
-   !> C `strerror` text of an `errno` value.
-   function errno_text(code) result(text)
-      integer(c_int), intent(in) :: code                 !! errno value
-      character(len=:), allocatable :: text
-      character(kind=c_char, len=1), pointer :: chars(:)
-      type(c_ptr) :: p
-      integer :: n
-      text = 'unknown error'
-      p = c_strerror(code)
-      if (.not. c_associated(p)) return
-      call c_f_pointer(p, chars, [max_c_string])
-      n = 0
-      do while (n < max_c_string)
-         if (chars(n + 1) == c_null_char) exit
-         n = n + 1
-      end do
-      text = chars_to_text(chars(1:n), trim_nul=.false.)
-   end function errno_text
+   !> `message` without its leading `prefix`; `message` itself when it does not start with it.
+   pure function without_prefix(message, prefix) result(s)
+      character(len=*), intent(in) :: message            !! text
+      character(len=*), intent(in) :: prefix             !! leading part to drop
+      character(len=:), allocatable :: s
+      s = message
+      if (len(message) >= len(prefix)) then
+         if (message(1:len(prefix)) == prefix) s = message(len(prefix) + 1:)
+      end if
+   end function without_prefix
 
 end module gapbeam_hdf5_output

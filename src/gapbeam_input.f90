@@ -435,11 +435,11 @@ contains
       end subroutine reader
    end subroutine read_root
 
-   subroutine read_springs(srcs, n_elem, root, springs, err)
+   subroutine read_springs(srcs, n_elem, root, list, err)
       type(source_t), intent(in) :: srcs(:)
       integer, intent(in) :: n_elem
       type(root_t), intent(in) :: root
-      type(spring_t), allocatable, intent(out) :: springs(:)
+      type(spring_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: node(nmax), n, i, code
       character(len=8) :: dof(nmax)
@@ -449,14 +449,14 @@ contains
       call apply_group(srcs, 'springs', 'node dof stiffness', reader, err)
       if (allocated(err)) return
       n = list_length(node)
-      allocate(springs(n))
+      allocate(list(n))
       do i = 1, n
          call require_word('springs', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
          code = dof_code(dof(i))
          call require_node('springs', 'node', i, node(i), code, n_elem, root, err)
          call require_positive('springs', 'stiffness(' // str(i) // ')', stiffness(i), err)
          if (allocated(err)) return
-         springs(i) = spring_t(node=node(i), dof=code, stiffness=stiffness(i))
+         list(i) = spring_t(node=node(i), dof=code, stiffness=stiffness(i))
       end do
    contains
       subroutine reader(lines, ios, msg)
@@ -467,10 +467,10 @@ contains
       end subroutine reader
    end subroutine read_springs
 
-   subroutine read_masses(srcs, n_elem, masses, err)
+   subroutine read_masses(srcs, n_elem, list, err)
       type(source_t), intent(in) :: srcs(:)
       integer, intent(in) :: n_elem
-      type(point_mass_t), allocatable, intent(out) :: masses(:)
+      type(point_mass_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: node(nmax), n, i
       real(dp) :: mass(nmax), inertia(nmax)
@@ -479,14 +479,14 @@ contains
       call apply_group(srcs, 'masses', 'node mass inertia', reader, err)
       if (allocated(err)) return
       n = list_length(node)
-      allocate(masses(n))
+      allocate(list(n))
       do i = 1, n
          call require_int('masses', 'node(' // str(i) // ')', node(i), 1, n_elem + 1, err, &
             'the mesh has nodes 1..' // str(n_elem + 1))
          call require_nonnegative('masses', 'mass(' // str(i) // ')', mass(i), err)
          call require_nonnegative('masses', 'inertia(' // str(i) // ')', inertia(i), err)
          if (allocated(err)) return
-         masses(i) = point_mass_t(node=node(i), mass=mass(i), inertia=inertia(i))
+         list(i) = point_mass_t(node=node(i), mass=mass(i), inertia=inertia(i))
       end do
    contains
       subroutine reader(lines, ios, msg)
@@ -555,10 +555,10 @@ contains
       end subroutine reader
    end subroutine read_calibrate
 
-   subroutine read_stops(srcs, st, stops, err)
+   subroutine read_stops(srcs, st, list, err)
       type(source_t), intent(in) :: srcs(:)
       type(structure_t), intent(in) :: st
-      type(stop_t), allocatable, intent(out) :: stops(:)
+      type(stop_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: node(nmax), n, i, code
       character(len=8) :: dof(nmax)
@@ -576,7 +576,7 @@ contains
          // 'rule_factor rule_f1_ratio rule_f1_hz', reader, err)
       if (allocated(err)) return
       n = list_length(node)
-      allocate(stops(n))
+      allocate(list(n))
       do i = 1, n
          ix = '(' // str(i) // ')'
          call require_word('stops', 'dof' // ix, dof(i), "'w', 'theta'", err)
@@ -605,7 +605,7 @@ contains
                // "damper is only available with law='bilinear'")
          end if
          if (allocated(err)) return
-         stops(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
+         list(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
             stiffness=stiffness(i), damping=damping(i), exponent=exponent(i), &
             rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i))
       end do

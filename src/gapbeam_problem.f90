@@ -14,9 +14,10 @@ module gapbeam_problem
    use gapbeam_contact, only: stop_t, law_code
    use gapbeam_damping, only: damping_t
    use gapbeam_excitation, only: forcing_t, forcing_omega
+   use gapbeam_settings, only: initial_state_t
    implicit none
    private
-   public :: problem_t, build_problem, resolve_stop_stiffness
+   public :: problem_t, build_problem, resolve_stop_stiffness, initial_vectors
 
    !> Everything the integrators need, in global dofs.
    type :: problem_t
@@ -149,4 +150,21 @@ contains
       end do
       prob%slot_dof = prob%slot_dof(1:prob%n_slots)
    end subroutine build_problem
+
+   !> Initial displacement and velocity relative to the base: zero ('rest') or the given
+   !> values at the listed node dofs.
+   pure subroutine initial_vectors(prob, init, u0, v0)
+      type(problem_t), intent(in) :: prob            !! model
+      type(initial_state_t), intent(in) :: init      !! deck's &initial
+      real(dp), allocatable, intent(out) :: u0(:)    !! displacement [m, rad]
+      real(dp), allocatable, intent(out) :: v0(:)    !! velocity [m/s, rad/s]
+      integer :: i, g
+      allocate(u0(prob%n), v0(prob%n), source=0.0_dp)
+      if (init%kind /= 'given') return
+      do i = 1, size(init%node)
+         g = global_dof(prob%sys, init%node(i), init%dof(i))
+         u0(g) = init%displacement(i)
+         v0(g) = init%velocity(i)
+      end do
+   end subroutine initial_vectors
 end module gapbeam_problem

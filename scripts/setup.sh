@@ -1,0 +1,241 @@
+#!/usr/bin/env bash
+# scripts/setup.sh - install what gapbeam needs to build, test and plot, where it is missing.
+#
+# Usage:
+#   scripts/setup.sh           execute it: installs what is missing
+#   source scripts/setup.sh    source it (run.sh and test.sh do): same, and also exports PATH
+#                              so that a pip-installed `fpm` is found
+#
+# Checks, and installs only what is missing:
+#   gfortran                       apt: gfortran
+#   LAPACK and BLAS (-llapack -lblas)  apt: liblapack-dev libopenblas-dev
+#   HDF5 with its Fortran API      apt: libhdf5-dev (libhdf5_fortran + hdf5.pc for pkg-config)
+#   pkg-config                     apt: pkg-config
+#   gnuplot                        apt: gnuplot-nox
+#   fpm                            pip: python3 -m pip install fpm (the only source used for fpm)
+# apt-get runs (with sudo when not root) only when something is missing: one `apt-get update`, then
+# one `apt-get install`. Prints nothing when everything is there, else one `setup: installing ...`
+# line per install step; the apt and pip output goes to a log file under ${TMPDIR:-/tmp}, shown when
+# a step fails. Exits (or, when sourced, returns) non-zero with a message if an install fails.
+# Idempotent. When executed it runs under `set -euo pipefail`; when sourced it leaves the caller's
+# shell options alone (the work is done in functions that check every step themselves).
+
+if [[ ${BASH_SOURCE[0]} == "$0" ]]; then
+   set -euo pipefail
+fi
+
+_gapbeam_setup_log=""
+
+# True if command $1 exists.
+_gapbeam_have() {
+   command -v "$1" >/dev/null 2>&1
+}
+
+# Print an error line on stderr.
+_gapbeam_setup_error() {
+   printf 'setup: error: %s\n' "$*" >&2
+}
+
+# Create the log file on first use; print its path.
+_gapbeam_setup_logfile() {
+   if [[ -z $_gapbeam_setup_log ]]; then
+      _gapbeam_setup_log=$(mktemp "${TMPDIR:-/tmp}/gapbeam-setup-XXXXXX") || return 1
+   fi
+   printf '%s\n' "$_gapbeam_setup_log"
+}
+
+# Show the end of the log file on stderr (after a failed step).
+_gapbeam_setup_show_log() {
+   if [[ -n $_gapbeam_setup_log && -s $_gapbeam_setup_log ]]; then
+      printf 'setup: last lines of %s:\n' "$_gapbeam_setup_log" >&2
+      tail -n 30 "$_gapbeam_setup_log" | sed 's/^/    /' >&2
+   fi
+}
+
+# True if the linker finds lib$1.so (asks gfortran; without gfortran looks in the usual places).
+_gapbeam_have_lib() {
+   local f
+   if _gapbeam_have gfortran; then
+      f=$(gfortran -print-file-name="lib$1.so" 2>/dev/null) || return 1
+      [[ $f == /* && -e $f ]]
+   else
+      compgen -G "/usr/lib/*/lib$1.so" >/dev/null || compgen -G "/usr/lib/lib$1.so" >/dev/null \
+         || compgen -G "/usr/local/lib/lib$1.so" >/dev/null
+   fi
+}
+
+# Print the pkg-config name of HDF5 (hdf5 or hdf5-serial); false if pkg-config does not know it.
+_gapbeam_hdf5_pc() {
+   local pc
+   _gapbeam_have pkg-config || return 1
+   for pc in hdf5 hdf5-serial; do
+      if pkg-config --exists "$pc" 2>/dev/null; then
+         printf '%s\n' "$pc"
+         return 0
+      fi
+   done
+   return 1
+}
+
+# True if the HDF5 Fortran library is installed, and (when pkg-config is here) pkg-config knows
+# HDF5, as fpm's hdf5 metapackage needs.
+_gapbeam_have_hdf5_fortran() {
+   local pc flag
+   if _gapbeam_have pkg-config; then
+      pc=$(_gapbeam_hdf5_pc) || return 1
+      for flag in $(pkg-config --libs-only-L "$pc" 2>/dev/null); do
+         [[ -e ${flag#-L}/libhdf5_fortran.so ]] && return 0
+      done
+   fi
+   compgen -G '/usr/lib/*/hdf5/serial/libhdf5_fortran.so' >/dev/null \
+      || compgen -G '/usr/lib/*/libhdf5_fortran.so' >/dev/null \
+      || compgen -G '/usr/lib/libhdf5_fortran.so' >/dev/null
+}
+
+# Print the apt packages for what is missing, one per line.
+_gapbeam_missing_apt() {
+   _gapbeam_have gfortran || printf '%s\n' gfortran
+   if ! _gapbeam_have gfortran || ! _gapbeam_have_lib lapack || ! _gapbeam_have_lib blas; then
+      printf '%s\n' liblapack-dev libopenblas-dev
+   fi
+   _gapbeam_have_hdf5_fortran || printf '%s\n' libhdf5-dev
+   _gapbeam_have pkg-config || printf '%s\n' pkg-config
+   _gapbeam_have gnuplot || printf '%s\n' gnuplot-nox
+}
+
+# Install the missing apt packages (if any).
+_gapbeam_setup_apt() {
+   local -a pkgs sudo_cmd=()
+   local log still
+   mapfile -t pkgs < <(_gapbeam_missing_apt)
+   [[ ${#pkgs[@]} -gt 0 ]] || return 0
+
+   if ! _gapbeam_have apt-get; then
+      _gapbeam_setup_error "missing ${pkgs[*]}, and there is no apt-get here to install them;" \
+         "install gfortran, LAPACK/BLAS, HDF5 (with Fortran), pkg-config and gnuplot by hand"
+      return 1
+   fi
+   if [[ $(id -u) -ne 0 ]]; then
+      if _gapbeam_have sudo; then
+         sudo_cmd=(sudo)
+      else
+         _gapbeam_setup_error "missing ${pkgs[*]}; not root and no sudo: as root run" \
+            "apt-get update && apt-get install -y ${pkgs[*]}"
+         return 1
+      fi
+   fi
+   log=$(_gapbeam_setup_logfile) || { _gapbeam_setup_error "cannot create a log file"; return 1; }
+
+   printf 'setup: installing %s (apt-get, log %s)\n' "${pkgs[*]}" "$log"
+   if ! "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
+         apt-get -q -o DPkg::Lock::Timeout=300 update >>"$log" 2>&1; then
+      _gapbeam_setup_show_log
+      _gapbeam_setup_error "apt-get update failed (log $log)"
+      return 1
+   fi
+   if ! "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive \
+         apt-get -q -y --no-install-recommends -o DPkg::Lock::Timeout=300 \
+         install "${pkgs[@]}" >>"$log" 2>&1; then
+      _gapbeam_setup_show_log
+      _gapbeam_setup_error "apt-get install ${pkgs[*]} failed (log $log)"
+      return 1
+   fi
+   hash -r
+   still=$(_gapbeam_missing_apt | tr '\n' ' ')
+   if [[ -n $still ]]; then
+      _gapbeam_setup_error "still missing after apt-get install: $still(log $log)"
+      return 1
+   fi
+}
+
+# True if `fpm` runs from PATH; otherwise look in the places pip and pyenv put scripts and, if it
+# runs from one of them, prepend that folder to PATH (exported).
+_gapbeam_find_fpm() {
+   local d
+   local -a dirs=()
+   if _gapbeam_have fpm && fpm --version >/dev/null 2>&1; then
+      return 0
+   fi
+   if _gapbeam_have python3; then
+      d=$(python3 -m site --user-base 2>/dev/null) && dirs+=("$d/bin")
+      while IFS= read -r d; do
+         [[ -n $d ]] && dirs+=("$d")
+      done < <(python3 -c 'import os, sysconfig
+print(sysconfig.get_path("scripts"))
+print(sysconfig.get_path("scripts", os.name + "_user"))' 2>/dev/null || true)
+   fi
+   if _gapbeam_have pyenv; then
+      d=$(pyenv root 2>/dev/null) && dirs+=("$d/shims")
+   fi
+   dirs+=("${PYENV_ROOT:-${HOME:-}/.pyenv}/shims" "${HOME:-}/.local/bin")
+   for d in "${dirs[@]}"; do
+      if [[ -x $d/fpm ]] && "$d/fpm" --version >/dev/null 2>&1; then
+         export PATH="$d:$PATH"
+         hash -r
+         return 0
+      fi
+   done
+   return 1
+}
+
+# Make sure fpm runs; install it with pip if it is nowhere.
+_gapbeam_setup_fpm() {
+   local log
+   _gapbeam_find_fpm && return 0
+   if ! _gapbeam_have python3; then
+      _gapbeam_setup_error "fpm is missing and so is python3 (fpm is installed with pip)"
+      return 1
+   fi
+   if ! python3 -m pip --version >/dev/null 2>&1; then
+      _gapbeam_setup_error "fpm is missing and python3 has no pip (python3 -m pip);" \
+         "install pip, e.g. apt-get install python3-pip, then run this again"
+      return 1
+   fi
+   log=$(_gapbeam_setup_logfile) || { _gapbeam_setup_error "cannot create a log file"; return 1; }
+   printf 'setup: installing fpm (python3 -m pip install fpm, log %s)\n' "$log"
+   if ! python3 -m pip install --disable-pip-version-check fpm >>"$log" 2>&1; then
+      # A distribution's own Python refuses (PEP 668); fpm is one self-contained program, so a
+      # user install beside the system packages is safe.
+      if grep -q 'externally-managed-environment' "$log" \
+         && python3 -m pip install --disable-pip-version-check --user --break-system-packages \
+               fpm >>"$log" 2>&1; then
+         :
+      else
+         _gapbeam_setup_show_log
+         _gapbeam_setup_error "python3 -m pip install fpm failed (log $log)"
+         return 1
+      fi
+   fi
+   if _gapbeam_have pyenv; then
+      pyenv rehash >>"$log" 2>&1 || true
+   fi
+   hash -r
+   if ! _gapbeam_find_fpm; then
+      _gapbeam_setup_error "pip installed fpm but it cannot be found or run; looked on PATH," \
+         "in \$(python3 -m site --user-base)/bin, the Python scripts folders and pyenv shims"
+      return 1
+   fi
+}
+
+_gapbeam_setup_main() {
+   local path_before=$PATH
+   _gapbeam_setup_apt || return 1
+   _gapbeam_setup_fpm || return 1
+   if [[ ${BASH_SOURCE[0]} == "$0" && $PATH != "$path_before" ]]; then
+      printf 'setup: fpm is in %s, which is not on your PATH; add it (run.sh and test.sh do)\n' \
+         "$(dirname "$(command -v fpm)")"
+   fi
+   return 0
+}
+
+_gapbeam_setup_status=0
+_gapbeam_setup_main || _gapbeam_setup_status=$?
+if [[ ${BASH_SOURCE[0]} != "$0" ]]; then
+   unset -f _gapbeam_have _gapbeam_setup_error _gapbeam_setup_logfile _gapbeam_setup_show_log \
+      _gapbeam_have_lib _gapbeam_hdf5_pc _gapbeam_have_hdf5_fortran _gapbeam_missing_apt \
+      _gapbeam_setup_apt _gapbeam_find_fpm _gapbeam_setup_fpm _gapbeam_setup_main
+   unset _gapbeam_setup_log
+fi
+# The status of the last command is that of the script (executed) or of `source` (sourced); a
+# subshell's exit, so that a sourcing shell is never ended here.
+(exit "${_gapbeam_setup_status}")

@@ -1,0 +1,387 @@
+!> Files and directories: the one module of gapbeam that calls C file-system functions.
+!>
+!> - `rename_file`, `remove_file`, `make_parent_directory`, `file_exists`: thin wrappers of
+!>   C `rename`, `remove`, `mkdir` and `access` that report failures as `error_t` with the C
+!>   reason (`strerror` text and `errno`).
+!> - `write_table` and `write_text_file` write text files atomically: the text goes to
+!>   `path // '.part'`, which is renamed to `path` only once it is complete. A failed or killed
+!>   run leaves no half-written file under the final name, and a file already at `path` is
+!>   replaced only by a complete one. On failure the `.part` file is removed.
+!>
+!> Paths are used without their trailing blanks (as Fortran `open` does), so fixed-length
+!> character variables can be passed directly. Tables are meant for gnuplot: '#' lines are
+!> comments, then one row per line with the columns separated by blanks.
+!>
+!> The `errno` of the calling thread is read through glibc's (and musl's) `__errno_location`.
+!> C `strerror` may share its buffer between threads: call the procedures that report a C
+!> failure from one thread at a time (outside OpenMP parallel regions), like all file output.
+module gapbeam_files
+   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_f_pointer, &
+      c_associated
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, fatal_error, str
+   implicit none
+   private
+   public :: rename_file, remove_file, make_parent_directory, file_exists
+   public :: write_table, write_text_file
+
+   character(len=*), parameter :: module_name = 'gapbeam_files'
+   character(len=*), parameter :: part_suffix = '.part'      ! temporary name: path // part_suffix
+   character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
+   integer, parameter :: max_c_string = 4096                 ! longest C string read back
+   integer(c_int), parameter :: f_ok = 0_c_int               ! access(): existence test (F_OK)
+   integer(c_int), parameter :: dir_mode = int(o'777', c_int) ! mkdir(): rwx for all, less umask
+
+   interface
+      !> C `rename` from <stdio.h>: 0 on success, -1 with `errno` set on failure.
+      function c_rename(old_name, new_name) bind(c, name='rename') result(status)
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: old_name(*)   !! NUL-terminated path
+         character(kind=c_char), intent(in) :: new_name(*)   !! NUL-terminated path
+         integer(c_int) :: status
+      end function c_rename
+
+      !> C `remove` from <stdio.h>: 0 on success (a file, or an empty directory).
+      function c_remove(file_name) bind(c, name='remove') result(status)
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: file_name(*)  !! NUL-terminated path
+         integer(c_int) :: status
+      end function c_remove
+
+      !> POSIX `mkdir` from <sys/stat.h> (`mode_t` is an unsigned int on Linux):
+      !> 0 on success, -1 with `errno` set on failure.
+      function c_mkdir(path, mode) bind(c, name='mkdir') result(status)
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: path(*)       !! NUL-terminated path
+         integer(c_int), value, intent(in) :: mode           !! permissions, before umask
+         integer(c_int) :: status
+      end function c_mkdir
+
+      !> POSIX `access` from <unistd.h>: 0 when `path` passes the test `mode`.
+      function c_access(path, mode) bind(c, name='access') result(status)
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: path(*)       !! NUL-terminated path
+         integer(c_int), value, intent(in) :: mode           !! F_OK, R_OK, W_OK or X_OK
+         integer(c_int) :: status
+      end function c_access
+
+      !> C `strerror` from <string.h>: text of an `errno` value.
+      function c_strerror(errnum) bind(c, name='strerror') result(text)
+         import :: c_int, c_ptr
+         integer(c_int), value, intent(in) :: errnum         !! errno value
+         type(c_ptr) :: text
+      end function c_strerror
+
+      !> Address of the calling thread's `errno` (glibc and musl; macOS names it `__error`).
+      function c_errno_location() bind(c, name='__errno_location') result(location)
+         import :: c_ptr
+         type(c_ptr) :: location
+      end function c_errno_location
+   end interface
+
+contains
+
+   ! ---------------------------------------------------------------------------------------
+   ! Files and directories
+   ! ---------------------------------------------------------------------------------------
+
+   !> Rename `old_path` to `new_path` with C `rename`, replacing an existing file
+   !> `new_path` atomically (both must lie on the same file system).
+   !>
+   !> The error reads `gapbeam_files:rename_file: cannot rename file 'old' to 'new':
+   !> <strerror text> (errno N)`.
+   subroutine rename_file(old_path, new_path, err)
+      character(len=*), intent(in) :: old_path           !! existing file
+      character(len=*), intent(in) :: new_path           !! new name
+      type(error_t), allocatable, intent(out) :: err     !! set when the rename fails
+      character(len=:), allocatable :: reason
+      call rename_path(trim(old_path), trim(new_path), reason)
+      if (len(reason) > 0) call fatal_error(err, here('rename_file') // reason)
+   end subroutine rename_file
+
+   !> Delete a file (or an empty directory) with C `remove`; a missing file, an empty path or
+   !> any other failure is silently ignored (for clean-up on error paths).
+   subroutine remove_file(path)
+      character(len=*), intent(in) :: path               !! file to delete
+      integer(c_int) :: status
+      if (len_trim(path) == 0) return
+      status = c_remove(trim(path) // c_null_char)
+   end subroutine remove_file
+
+   !> Create the directory part of the file path `path` and every missing ancestor, like
+   !> `mkdir -p "$(dirname path)"`: 'results/sweep/a.h5' creates 'results' and
+   !> 'results/sweep'. The directory part is everything before the last '/', so 'out/' creates
+   !> 'out'. Directories that exist already are fine; a path without '/' does nothing.
+   !> New directories get mode 0777 less the umask.
+   subroutine make_parent_directory(path, err)
+      character(len=*), intent(in) :: path               !! file path, e.g. 'results/a.dat'
+      type(error_t), allocatable, intent(out) :: err     !! set when a directory cannot be made
+      character(len=*), parameter :: proc = 'make_parent_directory'
+      character(len=:), allocatable :: p, dir, message
+      integer :: i, last
+      integer(c_int) :: status, code
+
+      p = trim(path)
+      last = index(p, '/', back=.true.)
+      do i = 2, last           ! i = 1 would be the root directory '/', which always exists
+         if (p(i:i) /= '/') cycle
+         if (p(i - 1:i - 1) == '/') cycle   ! 'a//b': 'a/' is the directory 'a', done already
+         dir = p(1:i - 1)
+         status = c_mkdir(dir // c_null_char, dir_mode)
+         if (status == 0) cycle
+         code = current_errno()
+         if (is_directory(dir)) cycle       ! there already (EEXIST), or made by someone else
+         message = here(proc) // 'cannot create directory ' // q(dir) // ' (for ' // q(p) &
+            // '): ' // errno_text(code) // ' (errno ' // str(int(code)) // ')'
+         if (exists(dir)) message = message // '; ' // q(dir) &
+            // ' exists and is not a directory (or cannot be searched)'
+         call fatal_error(err, message)
+         return
+      end do
+   end subroutine make_parent_directory
+
+   !> Whether a file or directory exists at `path` (C `access` with F_OK).
+   logical function file_exists(path)
+      character(len=*), intent(in) :: path               !! file or directory name
+      file_exists = .false.
+      if (len_trim(path) == 0) return
+      file_exists = exists(trim(path))
+   end function file_exists
+
+   ! ---------------------------------------------------------------------------------------
+   ! Atomic text files
+   ! ---------------------------------------------------------------------------------------
+
+   !> Write a gnuplot-ready table to `path`, atomically (through `path // '.part'`).
+   !>
+   !> The file holds three comment lines, then one line per row of `columns`, each value in
+   !> `es24.16e3` (17 significant digits, so reals read back exactly) followed by a blank:
+   !>
+   !> ```text
+   !> # tip displacement, baseline deck
+   !> # columns: t [s], w_tip [m]
+   !> # t w_tip
+   !>   0.0000000000000000E+000   1.2500000000000000E-003
+   !> ```
+   !>
+   !> Zero rows give the comment lines only. The directory of `path` must exist (see
+   !> `make_parent_directory`). `names` and `units` must have one entry per column of
+   !> `columns` (`error stop` otherwise: a programming error); names should contain no blanks.
+   subroutine write_table(path, title, names, units, columns, err)
+      character(len=*), intent(in) :: path               !! file to write, e.g. 'results/tip.dat'
+      character(len=*), intent(in) :: title              !! first comment line (new lines -> ' ')
+      character(len=*), intent(in) :: names(:)           !! column names, e.g. ['t    ', 'w_tip']
+      character(len=*), intent(in) :: units(:)           !! column units, e.g. ['s', 'm']
+      real(dp), intent(in) :: columns(:, :)              !! values, shape (n_rows, n_cols)
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
+      character(len=*), parameter :: proc = 'write_table'
+      character(len=:), allocatable :: p, described, header
+      character(len=512) :: msg
+      integer :: unit, ios, i, j
+
+      if (size(names) /= size(columns, 2) .or. size(units) /= size(columns, 2)) then
+         error stop 'gapbeam_files:write_table: size(names) = ' // str(size(names)) &
+            // ' and size(units) = ' // str(size(units)) // ' must equal the number of columns ' &
+            // str(size(columns, 2))
+      end if
+      if (len_trim(path) == 0) then
+         call fatal_error(err, here(proc) // 'empty file path')
+         return
+      end if
+      p = trim(path)
+      described = ''
+      header = ''
+      do j = 1, size(names)
+         if (j > 1) described = described // ', '
+         described = described // trim(names(j)) // ' [' // trim(units(j)) // ']'
+         header = header // ' ' // trim(names(j))
+      end do
+
+      call open_part(proc, p, .false., unit, err)
+      if (allocated(err)) return
+      msg = ''
+      write(unit, '(a)', iostat=ios, iomsg=msg) '# ' // trim(one_line(title))
+      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) '# columns: ' // described
+      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) '#' // header
+      do i = 1, size(columns, 1)
+         if (ios /= 0) exit
+         write(unit, value_format, iostat=ios, iomsg=msg) columns(i, :)
+      end do
+      call close_part(proc, p, unit, ios, msg, err)
+   end subroutine write_table
+
+   !> Write `text` to `path` byte for byte, atomically (through `path // '.part'`).
+   !>
+   !> New lines inside `text` are kept; none is added, so end the text with
+   !> `new_line('a')` for a conventional last line. The directory of `path` must exist.
+   subroutine write_text_file(path, text, err)
+      character(len=*), intent(in) :: path               !! file to write, e.g. 'results/report.txt'
+      character(len=*), intent(in) :: text               !! whole file content
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
+      character(len=*), parameter :: proc = 'write_text_file'
+      character(len=:), allocatable :: p
+      character(len=512) :: msg
+      integer :: unit, ios
+
+      if (len_trim(path) == 0) then
+         call fatal_error(err, here(proc) // 'empty file path')
+         return
+      end if
+      p = trim(path)
+      call open_part(proc, p, .true., unit, err)
+      if (allocated(err)) return
+      msg = ''
+      write(unit, iostat=ios, iomsg=msg) text
+      call close_part(proc, p, unit, ios, msg, err)
+   end subroutine write_text_file
+
+   ! ---------------------------------------------------------------------------------------
+   ! Helpers
+   ! ---------------------------------------------------------------------------------------
+
+   !> Create (or truncate) `p // '.part'` for writing: formatted sequential, or unformatted
+   !> stream for a byte-for-byte copy.
+   subroutine open_part(proc, p, stream, unit, err)
+      character(len=*), intent(in) :: proc               !! calling procedure, for messages
+      character(len=*), intent(in) :: p                  !! final file name, trimmed
+      logical, intent(in) :: stream                      !! unformatted stream access
+      integer, intent(out) :: unit                       !! unit of the open `.part` file
+      type(error_t), allocatable, intent(inout) :: err   !! set when the file cannot be created
+      character(len=512) :: msg
+      integer :: ios
+
+      msg = ''
+      if (stream) then
+         open(newunit=unit, file=p // part_suffix, status='replace', action='write', &
+            access='stream', form='unformatted', iostat=ios, iomsg=msg)
+      else
+         open(newunit=unit, file=p // part_suffix, status='replace', action='write', &
+            form='formatted', iostat=ios, iomsg=msg)
+      end if
+      if (ios /= 0) then
+         call fatal_error(err, here(proc) // 'cannot create file ' // q(p // part_suffix) &
+            // ' (temporary name of ' // q(p) // '; does the directory exist and is it ' &
+            // 'writable?): ' // trim(msg))
+      end if
+   end subroutine open_part
+
+   !> Close the `.part` file of `p` and rename it to `p`; after a write error (`ios /= 0`),
+   !> or when closing or renaming fails, delete it and set `err`.
+   subroutine close_part(proc, p, unit, ios, msg, err)
+      character(len=*), intent(in) :: proc               !! calling procedure, for messages
+      character(len=*), intent(in) :: p                  !! final file name, trimmed
+      integer, intent(in) :: unit                        !! unit of the open `.part` file
+      integer, intent(in) :: ios                         !! status of the writes, 0 when all ok
+      character(len=*), intent(in) :: msg                !! iomsg of the failed write
+      type(error_t), allocatable, intent(inout) :: err   !! set on failure
+      character(len=:), allocatable :: part, reason
+      character(len=512) :: close_msg
+      integer :: close_ios
+
+      part = p // part_suffix
+      if (ios /= 0) then
+         close(unit, status='delete', iostat=close_ios)
+         call remove_file(part)
+         call fatal_error(err, here(proc) // 'cannot write file ' // q(part) &
+            // ' (temporary name of ' // q(p) // '): ' // trim(msg))
+         return
+      end if
+      close_msg = ''
+      close(unit, iostat=close_ios, iomsg=close_msg)
+      if (close_ios /= 0) then
+         call remove_file(part)
+         call fatal_error(err, here(proc) // 'cannot close file ' // q(part) &
+            // ' (temporary name of ' // q(p) // '): ' // trim(close_msg))
+         return
+      end if
+      call rename_path(part, p, reason)
+      if (len(reason) > 0) then
+         call remove_file(part)
+         call fatal_error(err, here(proc) // reason)
+      end if
+   end subroutine close_part
+
+   !> C `rename` of `old` to `new`; `reason` is '' on success, else
+   !> "cannot rename file 'old' to 'new': <strerror text> (errno N)".
+   subroutine rename_path(old, new, reason)
+      character(len=*), intent(in) :: old                !! existing file, trimmed
+      character(len=*), intent(in) :: new                !! new name, trimmed
+      character(len=:), allocatable, intent(out) :: reason   !! why it failed, or ''
+      integer(c_int) :: status, code
+      reason = ''
+      status = c_rename(old // c_null_char, new // c_null_char)
+      if (status == 0) return
+      code = current_errno()
+      reason = 'cannot rename file ' // q(old) // ' to ' // q(new) // ': ' // errno_text(code) &
+         // ' (errno ' // str(int(code)) // ')'
+   end subroutine rename_path
+
+   !> Whether `p` (trimmed, not empty) exists, as file or directory.
+   logical function exists(p)
+      character(len=*), intent(in) :: p                  !! path
+      exists = c_access(p // c_null_char, f_ok) == 0
+   end function exists
+
+   !> Whether `p` (trimmed, not empty) is a directory that can be entered.
+   logical function is_directory(p)
+      character(len=*), intent(in) :: p                  !! path
+      is_directory = c_access(p // '/.' // c_null_char, f_ok) == 0   ! ENOTDIR for a file
+   end function is_directory
+
+   !> The calling thread's C `errno`, read right after a failed C call.
+   function current_errno() result(code)
+      integer(c_int) :: code
+      integer(c_int), pointer :: location
+      call c_f_pointer(c_errno_location(), location)
+      code = location
+   end function current_errno
+
+   !> C `strerror` text of an `errno` value.
+   function errno_text(code) result(text)
+      integer(c_int), intent(in) :: code                 !! errno value
+      character(len=:), allocatable :: text
+      character(kind=c_char, len=1), pointer :: chars(:)
+      type(c_ptr) :: p
+      integer :: n, j
+      text = 'unknown error'
+      p = c_strerror(code)
+      if (.not. c_associated(p)) return
+      call c_f_pointer(p, chars, [max_c_string])
+      n = 0
+      do while (n < max_c_string)
+         if (chars(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      deallocate(text)
+      allocate(character(len=n) :: text)
+      do j = 1, n
+         text(j:j) = chars(j)
+      end do
+   end function errno_text
+
+   !> `text` on one line: carriage returns and line feeds become blanks.
+   pure function one_line(text) result(s)
+      character(len=*), intent(in) :: text               !! text, possibly with new lines
+      character(len=len(text)) :: s
+      integer :: i
+      s = text
+      do i = 1, len(s)
+         if (s(i:i) == achar(10) .or. s(i:i) == achar(13)) s(i:i) = ' '
+      end do
+   end function one_line
+
+   !> Message prefix 'gapbeam_files:<proc>: '.
+   pure function here(proc) result(s)
+      character(len=*), intent(in) :: proc               !! procedure name
+      character(len=:), allocatable :: s
+      s = module_name // ':' // proc // ': '
+   end function here
+
+   !> Text in single quotes.
+   pure function q(s) result(quoted)
+      character(len=*), intent(in) :: s                  !! text
+      character(len=:), allocatable :: quoted
+      quoted = "'" // s // "'"
+   end function q
+
+end module gapbeam_files

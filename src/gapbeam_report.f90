@@ -1,0 +1,201 @@
+!> Result files: HDF5 (through gapbeam_hdf5_output) and gnuplot-ready text tables, each written
+!> under a temporary name and renamed when complete. Every dataset carries `units`; every file
+!> carries the effective deck text at /deck.
+module gapbeam_report
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, str
+   use gapbeam_hdf5_output, only: h5_writer_t
+   use gapbeam_files, only: write_table, make_parent_directory
+   use gapbeam_input, only: deck_t
+   use gapbeam_assembly, only: system_t
+   use gapbeam_eigen, only: modes_t
+   use gapbeam_problem, only: problem_t
+   use gapbeam_transient, only: transient_result_t
+   use gapbeam_model, only: dof_w
+   implicit none
+   private
+   public :: write_modes, write_transient, write_calibration, mode_shape_table
+
+contains
+
+   !> Node x and w of each mode at the nodes (root w = 0), for plotting: (n_node, 1+n_modes).
+   function mode_shape_table(sys, modes) result(tab)
+      type(system_t), intent(in) :: sys      !! assembled structure
+      type(modes_t), intent(in) :: modes     !! modes
+      real(dp), allocatable :: tab(:, :)
+      integer :: i, j, g
+      allocate(tab(sys%n_node, 1 + modes%n_modes), source=0.0_dp)
+      do i = 1, sys%n_node
+         tab(i, 1) = real(i - 1, dp) * sys%element_length
+         g = sys%dof_of(dof_w, i)
+         if (g > 0) then
+            do j = 1, modes%n_modes
+               tab(i, 1 + j) = modes%shapes(g, j)
+            end do
+         end if
+      end do
+   end function mode_shape_table
+
+   !> Modal analysis results: prefix.h5 and prefix.modes.dat, prefix.shapes.dat.
+   subroutine write_modes(deck, sys, modes, stop_stiffness, err)
+      type(deck_t), intent(in) :: deck                 !! the deck (output prefix, text)
+      type(system_t), intent(in) :: sys                !! assembled structure
+      type(modes_t), intent(in) :: modes               !! modes
+      real(dp), intent(in) :: stop_stiffness(:)        !! resolved stop stiffness (may be empty)
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(h5_writer_t) :: h5
+      character(len=:), allocatable :: prefix
+      real(dp), allocatable :: cols(:, :), tab(:, :)
+      character(len=16), allocatable :: names(:), units(:)
+      integer :: j
+      prefix = trim(deck%job%output)
+      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%write_text('/deck', deck%text, err);  if (failed()) return
+      call h5%write('/modes/frequency_hz', modes%frequency_hz, 'Hz', err);  if (failed()) return
+      call h5%write('/modes/shapes', modes%shapes, 'm/sqrt(kg)', err);  if (failed()) return
+      call h5%write('/modes/participation', modes%participation, 'sqrt(kg)', err)
+      if (failed()) return
+      call h5%write('/modes/effective_mass', modes%effective_mass, 'kg', err)
+      if (failed()) return
+      call h5%write('/modes/moving_mass', modes%total_mass, 'kg', err);  if (failed()) return
+      tab = mode_shape_table(sys, modes)
+      call h5%write('/modes/node_x', tab(:, 1), 'm', err);  if (failed()) return
+      call h5%write('/modes/node_w', tab(:, 2:), 'm/sqrt(kg)', err);  if (failed()) return
+      call h5%write('/model/stiffness', sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
+      call h5%write('/model/mass', sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
+      call h5%write('/model/stop_stiffness', stop_stiffness, 'N/m', err);  if (failed()) return
+      call h5%close(err);  if (allocated(err)) return
+
+      allocate(cols(modes%n_modes, 5))
+      cols(:, 1) = [(real(j, dp), j = 1, modes%n_modes)]
+      cols(:, 2) = modes%frequency_hz
+      cols(:, 3) = modes%frequency_hz / modes%frequency_hz(1)
+      cols(:, 4) = modes%participation
+      cols(:, 5) = modes%effective_mass / modes%total_mass
+      call write_table(prefix // '.modes.dat', trim(deck%job%title) // ': natural frequencies', &
+         [character(len=16) :: 'mode', 'frequency', 'ratio_to_f1', 'participation', &
+         'eff_mass_fraction'], [character(len=16) :: '-', 'Hz', '-', 'sqrt(kg)', '-'], cols, err)
+      if (allocated(err)) return
+      allocate(names(1 + modes%n_modes), units(1 + modes%n_modes))
+      names(1) = 'x';  units(1) = 'm'
+      do j = 1, modes%n_modes
+         names(1 + j) = 'w_mode' // str(j);  units(1 + j) = 'm/sqrt(kg)'
+      end do
+      call write_table(prefix // '.shapes.dat', trim(deck%job%title) // ': mode shapes (w)', &
+                       names, units, tab, err)
+   contains
+      logical function failed()
+         failed = allocated(err)
+         if (failed) call h5%abort()
+      end function failed
+   end subroutine write_modes
+
+   !> Calibration result: prefix.h5 with /calibrate/value and the first frequency.
+   subroutine write_calibration(deck, value, units, f1_hz, err)
+      type(deck_t), intent(in) :: deck                 !! the deck
+      real(dp), intent(in) :: value                    !! calibrated value
+      character(len=*), intent(in) :: units            !! its units
+      real(dp), intent(in) :: f1_hz                    !! resulting first frequency [Hz]
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(h5_writer_t) :: h5
+      character(len=:), allocatable :: prefix
+      prefix = trim(deck%job%output)
+      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%write_text('/deck', deck%text, err);  if (failed()) return
+      call h5%write_text('/calibrate/parameter', trim(deck%calibrate%parameter), err)
+      if (failed()) return
+      call h5%write('/calibrate/value', value, units, err);  if (failed()) return
+      call h5%write('/calibrate/target_f1_hz', deck%calibrate%target_f1_hz, 'Hz', err)
+      if (failed()) return
+      call h5%write('/calibrate/f1_hz', f1_hz, 'Hz', err);  if (failed()) return
+      call h5%close(err)
+   contains
+      logical function failed()
+         failed = allocated(err)
+         if (failed) call h5%abort()
+      end function failed
+   end subroutine write_calibration
+
+   !> Transient results: prefix.h5, prefix.history.dat, prefix.poincare.dat.
+   subroutine write_transient(deck, prob, res, err)
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(problem_t), intent(in) :: prob              !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(h5_writer_t) :: h5
+      character(len=:), allocatable :: prefix
+      real(dp), allocatable :: cols(:, :)
+      character(len=20), allocatable :: names(:), units(:)
+      integer :: j, ns
+      prefix = trim(deck%job%output)
+      ns = prob%n_stops
+      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
+      call h5%write_text('/deck', deck%text, err);  if (failed()) return
+      call h5%write('/history/time', res%time, 's', err);  if (failed()) return
+      call h5%write('/history/strain', res%strain, '-', err);  if (failed()) return
+      call h5%write('/history/strain_rate', res%strain_rate, '1/s', err);  if (failed()) return
+      call h5%write('/history/tip_displacement', res%tip_displacement, 'm', err)
+      if (failed()) return
+      call h5%write('/history/stop_force', res%stop_force, 'N', err);  if (failed()) return
+      call h5%write('/poincare/time', res%p_time, 's', err);  if (failed()) return
+      call h5%write('/poincare/strain', res%p_strain, '-', err);  if (failed()) return
+      call h5%write('/poincare/strain_rate', res%p_strain_rate, '1/s', err);  if (failed()) return
+      call h5%write('/poincare/tip_displacement', res%p_tip, 'm', err);  if (failed()) return
+      call h5%write('/poincare/tip_velocity', res%p_tip_velocity, 'm/s', err)
+      if (failed()) return
+      call h5%write('/run/steps_accepted', int(res%steps_accepted), '-', err)
+      if (failed()) return
+      call h5%write('/run/steps_rejected', int(res%steps_rejected), '-', err);  if (failed()) return
+      call h5%write('/run/events', int(res%events), '-', err);  if (failed()) return
+      call h5%write('/run/factorizations', int(res%factorizations), '-', err)
+      if (failed()) return
+      call h5%write('/run/fixed_point_iterations', int(res%fp_iterations), '-', err)
+      if (failed()) return
+      call h5%write('/run/cpu_seconds', res%cpu_seconds, 's', err);  if (failed()) return
+      call h5%write('/run/dt_smallest', res%dt_smallest, 's', err);  if (failed()) return
+      call h5%write('/run/dt_largest', res%dt_largest, 's', err);  if (failed()) return
+      call h5%write('/model/stop_stiffness', prob%stop_stiffness, 'N/m', err)
+      if (failed()) return
+      call h5%write('/model/f1_open_hz', prob%f1_open_hz, 'Hz', err);  if (failed()) return
+      call h5%write('/impacts/count', res%n_impacts, '-', err);  if (failed()) return
+      call h5%write('/impacts/peak_force', res%peak_force, 'N', err);  if (failed()) return
+      call h5%write('/impacts/rms_force', res%rms_force, 'N', err);  if (failed()) return
+      call h5%write('/impacts/contact_fraction', res%contact_fraction, '-', err)
+      if (failed()) return
+      call h5%write('/impacts/impulse_per_period', res%impulse_per_period, 'N s', err)
+      if (failed()) return
+      call h5%write('/impacts/work_rate', res%work_rate, 'W', err);  if (failed()) return
+      call h5%write('/final/u', res%u, 'm, rad', err);  if (failed()) return
+      call h5%write('/final/v', res%v, 'm/s, rad/s', err);  if (failed()) return
+      call h5%write('/final/time', res%t_end, 's', err);  if (failed()) return
+      call h5%close(err);  if (allocated(err)) return
+
+      if (.not. deck%output%write_text) return
+      allocate(cols(size(res%time), 4 + ns), names(4 + ns), units(4 + ns))
+      cols(:, 1) = res%time;  cols(:, 2) = res%strain;  cols(:, 3) = res%strain_rate
+      cols(:, 4) = res%tip_displacement
+      names(1:4) = [character(len=20) :: 'time', 'strain', 'strain_rate', 'tip_displacement']
+      units(1:4) = [character(len=20) :: 's', '-', '1/s', 'm']
+      do j = 1, ns
+         cols(:, 4 + j) = res%stop_force(:, j)
+         names(4 + j) = 'stop_force_' // str(j);  units(4 + j) = 'N'
+      end do
+      call write_table(prefix // '.history.dat', trim(deck%job%title), names, units, cols, err)
+      if (allocated(err)) return
+      deallocate(cols)
+      allocate(cols(size(res%p_time), 5))
+      cols(:, 1) = res%p_strain;  cols(:, 2) = res%p_strain_rate;  cols(:, 3) = res%p_tip
+      cols(:, 4) = res%p_tip_velocity;  cols(:, 5) = res%p_time
+      call write_table(prefix // '.poincare.dat', trim(deck%job%title), &
+         [character(len=20) :: 'strain', 'strain_rate', 'tip_displacement', 'tip_velocity', &
+         'time'], [character(len=20) :: '-', '1/s', 'm', 'm/s', 's'], cols, err)
+   contains
+      logical function failed()
+         failed = allocated(err)
+         if (failed) call h5%abort()
+      end function failed
+   end subroutine write_transient
+end module gapbeam_report

@@ -1,0 +1,503 @@
+!> A transient run of the Newmark gap solver: step-size control, contact-event location,
+!> sampling of the history and the Poincare section, and the impact statistics.
+!>
+!> Time is counted in integer ticks of dt_max / 2^max_halvings, with dt_max = T /
+!> steps_per_period (T the forcing period), so every step size the control uses is a power-of-
+!> two fraction of dt_max, each has its factorization cached, and steps land exactly on the
+!> forcing periods. A step is rejected and halved when the half-step residual exceeds the
+!> tolerance (or the fixed point does not converge); the step doubles after `grow_after`
+!> comfortable steps when the time is a multiple of the doubled step. With `locate_events`,
+!> a step in which a contact opens or closes (penetration of the cubic Hermite interpolant of
+!> the contact dof changes sign, grazing included) is split at that instant.
+module gapbeam_transient
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_problem, only: problem_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t
+   use gapbeam_newmark, only: step_op_t, build_step_op, newmark_predict, condensed_contact, &
+      fixed_point_step, newmark_correct, half_step_ratio, state_load
+   use gapbeam_contact, only: contact_force
+   use gapbeam_model, only: dof_name
+   use gapbeam_lapack, only: dpotrf, dpotrs
+   implicit none
+   private
+   public :: transient_result_t, run_transient, initial_acceleration, dof_label
+
+   integer, parameter :: max_sub = 8   ! sub-steps of one step at most (event splits)
+
+   !> Everything a transient run produces.
+   type :: transient_result_t
+      real(dp), allocatable :: time(:)              !! history sample times [s]
+      real(dp), allocatable :: strain(:)            !! root strain [-]
+      real(dp), allocatable :: strain_rate(:)       !! root strain rate [1/s]
+      real(dp), allocatable :: tip_displacement(:)  !! tip w relative to the base [m]
+      real(dp), allocatable :: stop_force(:, :)     !! (samples, stops) contact force [N]
+      real(dp), allocatable :: p_time(:)            !! Poincare sample times [s]
+      real(dp), allocatable :: p_strain(:)          !! Poincare root strain [-]
+      real(dp), allocatable :: p_strain_rate(:)     !! Poincare root strain rate [1/s]
+      real(dp), allocatable :: p_tip(:)             !! Poincare tip displacement [m]
+      real(dp), allocatable :: p_tip_velocity(:)    !! Poincare tip velocity [m/s]
+      integer(int64) :: steps_accepted = 0          !! Newmark solves accepted (sub-steps too)
+      integer(int64) :: steps_rejected = 0          !! steps rejected by the control
+      integer(int64) :: events = 0                  !! steps split at a contact event
+      integer(int64) :: factorizations = 0          !! Kbar factorizations
+      integer(int64) :: fp_iterations = 0           !! fixed-point iterations
+      real(dp) :: cpu_seconds = 0.0_dp              !! elapsed time of the run [s]
+      real(dp) :: dt_smallest = 0.0_dp              !! smallest step used [s]
+      real(dp) :: dt_largest = 0.0_dp               !! largest step used [s]
+      integer, allocatable :: n_impacts(:)          !! per stop: contact onsets in the record
+      real(dp), allocatable :: peak_force(:)        !! per stop [N]
+      real(dp), allocatable :: rms_force(:)         !! per stop [N]
+      real(dp), allocatable :: contact_fraction(:)  !! per stop: time in contact / record [-]
+      real(dp), allocatable :: impulse_per_period(:)!! per stop [N s]
+      real(dp), allocatable :: work_rate(:)         !! per stop: (1/T) int f |d'| dt [W]
+      real(dp), allocatable :: first_contact_time(:) !! per stop: first onset, -1 if none [s]
+      real(dp), allocatable :: u(:), v(:), a(:)     !! final state
+      real(dp) :: t_end = 0.0_dp                    !! final time [s]
+   end type transient_result_t
+
+contains
+
+   !> 'node 5 w' style label of a global dof.
+   function dof_label(prob, i) result(s)
+      type(problem_t), intent(in) :: prob   !! model
+      integer, intent(in) :: i              !! global dof
+      character(len=:), allocatable :: s
+      integer :: node, d
+      s = 'dof ' // str(i)
+      do node = 1, prob%sys%n_node
+         do d = 1, 2
+            if (prob%sys%dof_of(d, node) == i) s = 'dof ' // str(i) // ' (node ' // str(node) &
+               // ' ' // dof_name(d) // ')'
+         end do
+      end do
+   end function dof_label
+
+   !> Acceleration in equilibrium with (t, u, v): M a = s(t) q - C v - K u - F_NL.
+   !> Massless dofs (lumped mass without rotary inertia) get a = 0.
+   subroutine initial_acceleration(prob, t, u, v, a)
+      type(problem_t), intent(in) :: prob       !! model
+      real(dp), intent(in) :: t                 !! time [s]
+      real(dp), intent(in) :: u(:), v(:)        !! state
+      real(dp), intent(out) :: a(:)             !! acceleration
+      real(dp), allocatable :: rhs(:), msub(:, :), b(:)
+      integer, allocatable :: idx(:)
+      integer :: c, i, info, nm
+      real(dp) :: d, f
+      rhs = state_load(prob, t) * prob%q - matmul(prob%c, v) - matmul(prob%sys%k, u)
+      do c = 1, prob%n_contacts
+         i = prob%c_dof(c)
+         d = prob%c_sign(c) * u(i) - prob%c_gap(c)
+         f = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), d, &
+                           prob%c_sign(c) * v(i))
+         rhs(i) = rhs(i) - prob%c_sign(c) * f
+      end do
+      a = 0.0_dp
+      idx = pack([(i, i = 1, prob%n)], [(prob%sys%m(i, i) > 0.0_dp, i = 1, prob%n)])
+      nm = size(idx)
+      if (nm == 0) return
+      msub = prob%sys%m(idx, idx)
+      b = rhs(idx)
+      call dpotrf('U', nm, msub, nm, info)
+      if (info == 0) call dpotrs('U', nm, 1, msub, nm, b, nm, info)
+      a(idx) = b
+   end subroutine initial_acceleration
+
+   !> Integrate from (u0, v0) at t = 0 over transient + recorded periods.
+   subroutine run_transient(prob, cfg, out, u0, v0, res, err)
+      type(problem_t), intent(in) :: prob              !! model
+      type(solver_settings_t), intent(in) :: cfg       !! solver settings
+      type(output_settings_t), intent(in) :: out       !! what to record
+      real(dp), intent(in) :: u0(:), v0(:)             !! initial state relative to the base
+      type(transient_result_t), intent(out) :: res     !! results
+      type(error_t), allocatable, intent(out) :: err   !! numerical failure
+      type(step_op_t), allocatable :: ops(:)
+      type(step_op_t) :: scratch
+      integer :: n, nc, ns, kmax, level, nsub, comfortable, worst, j, c, n_hist, n_poinc, &
+         ih, ip, s_stop, fp_it
+      integer(int64) :: tick, end_tick, rec_tick, nt, count0, count1, rate
+      real(dp) :: period, dt_max, tick_dt, t0, t1, ratio, r, t_rec, theta, dt_r, t_cur, &
+         dt_prev, t_h, t_p, t_rec_len, fsum
+      logical :: ok, dense, fixed_point, half_step, recording
+      real(dp), allocatable :: u(:), v(:), a(:), f(:), fprev(:), hm(:), hc(:), ys(:), &
+         work(:), work6(:, :), sub_u(:, :), sub_v(:, :), sub_a(:, :), sub_f(:, :), sub_t(:), &
+         fguess(:), rhs(:), yy(:)
+      real(dp), allocatable :: acc_f2(:), acc_f(:), acc_contact(:), acc_work(:)
+      logical, allocatable :: was_active(:)
+
+      call system_clock(count0, rate)
+      n = prob%n;  nc = prob%n_contacts;  ns = prob%n_stops
+      period = 2.0_dp * pi / prob%omega
+      dt_max = period / real(cfg%steps_per_period, dp)
+      kmax = cfg%max_halvings
+      tick_dt = dt_max / 2.0_dp**kmax
+      rec_tick = int(cfg%transient_periods, int64) * cfg%steps_per_period * 2_int64**kmax
+      end_tick = rec_tick + int(cfg%record_periods, int64) * cfg%steps_per_period &
+                 * 2_int64**kmax
+      t_rec = real(rec_tick, dp) * tick_dt
+      t_rec_len = real(cfg%record_periods, dp) * period
+      select case (cfg%linear_solver)
+      case ('dense');  dense = .true.
+      case ('banded'); dense = .false.
+      case default;    dense = n <= 60
+      end select
+      fixed_point = cfg%stop_solution == 'fixed_point'
+      half_step = cfg%step_control == 'half_step'
+      allocate(ops(0:kmax))
+
+      allocate(u(n), v(n), a(n), hm(n), hc(n), ys(n), work(n), work6(n, 6), rhs(n), yy(n))
+      allocate(f(nc), fprev(nc), fguess(nc), source=0.0_dp)
+      allocate(sub_u(n, 0:max_sub), sub_v(n, 0:max_sub), sub_a(n, 0:max_sub), &
+               sub_f(nc, 0:max_sub), sub_t(0:max_sub))
+      u = u0;  v = v0
+      call initial_acceleration(prob, 0.0_dp, u, v, a)
+      do c = 1, nc
+         f(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
+            prob%c_sign(c) * u(prob%c_dof(c)) - prob%c_gap(c), prob%c_sign(c) * v(prob%c_dof(c)))
+      end do
+      fprev = f
+      allocate(was_active(nc))
+      was_active = f > 0.0_dp
+
+      n_hist = min(out%history_periods, cfg%record_periods) * out%samples_per_period
+      n_poinc = cfg%record_periods
+      allocate(res%time(n_hist), res%strain(n_hist), res%strain_rate(n_hist), &
+               res%tip_displacement(n_hist), res%stop_force(n_hist, ns))
+      allocate(res%p_time(n_poinc), res%p_strain(n_poinc), res%p_strain_rate(n_poinc), &
+               res%p_tip(n_poinc), res%p_tip_velocity(n_poinc))
+      allocate(res%n_impacts(ns), source=0)
+      allocate(res%first_contact_time(ns), source=-1.0_dp)
+      allocate(res%peak_force(ns), acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), &
+               source=0.0_dp)
+      ih = 1;  ip = 1
+      res%dt_smallest = huge(1.0_dp);  res%dt_largest = 0.0_dp
+
+      tick = 0;  level = 0;  comfortable = 0;  dt_prev = dt_max
+      do while (tick < end_tick)
+         nt = 2_int64**(kmax - level)
+         t0 = real(tick, dp) * tick_dt
+         t1 = real(tick + nt, dp) * tick_dt
+         if (.not. ops(level)%ready) then
+            call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, t1 - t0, dense, &
+                               ops(level), err)
+            if (allocated(err)) return
+            res%factorizations = res%factorizations + 1
+         end if
+
+         ! ---- attempt the step, split at contact events
+         sub_t(0) = t0;  sub_u(:, 0) = u;  sub_v(:, 0) = v;  sub_a(:, 0) = a;  sub_f(:, 0) = f
+         nsub = 0;  ok = .true.;  t_cur = t0
+         do
+            dt_r = t1 - t_cur
+            if (nsub == 0) then
+               call one_step(ops(level), t_cur + dt_r, nsub, ok)
+            else
+               call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, dt_r, dense, &
+                                  scratch, err)
+               if (allocated(err)) return
+               res%factorizations = res%factorizations + 1
+               call one_step(scratch, t_cur + dt_r, nsub, ok)
+            end if
+            if (.not. ok) exit
+            if (cfg%locate_events .and. nc > 0 .and. nsub < max_sub - 1) then
+               theta = first_event(nsub, dt_r)
+               if (theta > 1.0e-6_dp .and. theta < 1.0_dp - 1.0e-6_dp) then
+                  call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, theta * dt_r, &
+                                     dense, scratch, err)
+                  if (allocated(err)) return
+                  res%factorizations = res%factorizations + 1
+                  call one_step(scratch, t_cur + theta * dt_r, nsub, ok)
+                  if (.not. ok) exit
+                  nsub = nsub + 1
+                  sub_t(nsub) = t_cur + theta * dt_r
+                  t_cur = sub_t(nsub)
+                  res%events = res%events + 1
+                  cycle
+               end if
+            end if
+            nsub = nsub + 1
+            sub_t(nsub) = t1
+            exit
+         end do
+
+         ratio = 0.0_dp;  worst = 1
+         if (ok .and. half_step) then
+            do j = 1, nsub
+               call half_step_ratio(prob, cfg%newmark_delta, cfg%newmark_alpha, &
+                  cfg%half_step_tolerance, cfg%residual_floor, sub_t(j - 1), &
+                  sub_t(j) - sub_t(j - 1), sub_u(:, j - 1), sub_v(:, j - 1), sub_a(:, j - 1), &
+                  sub_a(:, j), r, c, work6)
+               if (r > ratio) then
+                  ratio = r;  worst = c
+               end if
+            end do
+         end if
+         if (.not. ok .or. ratio > 1.0_dp) then
+            res%steps_rejected = res%steps_rejected + 1
+            comfortable = 0
+            if (level >= kmax) then
+               if (.not. ok) then
+                  call fatal_error(err, 'gapbeam_transient:run_transient: the fixed point on ' &
+                     // 'the stop force does not converge in ' // str(cfg%fp_max_iterations) &
+                     // ' iterations even at the smallest step dt = ' // str(t1 - t0) &
+                     // ' s (t = ' // str(t0) // ' s, stop ' // dof_label(prob, prob%c_dof(1)) &
+                     // '); use stop_solution=''condensed'' or allow more max_halvings')
+               else
+                  call fatal_error(err, 'gapbeam_transient:run_transient: step below the ' &
+                     // 'minimum: at t = ' // str(t0) // ' s the half-step residual at ' &
+                     // dof_label(prob, worst) // ' is ' // str(ratio) // ' times the ' &
+                     // 'tolerance with the smallest step dt = ' // str(t1 - t0) // ' s (' &
+                     // 'steps_per_period = ' // str(cfg%steps_per_period) // ', max_halvings = ' &
+                     // str(kmax) // ')')
+               end if
+               return
+            end if
+            level = level + 1
+            cycle
+         end if
+
+         ! ---- accept
+         do j = 1, n
+            if (.not. (abs(sub_u(j, nsub)) <= huge(1.0_dp)) .or. &
+                .not. (abs(sub_v(j, nsub)) <= huge(1.0_dp))) then
+               call fatal_error(err, 'gapbeam_transient:run_transient: the solution is not ' &
+                  // 'finite at t = ' // str(t1) // ' s, dt = ' // str(t1 - t0) // ' s, ' &
+                  // dof_label(prob, j))
+               return
+            end if
+         end do
+         recording = tick >= rec_tick
+         do j = 1, nsub
+            call record_substep(j)
+         end do
+         res%steps_accepted = res%steps_accepted + nsub
+         res%dt_smallest = min(res%dt_smallest, t1 - t0)
+         res%dt_largest = max(res%dt_largest, t1 - t0)
+         fprev = sub_f(:, nsub - 1)
+         dt_prev = sub_t(nsub) - sub_t(nsub - 1)
+         u = sub_u(:, nsub);  v = sub_v(:, nsub);  a = sub_a(:, nsub);  f = sub_f(:, nsub)
+         tick = tick + nt
+
+         ! ---- grow
+         if (.not. half_step .or. ratio < cfg%grow_ratio) then
+            comfortable = comfortable + 1
+         else
+            comfortable = 0
+         end if
+         if (level > 0 .and. comfortable >= cfg%grow_after) then
+            if (mod(tick, 2 * nt) == 0) then
+               level = level - 1;  comfortable = 0
+            end if
+         end if
+      end do
+
+      ! ---- statistics over the record
+      res%rms_force = sqrt(acc_f2 / t_rec_len)
+      res%contact_fraction = acc_contact / t_rec_len
+      res%impulse_per_period = acc_f / real(cfg%record_periods, dp)
+      res%work_rate = acc_work / t_rec_len
+      res%u = u;  res%v = v;  res%a = a
+      res%t_end = real(end_tick, dp) * tick_dt
+      if (ih <= n_hist) then
+         res%time = res%time(1:ih - 1);  res%strain = res%strain(1:ih - 1)
+         res%strain_rate = res%strain_rate(1:ih - 1)
+         res%tip_displacement = res%tip_displacement(1:ih - 1)
+         res%stop_force = res%stop_force(1:ih - 1, :)
+      end if
+      call system_clock(count1)
+      res%cpu_seconds = real(count1 - count0, dp) / real(rate, dp)
+
+   contains
+
+      !> One Newmark solve from sub-state nsub to time t_end, into slot nsub+1.
+      subroutine one_step(op, t_end, k, success)
+         type(step_op_t), intent(in) :: op
+         real(dp), intent(in) :: t_end
+         integer, intent(in) :: k
+         logical, intent(out) :: success
+         real(dp) :: s1, hstep
+         integer :: sweeps
+         s1 = state_load(prob, t_end)
+         success = .true.
+         if (fixed_point .and. nc > 0) then
+            hstep = t_end - sub_t(k)
+            if (k == 0) then
+               fguess = max(0.0_dp, sub_f(:, k) + (sub_f(:, k) - fprev) * hstep / dt_prev)
+            else
+               fguess = max(0.0_dp, sub_f(:, k) + (sub_f(:, k) - sub_f(:, k - 1)) * hstep &
+                            / (sub_t(k) - sub_t(k - 1)))
+            end if
+            call fixed_point_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
+               cfg%fp_tolerance, cfg%fp_max_iterations, fguess, sub_u(:, k + 1), &
+               sub_v(:, k + 1), sub_a(:, k + 1), fp_it, success, hm, hc, rhs, yy)
+            res%fp_iterations = res%fp_iterations + fp_it
+            sub_f(:, k + 1) = fguess
+         else
+            call newmark_predict(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), hm, hc, &
+                                 ys, work)
+            if (nc > 0) then
+               sub_f(:, k + 1) = sub_f(:, k)
+               call condensed_contact(prob, op, sub_u(:, k), sub_v(:, k), sub_a(:, k), ys, &
+                                      sub_f(:, k + 1), sweeps)
+            end if
+            call newmark_correct(prob, op, ys, hm, hc, sub_f(:, k + 1), sub_u(:, k + 1), &
+                                 sub_v(:, k + 1), sub_a(:, k + 1))
+         end if
+      end subroutine one_step
+
+      !> First instant (fraction of the sub-step) where a contact opens or closes.
+      real(dp) function first_event(k, h) result(th)
+         integer, intent(in) :: k
+         real(dp), intent(in) :: h
+         integer :: cc, i, m, it
+         real(dp) :: lo, hi, mid, p0
+         logical :: closed0
+         integer, parameter :: n_sample = 8
+         th = 2.0_dp
+         do cc = 1, nc
+            i = prob%c_dof(cc)
+            p0 = prob%c_sign(cc) * sub_u(i, k) - prob%c_gap(cc)
+            closed0 = p0 > 0.0_dp
+            do m = 1, n_sample
+               hi = real(m, dp) / n_sample
+               if (hi >= th) exit
+               if ((prob%c_sign(cc) * hermite_value(hi, h, sub_u(i, k), sub_v(i, k), sub_u(i, k + 1), &
+                   sub_v(i, k + 1)) - prob%c_gap(cc) > 0.0_dp) .neqv. closed0) then
+                  lo = real(m - 1, dp) / n_sample
+                  do it = 1, 60
+                     mid = 0.5_dp * (lo + hi)
+                     if ((prob%c_sign(cc) * hermite_value(mid, h, sub_u(i, k), sub_v(i, k), &
+                         sub_u(i, k + 1), sub_v(i, k + 1)) - prob%c_gap(cc) > 0.0_dp) .neqv. closed0) then
+                        hi = mid
+                     else
+                        lo = mid
+                     end if
+                  end do
+                  th = min(th, hi)
+                  exit
+               end if
+            end do
+         end do
+      end function first_event
+
+      !> Samples and statistics of accepted sub-step j (from j-1 to j).
+      subroutine record_substep(jj)
+         integer, intent(in) :: jj
+         real(dp) :: ta, tb, h, x, h00, h10, h01, h11, g00, g10, g01, g11, ui, vi, fa, fb, &
+            wa, wb, st, sv
+         integer :: cc, i, ks
+         ta = sub_t(jj - 1);  tb = sub_t(jj);  h = tb - ta
+         ! history samples in (ta, tb]
+         do while (ih <= n_hist)
+            t_h = t_rec + real(ih - 1, dp) * period / real(out%samples_per_period, dp)
+            if (t_h > tb + 1.0e-12_dp * period) exit
+            x = min(1.0_dp, max(0.0_dp, (t_h - ta) / h))
+            call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+            res%time(ih) = t_h
+            st = 0.0_dp;  sv = 0.0_dp
+            do i = 1, n
+               ui = h00 * sub_u(i, jj - 1) + h10 * h * sub_v(i, jj - 1) + h01 * sub_u(i, jj) &
+                    + h11 * h * sub_v(i, jj)
+               vi = (g00 * sub_u(i, jj - 1) + g10 * h * sub_v(i, jj - 1) + g01 * sub_u(i, jj) &
+                    + g11 * h * sub_v(i, jj)) / h
+               st = st + prob%sys%strain_row(i) * ui
+               sv = sv + prob%sys%strain_row(i) * vi
+               if (i == prob%sys%tip_dof) res%tip_displacement(ih) = ui
+               work(i) = ui;  yy(i) = vi
+            end do
+            res%strain(ih) = st;  res%strain_rate(ih) = sv
+            res%stop_force(ih, :) = 0.0_dp
+            do cc = 1, nc
+               i = prob%c_dof(cc);  ks = prob%c_stop(cc)
+               res%stop_force(ih, ks) = res%stop_force(ih, ks) + contact_force(prob%c_law(cc), &
+                  prob%c_k(cc), prob%c_c(cc), prob%c_p(cc), &
+                  prob%c_sign(cc) * work(i) - prob%c_gap(cc), prob%c_sign(cc) * yy(i))
+            end do
+            ih = ih + 1
+         end do
+         ! Poincare samples in (ta, tb]
+         do while (ip <= n_poinc)
+            t_p = t_rec + (real(ip - 1, dp) + out%poincare_phase_deg / 360.0_dp) * period
+            if (t_p > tb + 1.0e-12_dp * period) exit
+            x = min(1.0_dp, max(0.0_dp, (t_p - ta) / h))
+            call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+            st = 0.0_dp;  sv = 0.0_dp
+            do i = 1, n
+               ui = h00 * sub_u(i, jj - 1) + h10 * h * sub_v(i, jj - 1) + h01 * sub_u(i, jj) &
+                    + h11 * h * sub_v(i, jj)
+               vi = (g00 * sub_u(i, jj - 1) + g10 * h * sub_v(i, jj - 1) + g01 * sub_u(i, jj) &
+                    + g11 * h * sub_v(i, jj)) / h
+               st = st + prob%sys%strain_row(i) * ui
+               sv = sv + prob%sys%strain_row(i) * vi
+               if (i == prob%sys%tip_dof) then
+                  res%p_tip(ip) = ui;  res%p_tip_velocity(ip) = vi
+               end if
+            end do
+            res%p_time(ip) = t_p;  res%p_strain(ip) = st;  res%p_strain_rate(ip) = sv
+            ip = ip + 1
+         end do
+         ! first contact onset of each stop, interpolated linearly in the penetration
+         do cc = 1, nc
+            ks = prob%c_stop(cc)
+            if (res%first_contact_time(ks) >= 0.0_dp) cycle
+            if (sub_f(cc, jj) > 0.0_dp .and. .not. was_active(cc)) then
+               i = prob%c_dof(cc)
+               fa = prob%c_sign(cc) * sub_u(i, jj - 1) - prob%c_gap(cc)
+               fb = prob%c_sign(cc) * sub_u(i, jj) - prob%c_gap(cc)
+               if (fa <= 0.0_dp .and. fb > fa) then
+                  res%first_contact_time(ks) = ta + h * (-fa) / (fb - fa)
+               else
+                  res%first_contact_time(ks) = ta
+               end if
+            end if
+         end do
+         if (.not. recording) then
+            do cc = 1, nc
+               was_active(cc) = sub_f(cc, jj) > 0.0_dp
+            end do
+            return
+         end if
+         ! impact statistics (trapezoid over the sub-step)
+         do cc = 1, nc
+            i = prob%c_dof(cc);  ks = prob%c_stop(cc)
+            fa = sub_f(cc, jj - 1);  fb = sub_f(cc, jj)
+            wa = fa * abs(sub_v(i, jj - 1));  wb = fb * abs(sub_v(i, jj))
+            acc_f2(ks) = acc_f2(ks) + 0.5_dp * h * (fa**2 + fb**2)
+            acc_f(ks) = acc_f(ks) + 0.5_dp * h * (fa + fb)
+            acc_work(ks) = acc_work(ks) + 0.5_dp * h * (wa + wb)
+            if (fa > 0.0_dp .and. fb > 0.0_dp) then
+               acc_contact(ks) = acc_contact(ks) + h
+            else if (fa > 0.0_dp .or. fb > 0.0_dp) then
+               acc_contact(ks) = acc_contact(ks) + 0.5_dp * h
+            end if
+            if (fb > 0.0_dp .and. .not. was_active(cc)) res%n_impacts(ks) = res%n_impacts(ks) + 1
+            was_active(cc) = fb > 0.0_dp
+         end do
+         do ks = 1, ns
+            fsum = 0.0_dp
+            do cc = 1, nc
+               if (prob%c_stop(cc) == ks) fsum = fsum + sub_f(cc, jj)
+            end do
+            res%peak_force(ks) = max(res%peak_force(ks), fsum)
+         end do
+      end subroutine record_substep
+   end subroutine run_transient
+
+   !> Cubic Hermite interpolant at fraction x of a step of size h from (u0, v0) to (u1, v1).
+   pure real(dp) function hermite_value(x, h, u0, v0, u1, v1)
+      real(dp), intent(in) :: x, h, u0, v0, u1, v1
+      hermite_value = (1 + 2 * x) * (1 - x)**2 * u0 + x * (1 - x)**2 * h * v0 &
+                      + x**2 * (3 - 2 * x) * u1 + x**2 * (x - 1) * h * v1
+   end function hermite_value
+
+   !> Weights of the cubic Hermite interpolant (h..) and of its derivative times h (g..).
+   pure subroutine hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: h00, h10, h01, h11, g00, g10, g01, g11
+      h00 = (1 + 2 * x) * (1 - x)**2;  h10 = x * (1 - x)**2
+      h01 = x**2 * (3 - 2 * x);  h11 = x**2 * (x - 1)
+      g00 = 6 * x**2 - 6 * x;  g10 = 3 * x**2 - 4 * x + 1
+      g01 = -6 * x**2 + 6 * x;  g11 = 3 * x**2 - 2 * x
+   end subroutine hermite_weights
+end module gapbeam_transient
