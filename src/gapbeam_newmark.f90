@@ -97,6 +97,7 @@ contains
       end if
       op%gp = rhs(:, 1)
       op%g = rhs(:, 2:)
+      if (allocated(op%h)) deallocate(op%h)
       allocate(op%h(ns, ns))
       do j = 1, ns
          op%h(j, :) = op%g(prob%slot_dof(j), :)

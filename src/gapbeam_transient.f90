@@ -25,6 +25,7 @@ module gapbeam_transient
    public :: transient_result_t, run_transient, initial_acceleration, dof_label
 
    integer, parameter :: max_sub = 8   ! sub-steps of one step at most (event splits)
+   real(dp), parameter :: min_split = 1.0e-3_dp   ! no sub-step shorter than this fraction of a step
 
    !> Everything a transient run produces.
    type :: transient_result_t
@@ -202,7 +203,8 @@ contains
             if (.not. ok) exit
             if (cfg%locate_events .and. nc > 0 .and. nsub < max_sub - 1) then
                theta = first_event(nsub, dt_r)
-               if (theta > 1.0e-6_dp .and. theta < 1.0_dp - 1.0e-6_dp) then
+               if (theta * dt_r > min_split * (t1 - t0) .and. &
+                   (1.0_dp - theta) * dt_r > min_split * (t1 - t0)) then
                   call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, theta * dt_r, &
                                      dense, scratch, err)
                   if (allocated(err)) return
