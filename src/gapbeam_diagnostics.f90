@@ -10,25 +10,25 @@ contains
    !> Smallest period p <= p_max (in forcing periods) of a Poincare sequence, 0 if none.
    !>
    !> The last `n_test` points (all but the first p_max when fewer) are compared with the
-   !> points p earlier; the sequence has period p when every such distance, in each coordinate,
-   !> is below tol times the coordinate's range over the tested points (the attractor's size).
-   !> A sequence whose range is zero (a fixed point) has period 1.
-   pure integer function detect_period(x, y, p_max, tol, n_test) result(p)
+   !> points p earlier; the sequence has period p when every such distance is below tol times
+   !> the coordinate's scale (callers pass the size of the orbit, e.g. the range of the strain
+   !> over a forcing period, so that a fixed point with round-off jitter has period 1).
+   pure integer function detect_period(x, y, p_max, tol, n_test, scale_x, scale_y) result(p)
       real(dp), intent(in) :: x(:)      !! first coordinate of the points (e.g. strain)
       real(dp), intent(in) :: y(:)      !! second coordinate (e.g. strain rate)
       integer, intent(in) :: p_max      !! largest period tested
       real(dp), intent(in) :: tol       !! relative tolerance
       integer, intent(in) :: n_test     !! points tested
+      real(dp), intent(in) :: scale_x   !! size of the orbit in x
+      real(dp), intent(in) :: scale_y   !! size of the orbit in y
       integer :: n, first, q, i
-      real(dp) :: rx, ry, sx, sy
+      real(dp) :: sx, sy
       logical :: ok
       p = 0
       n = size(x)
       if (n < 2 * p_max + 1) return
       first = max(p_max + 1, n - n_test + 1)
-      rx = maxval(x(first - p_max:n)) - minval(x(first - p_max:n))
-      ry = maxval(y(first - p_max:n)) - minval(y(first - p_max:n))
-      sx = max(rx, tiny(1.0_dp));  sy = max(ry, tiny(1.0_dp))
+      sx = max(scale_x, tiny(1.0_dp));  sy = max(scale_y, tiny(1.0_dp))
       do q = 1, p_max
          ok = .true.
          do i = first, n

@@ -527,6 +527,7 @@ contains
       integer :: index
       real(dp) :: target_f1_hz
       namelist /calibrate/ parameter, index, target_f1_hz
+      if (.not. group_present(srcs, 'calibrate')) return
       parameter = cfg%parameter;  index = cfg%index;  target_f1_hz = cfg%target_f1_hz
       call apply_group(srcs, 'calibrate', 'parameter index target_f1_hz', reader, err)
       if (allocated(err)) return

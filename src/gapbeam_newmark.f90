@@ -261,7 +261,7 @@ contains
          rhs = pbar
          do c = 1, prob%n_contacts
             i = prob%c_dof(c)
-            rhs(i) = rhs(i) + prob%c_sign(c) * f(c)
+            rhs(i) = rhs(i) - prob%c_sign(c) * f(c)
          end do
          y = rhs
          if (op%dense) then
@@ -289,7 +289,7 @@ contains
       rhs = pbar
       do c = 1, prob%n_contacts
          i = prob%c_dof(c)
-         rhs(i) = rhs(i) + prob%c_sign(c) * f(c)
+         rhs(i) = rhs(i) - prob%c_sign(c) * f(c)
       end do
       u1 = rhs
       if (op%dense) then

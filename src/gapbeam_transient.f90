@@ -75,6 +75,28 @@ contains
       end do
    end function dof_label
 
+   !> Put massless dofs (lumped mass without rotary inertia) in static equilibrium with the
+   !> others: K_ss u_s = -K_sr u_r, and the same for the velocity. The initial state of such
+   !> dofs is not free; without this the first step would jump.
+   subroutine massless_equilibrium(prob, u, v)
+      type(problem_t), intent(in) :: prob      !! model
+      real(dp), intent(inout) :: u(:), v(:)    !! state, massless entries replaced
+      integer, allocatable :: s(:), r(:)
+      real(dp), allocatable :: kss(:, :), b(:, :)
+      integer :: i, ns, info
+      s = pack([(i, i = 1, prob%n)], [(prob%sys%m(i, i) == 0.0_dp, i = 1, prob%n)])
+      r = pack([(i, i = 1, prob%n)], [(prob%sys%m(i, i) /= 0.0_dp, i = 1, prob%n)])
+      ns = size(s)
+      if (ns == 0) return
+      kss = prob%sys%k(s, s)
+      allocate(b(ns, 2))
+      b(:, 1) = -matmul(prob%sys%k(s, r), u(r))
+      b(:, 2) = -matmul(prob%sys%k(s, r), v(r))
+      call dpotrf('U', ns, kss, ns, info)
+      if (info == 0) call dpotrs('U', ns, 2, kss, ns, b, ns, info)
+      u(s) = b(:, 1);  v(s) = b(:, 2)
+   end subroutine massless_equilibrium
+
    !> Acceleration in equilibrium with (t, u, v): M a = s(t) q - C v - K u - F_NL.
    !> Massless dofs (lumped mass without rotary inertia) get a = 0.
    subroutine initial_acceleration(prob, t, u, v, a)
@@ -152,6 +174,7 @@ contains
       allocate(sub_u(n, 0:max_sub), sub_v(n, 0:max_sub), sub_a(n, 0:max_sub), &
                sub_f(nc, 0:max_sub), sub_t(0:max_sub))
       u = u0;  v = v0
+      call massless_equilibrium(prob, u, v)
       call initial_acceleration(prob, 0.0_dp, u, v, a)
       do c = 1, nc
          f(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &

@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# scripts/plot.sh - render the PNG plots of one gapbeam run from its gnuplot-ready text files.
+#
+# Usage:
+#   scripts/plot.sh ANALYSIS PREFIX
+#   scripts/plot.sh transient results/moon_shaw_10p5hz
+#   (scripts/run.sh calls it after a run with the program's `analysis:` and `output:` words)
+#
+# ANALYSIS=transient: PREFIX.history.dat  -> PREFIX.history.png  (scripts/strain_history.gp:
+#                                            root strain and stop force against time, paper Fig. 3)
+#                     PREFIX.poincare.dat -> PREFIX.poincare.png (scripts/poincare.gp: strain rate
+#                                            against strain once per period, paper Figs. 4-9)
+# ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies)
+#                                         -> PREFIX.shapes.png   (scripts/mode_shapes.gp)
+# Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
+# Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
+# Prints `plot: wrote FILE.png` per PNG written. A .dat file that is missing or holds no data row
+# (e.g. the deck set `&output write_text = .false.`) is reported on stderr and skipped.
+# A PNG is written under a temporary name and renamed when gnuplot has succeeded.
+# Exit status: 0; 1 when gnuplot is missing or fails; 2 on bad usage.
+set -euo pipefail
+
+script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+
+if [[ ${1:-} == -h || ${1:-} == --help ]]; then
+   sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"
+   exit 0
+fi
+if [[ $# -ne 2 || -z $2 ]]; then
+   printf 'usage: scripts/plot.sh ANALYSIS PREFIX   (e.g. transient results/moon_shaw_10p5hz)\n' >&2
+   exit 2
+fi
+analysis=$1
+prefix=$2
+
+case ${analysis} in
+   transient | modes) ;;
+   *) exit 0 ;;
+esac
+
+if ! command -v gnuplot >/dev/null 2>&1; then
+   printf 'plot: error: gnuplot is not installed (Debian/Ubuntu: apt-get install gnuplot-nox;' >&2
+   printf ' or source scripts/setup.sh); no plots of %s\n' "${prefix}" >&2
+   exit 1
+fi
+
+# A text as a gnuplot single-quoted string: a quote inside is doubled, nothing else is special.
+gp_quote() {
+   local s=${1//\'/\'\'}
+   printf "'%s'" "${s}"
+}
+
+# True when FILE exists and holds at least one data row (a line that is neither blank nor '#').
+has_data() {
+   [[ -f $1 ]] && grep -q -v -E '^[[:space:]]*(#|$)' -- "$1"
+}
+
+# The title of a .dat file: its first line without the leading '#' and blanks.
+dat_title() {
+   local line=""
+   IFS= read -r line <"$1" || true
+   line=${line#\#}
+   line=${line#"${line%%[![:space:]]*}"}
+   printf '%s' "${line}"
+}
+
+# render SCRIPT PNG GNUPLOT_ASSIGNMENTS: run gnuplot into PNG.part, rename it to PNG on success.
+render() {
+   local script=$1 png=$2 assignments=$3
+   local part="${png}.part"
+   local status=0
+   gnuplot -e "${assignments}; outfile=$(gp_quote "${part}")" "${script_dir}/${script}" \
+      || status=$?
+   if [[ ${status} -ne 0 || ! -s ${part} ]]; then
+      rm -f -- "${part}"
+      printf 'plot: error: gnuplot failed on scripts/%s for %s\n' "${script}" "${png}" >&2
+      exit 1
+   fi
+   mv -f -- "${part}" "${png}"
+   printf 'plot: wrote %s\n' "${png}"
+}
+
+skip() {
+   printf 'plot: %s: missing or without data rows (&output write_text = .false.?); skipped\n' \
+      "$1" >&2
+}
+
+case ${analysis} in
+   transient)
+      for kind in history poincare; do
+         dat="${prefix}.${kind}.dat"
+         if ! has_data "${dat}"; then
+            skip "${dat}"
+            continue
+         fi
+         if [[ ${kind} == history ]]; then script=strain_history.gp; else script=poincare.gp; fi
+         render "${script}" "${prefix}.${kind}.png" \
+            "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")"
+      done
+      ;;
+   modes)
+      shapes="${prefix}.shapes.dat"
+      modes="${prefix}.modes.dat"
+      if ! has_data "${shapes}"; then
+         skip "${shapes}"
+         exit 0
+      fi
+      # The shapes file's title line reads '<deck title>: mode shapes (w)'; the plot says that.
+      title=$(dat_title "${shapes}")
+      title=${title%: mode shapes (w)}
+      if has_data "${modes}"; then modes_arg=${modes}; else modes_arg=""; fi
+      render mode_shapes.gp "${prefix}.shapes.png" \
+         "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); plottitle=$(gp_quote "${title}")"
+      ;;
+esac
+exit 0

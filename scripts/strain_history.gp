@@ -1,0 +1,76 @@
+# scripts/strain_history.gp - time history of the root strain (paper Fig. 3) and of the stop
+# force(s), from a gapbeam PREFIX.history.dat (columns: 1 time [s], 2 strain [-],
+# 3 strain_rate [1/s], 4 tip_displacement [m], 5.. stop_force_1.. [N]).
+#
+# Usage:
+#   gnuplot -e "datafile='x.history.dat'; outfile='x.history.png'" scripts/strain_history.gp
+#   gnuplot -e "datafile='x.history.dat'; outfile='x.png'; plottitle='10.5 Hz'" scripts/strain_history.gp
+# Variables: datafile (required), outfile (required, PNG), plottitle (optional).
+# Two panels over the whole recorded history, sharing the time axis: the root strain in
+# microstrain (strain * 1e6) on top, the stop force of every stop (columns 5..) below; without a
+# stop-force column (no stops) the strain panel alone is drawn.
+# Terminal: pngcairo if this gnuplot has it, else png (libgd); 900x600.
+
+if (!exists("datafile") || !exists("outfile")) {
+   print "strain_history.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.history.dat'; outfile='x.png'\" scripts/strain_history.gp"
+   exit status 1
+}
+if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: strain time history" }
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
+   set terminal pngcairo noenhanced size 900,600 font ",11"
+} else {
+   set terminal png noenhanced size 900,600
+}
+
+stats datafile using 1 nooutput
+ncol = STATS_columns
+tmin = STATS_min
+tmax = STATS_max
+nstops = (ncol >= 5) ? ncol - 4 : 0
+
+set output outfile
+set xrange [tmin : tmax]
+set format x "%g"
+set format y "%g"
+set grid lc rgb "#d0d0d0"
+set xzeroaxis lt 1 lc rgb "#a0a0a0"
+set lmargin at screen 0.11
+set rmargin at screen 0.97
+
+if (nstops > 0) {
+   set multiplot title plottitle
+   # Top panel: root strain.
+   set tmargin at screen 0.90
+   set bmargin at screen 0.52
+   set format x ""
+   set xlabel ""
+   set ylabel "root strain [microstrain]"
+   set key off
+   set offsets 0, 0, graph 0.05, graph 0.05
+   plot datafile using 1:($2*1.0e6) with lines lw 1.2 lc rgb "#1f4e9c" notitle
+   # Bottom panel: stop force(s).
+   set tmargin at screen 0.46
+   set bmargin at screen 0.10
+   set format x "%g"
+   set xlabel "time [s]"
+   set ylabel "stop force [N]"
+   set offsets 0, 0, graph 0.08, 0
+   if (nstops > 1) {
+      set key horizontal top right opaque samplen 2
+      set offsets 0, 0, graph 0.25, 0
+   } else {
+      set key off
+   }
+   plot for [i=5:ncol] datafile using 1:i with lines lw 1.2 title sprintf("stop %d", i - 4)
+   unset multiplot
+} else {
+   set title plottitle
+   set xlabel "time [s]"
+   set ylabel "root strain [microstrain]"
+   set key off
+   set offsets 0, 0, graph 0.05, graph 0.05
+   plot datafile using 1:($2*1.0e6) with lines lw 1.2 lc rgb "#1f4e9c" notitle
+}
+
+unset output
