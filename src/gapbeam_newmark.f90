@@ -19,7 +19,7 @@ module gapbeam_newmark
    implicit none
    private
    public :: step_op_t, build_step_op, newmark_predict, condensed_contact, fixed_point_step, &
-      newmark_correct, half_step_ratio, state_load
+      newmark_correct, half_step_ratio, state_load, condensed_step
 
    !> Everything one step size needs, factorized once.
    type :: step_op_t
@@ -163,6 +163,119 @@ contains
          end do
       end do
    end subroutine band_solve
+
+   !> One whole condensed step (predictor, exact contact forces, correction) fused for speed:
+   !> the hot path of every transient run. Same arithmetic as newmark_predict +
+   !> condensed_contact + newmark_correct, with explicit-shape arrays and no temporaries.
+   pure subroutine condensed_step(prob, op, s1, u, v, a, f, u1, v1, a1, f1, hm, hc)
+      type(problem_t), intent(in) :: prob              !! model
+      type(step_op_t), intent(in) :: op                !! step operator (dense or banded)
+      real(dp), intent(in) :: s1                       !! load factor at the end of the step
+      real(dp), intent(in) :: u(prob%n), v(prob%n), a(prob%n)    !! state at the start
+      real(dp), intent(in) :: f(prob%n_contacts)       !! contact forces at the start [N]
+      real(dp), intent(out) :: u1(prob%n), v1(prob%n), a1(prob%n) !! state at the end
+      real(dp), intent(out) :: f1(prob%n_contacts)     !! contact forces at the end [N]
+      real(dp), intent(out) :: hm(prob%n), hc(prob%n)  !! workspaces
+      integer :: n, i, j, c, sweeps
+      real(dp) :: xj, ds, vs, fc
+      n = prob%n
+      if (op%dense .and. prob%n_contacts == 1) then
+         call dense_single_contact_step(n, op%am, op%gp, op%g(:, 1), op%h(1, 1), op%a0, op%a1, &
+            op%a2, op%a3, op%a4, op%a5, op%cw, op%ch, s1, prob%c_dof(1), prob%c_sign(1), &
+            prob%c_gap(1), prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), u, v, a, &
+            u1, v1, a1, f1(1), hm, hc)
+         return
+      end if
+      if (op%dense) then
+         do i = 1, n
+            hm(i) = op%a0 * u(i) + op%a2 * v(i) + op%a3 * a(i)
+            hc(i) = op%a1 * u(i) + op%a4 * v(i) + op%a5 * a(i)
+            u1(i) = op%ch * hc(i) + s1 * op%gp(i)
+         end do
+         do j = 1, n
+            xj = hm(j) + op%cw * hc(j)
+            do i = 1, n
+               u1(i) = u1(i) + op%am(i, j) * xj
+            end do
+         end do
+      else
+         call newmark_predict(prob, op, s1, u, v, a, hm, hc, u1, a1)
+      end if
+      if (prob%n_contacts == 1) then
+         i = prob%c_dof(1)
+         ds = prob%c_sign(1) * u1(i) - prob%c_gap(1)
+         if (ds > 0.0_dp) then
+            vs = prob%c_sign(1) * (op%a1 * u1(i) - hc(i))
+            fc = solve_scalar_contact(prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), &
+                                      ds, vs, op%h(1, 1), op%a1)
+         else
+            fc = 0.0_dp
+         end if
+         f1(1) = fc
+         if (fc /= 0.0_dp) then
+            xj = prob%c_sign(1) * fc
+            do i = 1, n
+               u1(i) = u1(i) - op%g(i, 1) * xj
+            end do
+         end if
+      else if (prob%n_contacts > 1) then
+         f1 = f
+         call condensed_contact(prob, op, u, v, a, u1, f1, sweeps)
+         do c = 1, prob%n_contacts
+            if (f1(c) /= 0.0_dp) u1 = u1 - op%g(:, prob%c_slot(c)) * (prob%c_sign(c) * f1(c))
+         end do
+      end if
+      do i = 1, n
+         v1(i) = op%a1 * u1(i) - hc(i)
+         a1(i) = op%a0 * u1(i) - hm(i)
+      end do
+   end subroutine condensed_step
+
+   !> Kernel of condensed_step for a dense operator and one contact: all data as
+   !> explicit-shape arguments so that the compiler keeps it in registers and vectorises.
+   pure subroutine dense_single_contact_step(n, am, gp, g, h, a0, a1, a2, a3, a4, a5, cw, ch, &
+         s1, dof, sgn, gap, law, k, c, p, u, v, a, u1, v1, acc1, f1, hm, hc)
+      integer, intent(in) :: n                        !! dofs
+      real(dp), intent(in) :: am(n, n), gp(n), g(n)   !! Kbar^-1 M, Kbar^-1 q, Kbar^-1 e
+      real(dp), intent(in) :: h                       !! e' Kbar^-1 e
+      real(dp), intent(in) :: a0, a1, a2, a3, a4, a5, cw, ch   !! step constants
+      real(dp), intent(in) :: s1                      !! load factor at the end
+      integer, intent(in) :: dof                      !! contact dof
+      real(dp), intent(in) :: sgn, gap                !! contact direction and gap
+      integer, intent(in) :: law                      !! contact law
+      real(dp), intent(in) :: k, c, p                 !! law parameters
+      real(dp), intent(in) :: u(n), v(n), a(n)        !! state at the start
+      real(dp), intent(out) :: u1(n), v1(n), acc1(n)  !! state at the end
+      real(dp), intent(out) :: f1                     !! contact force at the end [N]
+      real(dp), intent(out) :: hm(n), hc(n)           !! workspaces
+      integer :: i, j
+      real(dp) :: xj, ds, vs
+      do i = 1, n
+         hm(i) = a0 * u(i) + a2 * v(i) + a3 * a(i)
+         hc(i) = a1 * u(i) + a4 * v(i) + a5 * a(i)
+         u1(i) = ch * hc(i) + s1 * gp(i)
+      end do
+      do j = 1, n
+         xj = hm(j) + cw * hc(j)
+         do i = 1, n
+            u1(i) = u1(i) + am(i, j) * xj
+         end do
+      end do
+      ds = sgn * u1(dof) - gap
+      f1 = 0.0_dp
+      if (ds > 0.0_dp) then
+         vs = sgn * (a1 * u1(dof) - hc(dof))
+         f1 = solve_scalar_contact(law, k, c, p, ds, vs, h, a1)
+         xj = sgn * f1
+         do i = 1, n
+            u1(i) = u1(i) - g(i) * xj
+         end do
+      end if
+      do i = 1, n
+         v1(i) = a1 * u1(i) - hc(i)
+         acc1(i) = a0 * u1(i) - hm(i)
+      end do
+   end subroutine dense_single_contact_step
 
    !> Exact contact forces of the step from the predictor (the condensed method).
    !>

@@ -15,8 +15,8 @@ module gapbeam_transient
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_problem, only: problem_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_newmark, only: step_op_t, build_step_op, newmark_predict, condensed_contact, &
-      fixed_point_step, newmark_correct, half_step_ratio, state_load
+   use gapbeam_newmark, only: step_op_t, build_step_op, condensed_step, fixed_point_step, &
+      half_step_ratio, state_load
    use gapbeam_contact, only: contact_force
    use gapbeam_model, only: dof_name
    use gapbeam_lapack, only: dpotrf, dpotrs
@@ -140,9 +140,11 @@ contains
       integer :: n, nc, ns, kmax, level, nsub, comfortable, worst, j, c, n_hist, n_poinc, &
          ih, ip, s_stop, fp_it
       integer(int64) :: tick, end_tick, rec_tick, nt, count0, count1, rate
+      integer(int64), allocatable :: nt_of(:)
       real(dp) :: period, dt_max, tick_dt, t0, t1, ratio, r, t_rec, theta, dt_r, t_cur, &
          dt_prev, t_h, t_p, t_rec_len, fsum
-      logical :: ok, dense, fixed_point, half_step, recording
+      logical :: ok, dense, fixed_point, half_step, recording, all_found
+      real(dp) :: next_sample
       real(dp), allocatable :: u(:), v(:), a(:), f(:), fprev(:), hm(:), hc(:), ys(:), &
          work(:), work6(:, :), sub_u(:, :), sub_v(:, :), sub_a(:, :), sub_f(:, :), sub_t(:), &
          fguess(:), rhs(:), yy(:)
@@ -183,6 +185,11 @@ contains
       fprev = f
       allocate(was_active(nc))
       was_active = f > 0.0_dp
+      sub_u(:, 0) = u;  sub_v(:, 0) = v;  sub_a(:, 0) = a;  sub_f(:, 0) = f
+      allocate(nt_of(0:kmax))
+      do j = 0, kmax
+         nt_of(j) = 2_int64**(kmax - j)
+      end do
 
       n_hist = min(out%history_periods, cfg%record_periods) * out%samples_per_period
       n_poinc = cfg%record_periods
@@ -194,12 +201,12 @@ contains
       allocate(res%first_contact_time(ns), source=-1.0_dp)
       allocate(res%peak_force(ns), acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), &
                source=0.0_dp)
-      ih = 1;  ip = 1
+      ih = 1;  ip = 1;  next_sample = -huge(1.0_dp);  all_found = ns == 0
       res%dt_smallest = huge(1.0_dp);  res%dt_largest = 0.0_dp
 
       tick = 0;  level = 0;  comfortable = 0;  dt_prev = dt_max
       do while (tick < end_tick)
-         nt = 2_int64**(kmax - level)
+         nt = nt_of(level)
          t0 = real(tick, dp) * tick_dt
          t1 = real(tick + nt, dp) * tick_dt
          if (.not. ops(level)%ready) then
@@ -210,7 +217,7 @@ contains
          end if
 
          ! ---- attempt the step, split at contact events
-         sub_t(0) = t0;  sub_u(:, 0) = u;  sub_v(:, 0) = v;  sub_a(:, 0) = a;  sub_f(:, 0) = f
+         sub_t(0) = t0
          nsub = 0;  ok = .true.;  t_cur = t0
          do
             dt_r = t1 - t_cur
@@ -283,15 +290,17 @@ contains
          end if
 
          ! ---- accept
-         do j = 1, n
-            if (.not. (abs(sub_u(j, nsub)) <= huge(1.0_dp)) .or. &
-                .not. (abs(sub_v(j, nsub)) <= huge(1.0_dp))) then
-               call fatal_error(err, 'gapbeam_transient:run_transient: the solution is not ' &
-                  // 'finite at t = ' // str(t1) // ' s, dt = ' // str(t1 - t0) // ' s, ' &
-                  // dof_label(prob, j))
-               return
-            end if
-         end do
+         fsum = sum(sub_u(:, nsub)) + sum(sub_v(:, nsub))
+         if (.not. (abs(fsum) <= huge(1.0_dp))) then
+            do j = 1, n
+               if (.not. (abs(sub_u(j, nsub)) <= huge(1.0_dp)) .or. &
+                   .not. (abs(sub_v(j, nsub)) <= huge(1.0_dp))) exit
+            end do
+            call fatal_error(err, 'gapbeam_transient:run_transient: the solution is not ' &
+               // 'finite at t = ' // str(t1) // ' s, dt = ' // str(t1 - t0) // ' s, ' &
+               // dof_label(prob, min(j, n)))
+            return
+         end if
          recording = tick >= rec_tick
          do j = 1, nsub
             call record_substep(j)
@@ -301,7 +310,8 @@ contains
          res%dt_largest = max(res%dt_largest, t1 - t0)
          fprev = sub_f(:, nsub - 1)
          dt_prev = sub_t(nsub) - sub_t(nsub - 1)
-         u = sub_u(:, nsub);  v = sub_v(:, nsub);  a = sub_a(:, nsub);  f = sub_f(:, nsub)
+         sub_u(:, 0) = sub_u(:, nsub);  sub_v(:, 0) = sub_v(:, nsub)
+         sub_a(:, 0) = sub_a(:, nsub);  sub_f(:, 0) = sub_f(:, nsub)
          tick = tick + nt
 
          ! ---- grow
@@ -322,7 +332,7 @@ contains
       res%contact_fraction = acc_contact / t_rec_len
       res%impulse_per_period = acc_f / real(cfg%record_periods, dp)
       res%work_rate = acc_work / t_rec_len
-      res%u = u;  res%v = v;  res%a = a
+      res%u = sub_u(:, 0);  res%v = sub_v(:, 0);  res%a = sub_a(:, 0)
       res%t_end = real(end_tick, dp) * tick_dt
       if (ih <= n_hist) then
          res%time = res%time(1:ih - 1);  res%strain = res%strain(1:ih - 1)
@@ -342,7 +352,6 @@ contains
          integer, intent(in) :: k
          logical, intent(out) :: success
          real(dp) :: s1, hstep
-         integer :: sweeps
          s1 = state_load(prob, t_end)
          success = .true.
          if (fixed_point .and. nc > 0) then
@@ -359,15 +368,9 @@ contains
             res%fp_iterations = res%fp_iterations + fp_it
             sub_f(:, k + 1) = fguess
          else
-            call newmark_predict(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), hm, hc, &
-                                 ys, work)
-            if (nc > 0) then
-               sub_f(:, k + 1) = sub_f(:, k)
-               call condensed_contact(prob, op, sub_u(:, k), sub_v(:, k), sub_a(:, k), ys, &
-                                      sub_f(:, k + 1), sweeps)
-            end if
-            call newmark_correct(prob, op, ys, hm, hc, sub_f(:, k + 1), sub_u(:, k + 1), &
-                                 sub_v(:, k + 1), sub_a(:, k + 1))
+            call condensed_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
+               sub_f(:, k), sub_u(:, k + 1), sub_v(:, k + 1), sub_a(:, k + 1), &
+               sub_f(:, k + 1), hm, hc)
          end if
       end subroutine one_step
 
@@ -376,7 +379,7 @@ contains
          integer, intent(in) :: k
          real(dp), intent(in) :: h
          integer :: cc, i, m, it
-         real(dp) :: lo, hi, mid, p0
+         real(dp) :: lo, hi, mid, p0, b1, b2, b3
          logical :: closed0
          integer, parameter :: n_sample = 8
          th = 2.0_dp
@@ -384,6 +387,15 @@ contains
             i = prob%c_dof(cc)
             p0 = prob%c_sign(cc) * sub_u(i, k) - prob%c_gap(cc)
             closed0 = p0 > 0.0_dp
+            ! Bernstein coefficients of the cubic bound it: no sign change, no event
+            b1 = p0 + prob%c_sign(cc) * h * sub_v(i, k) / 3.0_dp
+            b3 = prob%c_sign(cc) * sub_u(i, k + 1) - prob%c_gap(cc)
+            b2 = b3 - prob%c_sign(cc) * h * sub_v(i, k + 1) / 3.0_dp
+            if (closed0) then
+               if (min(b1, b2, b3) > 0.0_dp) cycle
+            else
+               if (max(b1, b2, b3) <= 0.0_dp) cycle
+            end if
             do m = 1, n_sample
                hi = real(m, dp) / n_sample
                if (hi >= th) exit
@@ -413,6 +425,16 @@ contains
             wa, wb, st, sv
          integer :: cc, i, ks
          ta = sub_t(jj - 1);  tb = sub_t(jj);  h = tb - ta
+         if (tb + 1.0e-12_dp * period < next_sample .and. all_found) then
+            if (recording) then
+               call accumulate(jj, h)
+            else
+               do cc = 1, nc
+                  was_active(cc) = sub_f(cc, jj) > 0.0_dp
+               end do
+            end if
+            return
+         end if
          ! history samples in (ta, tb]
          do while (ih <= n_hist)
             t_h = t_rec + real(ih - 1, dp) * period / real(out%samples_per_period, dp)
@@ -462,6 +484,11 @@ contains
             res%p_time(ip) = t_p;  res%p_strain(ip) = st;  res%p_strain_rate(ip) = sv
             ip = ip + 1
          end do
+         next_sample = huge(1.0_dp)
+         if (ih <= n_hist) next_sample = t_rec + real(ih - 1, dp) * period &
+            / real(out%samples_per_period, dp)
+         if (ip <= n_poinc) next_sample = min(next_sample, t_rec + (real(ip - 1, dp) &
+            + out%poincare_phase_deg / 360.0_dp) * period)
          ! first contact onset of each stop, interpolated linearly in the penetration
          do cc = 1, nc
             ks = prob%c_stop(cc)
@@ -477,36 +504,43 @@ contains
                end if
             end if
          end do
+         all_found = all(res%first_contact_time >= 0.0_dp)
          if (.not. recording) then
             do cc = 1, nc
                was_active(cc) = sub_f(cc, jj) > 0.0_dp
             end do
             return
          end if
-         ! impact statistics (trapezoid over the sub-step)
-         do cc = 1, nc
-            i = prob%c_dof(cc);  ks = prob%c_stop(cc)
-            fa = sub_f(cc, jj - 1);  fb = sub_f(cc, jj)
-            wa = fa * abs(sub_v(i, jj - 1));  wb = fb * abs(sub_v(i, jj))
-            acc_f2(ks) = acc_f2(ks) + 0.5_dp * h * (fa**2 + fb**2)
-            acc_f(ks) = acc_f(ks) + 0.5_dp * h * (fa + fb)
-            acc_work(ks) = acc_work(ks) + 0.5_dp * h * (wa + wb)
-            if (fa > 0.0_dp .and. fb > 0.0_dp) then
-               acc_contact(ks) = acc_contact(ks) + h
-            else if (fa > 0.0_dp .or. fb > 0.0_dp) then
-               acc_contact(ks) = acc_contact(ks) + 0.5_dp * h
-            end if
-            if (fb > 0.0_dp .and. .not. was_active(cc)) res%n_impacts(ks) = res%n_impacts(ks) + 1
-            was_active(cc) = fb > 0.0_dp
-         end do
-         do ks = 1, ns
-            fsum = 0.0_dp
-            do cc = 1, nc
-               if (prob%c_stop(cc) == ks) fsum = fsum + sub_f(cc, jj)
-            end do
-            res%peak_force(ks) = max(res%peak_force(ks), fsum)
-         end do
+         call accumulate(jj, h)
       end subroutine record_substep
+
+      !> Impact statistics of the record (trapezoid over sub-step jj of length h).
+      subroutine accumulate(jj, h)
+            integer, intent(in) :: jj
+            real(dp), intent(in) :: h
+            real(dp) :: fa2, fb2
+            integer :: c2, i2, k2
+            do c2 = 1, nc
+               i2 = prob%c_dof(c2);  k2 = prob%c_stop(c2)
+               fa2 = sub_f(c2, jj - 1);  fb2 = sub_f(c2, jj)
+               if (fa2 == 0.0_dp .and. fb2 == 0.0_dp) then
+                  was_active(c2) = .false.
+                  cycle
+               end if
+               acc_f2(k2) = acc_f2(k2) + 0.5_dp * h * (fa2**2 + fb2**2)
+               acc_f(k2) = acc_f(k2) + 0.5_dp * h * (fa2 + fb2)
+               acc_work(k2) = acc_work(k2) + 0.5_dp * h * (fa2 * abs(sub_v(i2, jj - 1)) &
+                              + fb2 * abs(sub_v(i2, jj)))
+               if (fa2 > 0.0_dp .and. fb2 > 0.0_dp) then
+                  acc_contact(k2) = acc_contact(k2) + h
+               else
+                  acc_contact(k2) = acc_contact(k2) + 0.5_dp * h
+               end if
+               if (fb2 > 0.0_dp .and. .not. was_active(c2)) res%n_impacts(k2) = res%n_impacts(k2) + 1
+               was_active(c2) = fb2 > 0.0_dp
+               res%peak_force(k2) = max(res%peak_force(k2), fb2)
+            end do
+      end subroutine accumulate
    end subroutine run_transient
 
    !> Cubic Hermite interpolant at fraction x of a step of size h from (u0, v0) to (u1, v1).
