@@ -3,9 +3,44 @@ module gapbeam_diagnostics
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: detect_period
+   public :: detect_period, classify, label_text, label_chaotic, label_undecided
+
+   integer, parameter :: label_chaotic = -1     !! label code of a chaotic response
+   integer, parameter :: label_undecided = 0    !! neither periodic nor provably chaotic
 
 contains
+
+   !> Label code of a run: its period p >= 1 if periodic; label_chaotic when no period is
+   !> found and the largest Lyapunov exponent is positive beyond `sigmas` times its
+   !> uncertainty; label_undecided otherwise (e.g. quasi-periodic, or a long transient).
+   pure integer function classify(period, exponent, uncertainty, sigmas) result(code)
+      integer, intent(in) :: period          !! detected period (0: none)
+      real(dp), intent(in) :: exponent       !! largest Lyapunov exponent [1/s]
+      real(dp), intent(in) :: uncertainty    !! its standard error [1/s]
+      real(dp), intent(in) :: sigmas         !! how many standard errors above zero
+      if (period > 0) then
+         code = period
+      else if (exponent > 0.0_dp .and. exponent > sigmas * uncertainty) then
+         code = label_chaotic
+      else
+         code = label_undecided
+      end if
+   end function classify
+
+   !> Text of a label code: 'period_3', 'chaotic', 'undecided'.
+   pure function label_text(code) result(t)
+      integer, intent(in) :: code    !! label code
+      character(len=:), allocatable :: t
+      character(len=12) :: buf
+      if (code == label_chaotic) then
+         t = 'chaotic'
+      else if (code == label_undecided) then
+         t = 'undecided'
+      else
+         write(buf, '(i0)') code
+         t = 'period_' // trim(buf)
+      end if
+   end function label_text
 
    !> Smallest period p <= p_max (in forcing periods) of a Poincare sequence, 0 if none.
    !>

@@ -18,7 +18,9 @@ module gapbeam_input
    use gapbeam_excitation, only: forcing_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
       stop_solution_words, step_control_words, linear_solver_words, method_words, &
-      initial_state_words
+      initial_state_words, diagnostics_settings_t
+   use gapbeam_sweep, only: sweep_settings_t, sweep_mode_words, sweep_direction_words, &
+      sweep_axis_words
    use gapbeam_calibration, only: calibration_words
    implicit none
    private
@@ -26,9 +28,10 @@ module gapbeam_input
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
 
-   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient'"
+   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', 'sweep'"
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
-      'calibrate stops damping forcing solver initial output'
+      'calibrate stops damping forcing solver initial output diagnostics sweep'
+   integer, parameter :: naxis = 4096   !! most values of a sweep axis list
 
    !> &job: what to run and where the results go.
    type :: job_t
@@ -58,6 +61,8 @@ module gapbeam_input
       type(solver_settings_t) :: solver              !! &solver
       type(initial_state_t) :: initial               !! &initial
       type(output_settings_t) :: output              !! &output
+      type(diagnostics_settings_t) :: diagnostics    !! &diagnostics
+      type(sweep_settings_t) :: sweep                !! &sweep
    end type deck_t
 
    abstract interface
@@ -142,15 +147,24 @@ contains
       call read_solver(srcs, deck%solver, err);  if (failed()) return
       call read_initial(srcs, deck%structure, deck%initial, err);  if (failed()) return
       call read_output(srcs, deck%output, err);  if (failed()) return
+      call read_diagnostics(srcs, deck%diagnostics, err);  if (failed()) return
+      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed()) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
             // str(deck%calibrate%target_f1_hz) // ": must be > 0 for analysis='calibrate'")
          return
       end if
-      if (deck%job%analysis == 'transient' .and. .not. group_present(srcs, 'forcing')) then
-         call fatal_error(err, path // ": group &forcing is missing: analysis='transient' " &
-            // 'needs frequency_hz (use amplitude_pp=0 for free vibration)')
+      if ((deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep') .and. &
+          .not. group_present(srcs, 'forcing')) then
+         call fatal_error(err, path // ": group &forcing is missing: analysis='" &
+            // trim(deck%job%analysis) // "' needs frequency_hz (use amplitude_pp=0 for free " &
+            // 'vibration)')
+         return
+      end if
+      if (deck%job%analysis == 'sweep' .and. .not. group_present(srcs, 'sweep')) then
+         call fatal_error(err, path // ": group &sweep is missing: analysis='sweep' needs " &
+            // 'the frequencies and amplitudes to sweep')
          return
       end if
 
@@ -823,4 +837,128 @@ contains
          read(lines, nml=output, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_output
+
+   subroutine read_diagnostics(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(diagnostics_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      integer :: period_max, period_points, lyapunov_periods
+      real(dp) :: period_tolerance, lyapunov_perturbation, chaos_sigmas
+      namelist /diagnostics/ period_max, period_tolerance, period_points, lyapunov_periods, &
+         lyapunov_perturbation, chaos_sigmas
+      period_max = cfg%period_max;  period_tolerance = cfg%period_tolerance
+      period_points = cfg%period_points;  lyapunov_periods = cfg%lyapunov_periods
+      lyapunov_perturbation = cfg%lyapunov_perturbation;  chaos_sigmas = cfg%chaos_sigmas
+      call apply_group(srcs, 'diagnostics', 'period_max period_tolerance period_points ' &
+         // 'lyapunov_periods lyapunov_perturbation chaos_sigmas', reader, err)
+      if (allocated(err)) return
+      call require_int('diagnostics', 'period_max', period_max, 1, 1000, err)
+      call require_range('diagnostics', 'period_tolerance', period_tolerance, 1.0e-12_dp, &
+         0.5_dp, err)
+      call require_int('diagnostics', 'period_points', period_points, 1, huge(1), err)
+      call require_int('diagnostics', 'lyapunov_periods', lyapunov_periods, 0, huge(1), err)
+      call require_range('diagnostics', 'lyapunov_perturbation', lyapunov_perturbation, &
+         1.0e-14_dp, 1.0e-2_dp, err)
+      call require_range('diagnostics', 'chaos_sigmas', chaos_sigmas, 0.0_dp, 100.0_dp, err)
+      if (allocated(err)) return
+      cfg = diagnostics_settings_t(period_max=period_max, period_tolerance=period_tolerance, &
+         period_points=period_points, lyapunov_periods=lyapunov_periods, &
+         lyapunov_perturbation=lyapunov_perturbation, chaos_sigmas=chaos_sigmas)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=diagnostics, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_diagnostics
+
+   subroutine read_sweep(srcs, forcing, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(forcing_t), intent(in) :: forcing
+      type(sweep_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: mode, direction, axis
+      real(dp), allocatable :: frequency_hz(:), amplitude_pp(:)
+      real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
+      integer :: n_frequency, n_amplitude, chunk, nf, na, i
+      logical :: progress, checkpoint
+      namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
+         frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
+         progress, chunk, checkpoint
+      allocate(frequency_hz(naxis), amplitude_pp(naxis))
+      mode = cfg%mode;  direction = cfg%direction;  axis = cfg%axis
+      frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp
+      frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
+      amplitude_start_pp = 0.0_dp;  amplitude_end_pp = 0.0_dp;  n_amplitude = 0
+      progress = cfg%progress;  chunk = cfg%chunk;  checkpoint = cfg%checkpoint
+      call apply_group(srcs, 'sweep', 'mode direction axis frequency_hz amplitude_pp ' &
+         // 'frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint', reader, err)
+      if (allocated(err)) return
+      call require_word('sweep', 'mode', mode, sweep_mode_words, err)
+      call require_word('sweep', 'direction', direction, sweep_direction_words, err)
+      call require_word('sweep', 'axis', axis, sweep_axis_words, err)
+      call require_int('sweep', 'chunk', chunk, 0, huge(1), err)
+      if (allocated(err)) return
+      call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
+         frequency_hz, frequency_start_hz, frequency_end_hz, n_frequency, &
+         forcing%frequency_hz, .true., cfg%frequency_hz)
+      if (allocated(err)) return
+      call make_axis('amplitude_pp', 'amplitude_start_pp', 'amplitude_end_pp', 'n_amplitude', &
+         amplitude_pp, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
+         forcing%amplitude_pp, .false., cfg%amplitude_pp)
+      if (allocated(err)) return
+      nf = size(cfg%frequency_hz);  na = size(cfg%amplitude_pp)
+      cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
+      cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
+      if (.false.) i = nf + na
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=sweep, iostat=ios, iomsg=msg)
+      end subroutine reader
+
+      !> An axis from a list, or from start, end and count; the &forcing value if neither.
+      subroutine make_axis(vlist, vstart, vend, vn, list, x0, x1, n, default, positive, axis_out)
+         character(len=*), intent(in) :: vlist, vstart, vend, vn
+         real(dp), intent(in) :: list(:), x0, x1, default
+         integer, intent(in) :: n
+         logical, intent(in) :: positive
+         real(dp), allocatable, intent(out) :: axis_out(:)
+         integer :: m, j
+         m = 0
+         do j = size(list), 1, -1
+            if (list(j) /= -1.0_dp) then
+               m = j;  exit
+            end if
+         end do
+         if (m > 0 .and. n > 0) then
+            call fatal_error(err, 'group &sweep: give either the list ' // vlist // ' or ' &
+               // vstart // ', ' // vend // ' and ' // vn // ', not both')
+            return
+         end if
+         if (m > 0) then
+            axis_out = list(1:m)
+         else if (n > 0) then
+            if (n == 1) then
+               axis_out = [x0]
+            else
+               axis_out = [(x0 + (x1 - x0) * real(j - 1, dp) / real(n - 1, dp), j = 1, n)]
+            end if
+         else
+            axis_out = [default]
+         end if
+         do j = 1, size(axis_out)
+            if (positive) then
+               call require_positive('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
+            else
+               call require_nonnegative('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
+            end if
+         end do
+         if (n < 0) call require_int('sweep', vn, n, 0, huge(1), err)
+      end subroutine make_axis
+   end subroutine read_sweep
 end module gapbeam_input

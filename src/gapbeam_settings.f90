@@ -5,7 +5,7 @@ module gapbeam_settings
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: solver_settings_t, output_settings_t, initial_state_t
+   public :: solver_settings_t, output_settings_t, initial_state_t, diagnostics_settings_t
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words
 
@@ -52,4 +52,14 @@ module gapbeam_settings
       real(dp), allocatable :: displacement(:)      !! [m or rad]
       real(dp), allocatable :: velocity(:)          !! [m/s or rad/s]
    end type initial_state_t
+
+   !> How a forced run is classified: period detection and the largest Lyapunov exponent.
+   type :: diagnostics_settings_t
+      integer  :: period_max = 16                 !! largest period looked for [periods]
+      real(dp) :: period_tolerance = 1.0e-3_dp    !! repeat distance / orbit size [-]
+      integer  :: period_points = 64              !! last Poincare points tested [-]
+      integer  :: lyapunov_periods = 100          !! periods averaged (0: no exponent) [-]
+      real(dp) :: lyapunov_perturbation = 1.0e-7_dp  !! initial separation / state norm [-]
+      real(dp) :: chaos_sigmas = 3.0_dp           !! chaotic: lambda > chaos_sigmas * uncertainty
+   end type diagnostics_settings_t
 end module gapbeam_settings

@@ -54,6 +54,10 @@ module gapbeam_transient
       real(dp), allocatable :: impulse_per_period(:)!! per stop [N s]
       real(dp), allocatable :: work_rate(:)         !! per stop: (1/T) int f |d'| dt [W]
       real(dp), allocatable :: first_contact_time(:) !! per stop: first onset, -1 if none [s]
+      real(dp) :: strain_min = huge(1.0_dp)         !! root strain range over the record [-]
+      real(dp) :: strain_max = -huge(1.0_dp)        !! (step ends) [-]
+      real(dp) :: strain_rate_min = huge(1.0_dp)    !! root strain rate range [1/s]
+      real(dp) :: strain_rate_max = -huge(1.0_dp)   !! [1/s]
       real(dp), allocatable :: u(:), v(:), a(:)     !! final state
       real(dp) :: t_end = 0.0_dp                    !! final time [s]
    end type transient_result_t
@@ -150,6 +154,8 @@ contains
          fguess(:), rhs(:), yy(:)
       real(dp), allocatable :: acc_f2(:), acc_f(:), acc_contact(:), acc_work(:)
       logical, allocatable :: was_active(:)
+      integer, allocatable :: si(:)
+      real(dp), allocatable :: sw(:)
 
       call system_clock(count0, rate)
       n = prob%n;  nc = prob%n_contacts;  ns = prob%n_stops
@@ -186,6 +192,8 @@ contains
       allocate(was_active(nc))
       was_active = f > 0.0_dp
       sub_u(:, 0) = u;  sub_v(:, 0) = v;  sub_a(:, 0) = a;  sub_f(:, 0) = f
+      si = pack([(j, j = 1, n)], prob%sys%strain_row /= 0.0_dp)
+      sw = prob%sys%strain_row(si)
       allocate(nt_of(0:kmax))
       do j = 0, kmax
          nt_of(j) = 2_int64**(kmax - j)
@@ -425,6 +433,13 @@ contains
             wa, wb, st, sv
          integer :: cc, i, ks
          ta = sub_t(jj - 1);  tb = sub_t(jj);  h = tb - ta
+         if (recording) then
+            st = dot_product(sw, sub_u(si, jj))
+            sv = dot_product(sw, sub_v(si, jj))
+            res%strain_min = min(res%strain_min, st);  res%strain_max = max(res%strain_max, st)
+            res%strain_rate_min = min(res%strain_rate_min, sv)
+            res%strain_rate_max = max(res%strain_rate_max, sv)
+         end if
          if (tb + 1.0e-12_dp * period < next_sample .and. all_found) then
             if (recording) then
                call accumulate(jj, h)

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# scripts/bench.sh - build gapbeam (release profile) and run the speed benchmark gapbeam_bench.
+#
+# Usage:
+#   scripts/bench.sh            (from anywhere)
+#
+# Steps: source scripts/setup.sh (installs what is missing); `fpm build --profile release`, quiet
+# on success (the build log is shown only when the build fails); find the built `gapbeam_bench`
+# executable (`fpm run --profile release --runner echo gapbeam_bench`); run it from the repository
+# root and copy its output (the table) to bench_results/bench.txt (git-ignored, overwritten).
+#
+# The benchmark (bench/gapbeam_bench.f90) times run_transient on inputs/moon_shaw_10p5hz.nml,
+# 300 + 1000 periods: fixed T/256 condensed without and with event location, fixed T/256 fixed
+# point, half-step control with the deck's defaults and with the paper's fixed point, and a
+# hand-written ceiling loop doing the arithmetic of the fixed-step condensed case; best of 3 runs
+# each. Progress lines go to stderr, the table to stdout and the file.
+# OPENBLAS_NUM_THREADS=1 and OMP_NUM_THREADS=1: the benchmark is serial (no BLAS in the step loop).
+# Exit status: the benchmark's (1 when the ceiling loop does not reproduce the fixed-step run or a
+# run fails); or 1 when the build fails.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "${root}"
+
+if [[ ${1:-} == -h || ${1:-} == --help ]]; then
+   sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' scripts/bench.sh
+   exit 0
+fi
+
+# shellcheck source=setup.sh
+source "${root}/scripts/setup.sh"
+
+export OPENBLAS_NUM_THREADS=1
+export OMP_NUM_THREADS=1
+
+# Build, quietly.
+build_log=$(mktemp "${TMPDIR:-/tmp}/gapbeam-build-release-XXXXXX")
+printf '%s\n' "bench: fpm build --profile release (in ${root})" >"${build_log}"
+if ! fpm build --profile release >>"${build_log}" 2>&1; then
+   cat "${build_log}" >&2
+   printf 'bench: error: the release build failed (log %s)\n' "${build_log}" >&2
+   exit 1
+fi
+
+# The executable's path: fpm prints it with `--runner echo`; lines that are not paths of
+# executable files (build progress, "Project is up to date") are skipped.
+exe=""
+while IFS= read -r line; do
+   [[ ${line} == /* ]] || line=${root}/${line}
+   if [[ -f ${line} && -x ${line} ]]; then exe=${line}; fi
+done < <(fpm run --profile release --runner echo gapbeam_bench 2>>"${build_log}")
+if [[ -z ${exe} ]]; then
+   cat "${build_log}" >&2
+   printf 'bench: error: cannot find the gapbeam_bench executable (fpm run --runner echo; log %s)\n' \
+      "${build_log}" >&2
+   exit 1
+fi
+rm -f "${build_log}"
+
+mkdir -p bench_results
+GFORTRAN_UNBUFFERED_PRECONNECTED=y "${exe}" | tee bench_results/bench.txt

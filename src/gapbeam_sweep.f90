@@ -1,0 +1,232 @@
+!> The forcing sweep: a line or grid of (frequency, amplitude) points, each run to its
+!> attractor and classified, in parallel with OpenMP.
+!>
+!> Points are numbered with the frequency fastest: p = i_f + (i_a - 1) n_f. In mode
+!> 'independent' every point starts from the deck's initial state and is one work item; in
+!> mode 'continuation' each line (all frequencies of one amplitude, or all amplitudes of one
+!> frequency) is one work item, swept up or down, each point starting from the final state of
+!> the one before, as in an experiment. A work item runs serially on one thread, so results
+!> are bitwise identical for any number of threads and any schedule. Work items are dealt to
+!> shards round robin (item k belongs to shard mod(k-1, N) + 1).
+module gapbeam_sweep
+   use, intrinsic :: iso_fortran_env, only: int64
+   !$ use omp_lib, only: omp_get_max_threads
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t
+   use gapbeam_problem, only: problem_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
+   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_lyapunov, only: lyapunov_t, largest_lyapunov
+   use gapbeam_diagnostics, only: detect_period, classify
+   implicit none
+   private
+   public :: sweep_settings_t, point_result_t, sweep_mode_words, sweep_direction_words, &
+      sweep_axis_words, n_points, n_items, item_points, point_forcing, run_point, run_items, &
+      point_diagnostics
+
+   character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
+   character(len=*), parameter :: sweep_direction_words = "'up', 'down'"
+   character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
+
+   !> What to sweep and how.
+   type :: sweep_settings_t
+      character(len=16) :: mode = 'independent'      !! 'independent' or 'continuation'
+      character(len=16) :: direction = 'up'          !! continuation: 'up' or 'down'
+      character(len=16) :: axis = 'frequency'        !! continuation lines run along this axis
+      real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz]
+      real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m]
+      logical :: progress = .true.                   !! progress on standard error
+      integer :: chunk = 0                           !! work items between checkpoints (0: auto)
+      logical :: checkpoint = .true.                 !! write finished points as they come
+   end type sweep_settings_t
+
+   !> Everything one point produces.
+   type :: point_result_t
+      integer :: status = 0                          !! 0 done, 1 failed
+      character(len=:), allocatable :: message       !! failure message
+      integer :: period = 0                          !! detected period (0: none)
+      integer :: label = 0                           !! classify() code
+      real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
+      real(dp) :: lyapunov_error = 0.0_dp            !! its standard error [1/s]
+      real(dp), allocatable :: lyapunov_running(:)   !! running estimate [1/s]
+      integer, allocatable :: n_impacts(:)           !! per stop [-]
+      real(dp), allocatable :: peak_force(:)         !! per stop [N]
+      real(dp), allocatable :: rms_force(:)          !! per stop [N]
+      real(dp), allocatable :: contact_fraction(:)   !! per stop [-]
+      real(dp), allocatable :: impulse_per_period(:) !! per stop [N s]
+      real(dp), allocatable :: work_rate(:)          !! per stop [W]
+      real(dp), allocatable :: p_strain(:)           !! Poincare root strain [-]
+      real(dp), allocatable :: p_strain_rate(:)      !! Poincare root strain rate [1/s]
+      real(dp), allocatable :: u_end(:), v_end(:)    !! final state at a period boundary
+      integer(int64) :: steps = 0                    !! Newmark steps of the point
+      real(dp) :: seconds = 0.0_dp                   !! elapsed time of the point [s]
+   end type point_result_t
+
+contains
+
+   !> Number of points of the sweep.
+   pure integer function n_points(sw)
+      type(sweep_settings_t), intent(in) :: sw   !! sweep
+      n_points = size(sw%frequency_hz) * size(sw%amplitude_pp)
+   end function n_points
+
+   !> Number of work items (points, or lines in continuation mode).
+   pure integer function n_items(sw)
+      type(sweep_settings_t), intent(in) :: sw   !! sweep
+      if (sw%mode == 'continuation') then
+         if (sw%axis == 'frequency') then
+            n_items = size(sw%amplitude_pp)
+         else
+            n_items = size(sw%frequency_hz)
+         end if
+      else
+         n_items = n_points(sw)
+      end if
+   end function n_items
+
+   !> Points of work item k, in the order they are run.
+   pure function item_points(sw, k) result(pts)
+      type(sweep_settings_t), intent(in) :: sw   !! sweep
+      integer, intent(in) :: k                   !! work item
+      integer, allocatable :: pts(:)
+      integer :: nf, na, j
+      nf = size(sw%frequency_hz);  na = size(sw%amplitude_pp)
+      if (sw%mode /= 'continuation') then
+         pts = [k]
+      else if (sw%axis == 'frequency') then
+         pts = [(j + (k - 1) * nf, j = 1, nf)]
+      else
+         pts = [(k + (j - 1) * nf, j = 1, na)]
+      end if
+      if (sw%mode == 'continuation' .and. sw%direction == 'down') pts = pts(size(pts):1:-1)
+   end function item_points
+
+   !> Forcing frequency and amplitude of point p.
+   pure subroutine point_forcing(sw, p, f_hz, a_pp)
+      type(sweep_settings_t), intent(in) :: sw   !! sweep
+      integer, intent(in) :: p                   !! point
+      real(dp), intent(out) :: f_hz, a_pp        !! [Hz], [m]
+      integer :: nf
+      nf = size(sw%frequency_hz)
+      f_hz = sw%frequency_hz(mod(p - 1, nf) + 1)
+      a_pp = sw%amplitude_pp((p - 1) / nf + 1)
+   end subroutine point_forcing
+
+   !> Period, Lyapunov exponent and label of a finished transient run.
+   subroutine point_diagnostics(prob, cfg, diag, res, pr, err)
+      type(problem_t), intent(in) :: prob                !! model at this forcing
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      type(transient_result_t), intent(in) :: res        !! the run
+      type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
+      type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
+      type(lyapunov_t) :: lyap
+      real(dp) :: sx, sy
+      sx = res%strain_max - res%strain_min
+      sy = res%strain_rate_max - res%strain_rate_min
+      pr%period = detect_period(res%p_strain, res%p_strain_rate, diag%period_max, &
+                                diag%period_tolerance, diag%period_points, sx, sy)
+      pr%u_end = res%u;  pr%v_end = res%v
+      if (diag%lyapunov_periods > 0) then
+         call largest_lyapunov(prob, cfg, res%u, res%v, diag%lyapunov_periods, &
+            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
+         if (allocated(err)) return
+         pr%lyapunov = lyap%exponent
+         pr%lyapunov_error = lyap%uncertainty
+         pr%lyapunov_running = lyap%running
+      else
+         allocate(pr%lyapunov_running(0))
+      end if
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas)
+   end subroutine point_diagnostics
+
+   !> Run one point from (u0, v0): transient, record, diagnostics.
+   subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr)
+      type(problem_t), intent(in) :: base                !! model (forcing replaced)
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(output_settings_t), intent(in) :: out         !! recording settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      real(dp), intent(in) :: f_hz, a_pp                 !! forcing [Hz], [m]
+      real(dp), intent(in) :: u0(:), v0(:)               !! initial state
+      type(point_result_t), intent(out) :: pr            !! result
+      type(problem_t) :: prob
+      type(transient_result_t) :: res
+      type(output_settings_t) :: o
+      type(error_t), allocatable :: err
+      integer(int64) :: c0, c1, rate
+      call system_clock(c0, rate)
+      prob = base
+      prob%omega = 2.0_dp * acos(-1.0_dp) * f_hz
+      prob%half_amplitude = 0.5_dp * a_pp
+      o = out
+      o%history_periods = 0
+      call run_transient(prob, cfg, o, u0, v0, res, err)
+      if (.not. allocated(err)) then
+         pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
+         pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
+         pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
+         pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
+         pr%steps = res%steps_accepted
+         call point_diagnostics(prob, cfg, diag, res, pr, err)
+      end if
+      if (allocated(err)) then
+         pr%status = 1
+         pr%message = err%message
+         call fill_failed(pr, base%n_stops, cfg%record_periods, u0, v0)
+      end if
+      call system_clock(c1)
+      pr%seconds = real(c1 - c0, dp) / real(rate, dp)
+   end subroutine run_point
+
+   !> A failed point keeps NaN results of the right shapes.
+   subroutine fill_failed(pr, ns, nrec, u0, v0)
+      type(point_result_t), intent(inout) :: pr
+      integer, intent(in) :: ns, nrec
+      real(dp), intent(in) :: u0(:), v0(:)
+      real(dp) :: nan
+      nan = transfer(-2251799813685248_int64, 1.0_dp)
+      pr%period = 0;  pr%label = 0;  pr%lyapunov = nan;  pr%lyapunov_error = nan
+      if (allocated(pr%n_impacts)) deallocate(pr%n_impacts)
+      allocate(pr%n_impacts(ns), source=0)
+      pr%peak_force = spread(nan, 1, ns);  pr%rms_force = pr%peak_force
+      pr%contact_fraction = pr%peak_force;  pr%impulse_per_period = pr%peak_force
+      pr%work_rate = pr%peak_force
+      pr%p_strain = spread(nan, 1, nrec);  pr%p_strain_rate = pr%p_strain
+      if (.not. allocated(pr%lyapunov_running)) allocate(pr%lyapunov_running(0))
+      pr%u_end = u0;  pr%v_end = v0
+   end subroutine fill_failed
+
+   !> Run work items `items` in parallel (OpenMP, dynamic schedule, one item per thread at a
+   !> time); results(p) is written only by the thread that runs point p. No I/O in here.
+   !> In continuation mode `u_start`, `v_start` (n, n_items) hold each line's starting state.
+   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results)
+      type(problem_t), intent(in) :: base                !! model
+      type(sweep_settings_t), intent(in) :: sw           !! sweep
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(output_settings_t), intent(in) :: out         !! recording settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      integer, intent(in) :: items(:)                    !! work items to run
+      real(dp), intent(in) :: u0(:), v0(:)               !! initial state of every item
+      type(point_result_t), intent(inout) :: results(:)  !! indexed by point
+      integer :: i, j, p
+      integer, allocatable :: pts(:)
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: f_hz, a_pp
+      !$omp parallel do default(none) schedule(dynamic, 1) &
+      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results) &
+      !$omp private(i, j, p, pts, u, v, f_hz, a_pp)
+      do i = 1, size(items)
+         pts = item_points(sw, items(i))
+         u = u0;  v = v0
+         do j = 1, size(pts)
+            p = pts(j)
+            call point_forcing(sw, p, f_hz, a_pp)
+            call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p))
+            if (sw%mode == 'continuation') then
+               u = results(p)%u_end;  v = results(p)%v_end
+            end if
+         end do
+      end do
+      !$omp end parallel do
+   end subroutine run_items
+end module gapbeam_sweep
