@@ -14,34 +14,60 @@ program main
    use gapbeam_damping, only: modal_damping_ratio
    use gapbeam_model, only: beam_ei, beam_rho_a, beam_mass, structure_t
    use gapbeam_report, only: write_modes, write_transient, write_calibration
+   use gapbeam_sweep_driver, only: run_sweep_job, sweep_prefix, status_interrupted
+   use gapbeam_sweep_output, only: merge_sweep
+   use gapbeam_sweep, only: point_result_t, point_diagnostics
+   use gapbeam_diagnostics, only: label_text
    implicit none
    type(deck_t) :: deck
    type(error_t), allocatable :: err
    character(len=:), allocatable :: path, arg
    character(len=:), allocatable :: overrides(:)
-   integer :: i, n_args, length
+   integer :: i, n_args, shard_index, shard_count
+   logical :: complete
 
    n_args = command_argument_count()
    if (n_args < 1) then
-      write(error_unit, '(a)') 'usage: gapbeam DECK [OVERRIDE ...]'
+      write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [OVERRIDE ...]'
+      write(error_unit, '(a)') '       gapbeam merge OUT.h5 SHARD.h5 ...'
       write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. "&forcing frequency_hz=10.2 /"'
       error stop 2
    end if
    allocate(character(len=4096) :: overrides(0))
-   do i = 1, n_args
-      call get_command_argument(i, length=length)
-      allocate(character(len=length) :: arg)
-      call get_command_argument(i, arg)
+   shard_index = 1;  shard_count = 1
+   i = 0
+   do while (i < n_args)
+      i = i + 1
+      arg = argument(i)
       if (i == 1) then
          path = arg
+      else if (path == 'merge') then
+         overrides = [character(len=4096) :: overrides, arg]
+      else if (arg == '--shard' .or. index(arg, '--shard=') == 1) then
+         if (arg == '--shard') then
+            i = i + 1
+            if (i > n_args) call fail_text('--shard needs I/N, e.g. --shard 3/16')
+            arg = argument(i)
+         else
+            arg = arg(9:)
+         end if
+         call parse_shard(arg, shard_index, shard_count)
       else
          overrides = [character(len=4096) :: overrides, arg]
       end if
-      deallocate(arg)
    end do
+   if (path == 'merge') then
+      call run_merge(overrides)
+      stop
+   end if
 
    call read_deck(path, overrides, deck, err)
    if (allocated(err)) call fail(err)
+   deck%sweep%shard_index = shard_index
+   deck%sweep%shard_count = shard_count
+   if (shard_count > 1 .and. deck%job%analysis /= 'sweep') call fail_text(path // &
+      ": --shard applies to analysis='sweep' only (this deck runs '" // trim(deck%job%analysis) &
+      // "')")
    write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
    write(output_unit, '(a)') 'analysis: ' // trim(deck%job%analysis)
    select case (deck%job%analysis)
@@ -51,11 +77,65 @@ program main
       call run_calibrate(deck, err)
    case ('transient')
       call run_transient_analysis(deck, err)
+   case ('sweep')
+      call run_sweep_job(deck, complete, err)
+      if (allocated(err)) call fail(err)
+      write(output_unit, '(a)') 'output: ' // sweep_prefix(deck)
+      if (.not. complete) error stop status_interrupted
+      stop
    end select
    if (allocated(err)) call fail(err)
    write(output_unit, '(a)') 'output: ' // trim(deck%job%output)
 
 contains
+
+   function argument(k) result(a)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: a
+      integer :: l
+      call get_command_argument(k, length=l)
+      allocate(character(len=l) :: a)
+      call get_command_argument(k, a)
+   end function argument
+
+   subroutine parse_shard(text, si, sc)
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: si, sc
+      integer :: slash, ios1, ios2
+      slash = index(text, '/')
+      ios1 = 1;  ios2 = 1
+      if (slash > 1) then
+         read(text(1:slash - 1), *, iostat=ios1) si
+         read(text(slash + 1:), *, iostat=ios2) sc
+      end if
+      if (ios1 /= 0 .or. ios2 /= 0) call fail_text("--shard '" // text // "': expected I/N " &
+         // 'with whole numbers, e.g. --shard 3/16')
+      if (sc < 1 .or. si < 1 .or. si > sc) call fail_text("--shard '" // text // "': need " &
+         // '1 <= I <= N')
+   end subroutine parse_shard
+
+   subroutine run_merge(args)
+      character(len=*), intent(in) :: args(:)
+      character(len=:), allocatable :: out
+      integer :: k
+      if (size(args) < 2) call fail_text('usage: gapbeam merge OUT.h5 SHARD.h5 ...')
+      out = trim(args(1))
+      k = len(out)
+      if (k > 3) then
+         if (out(k - 2:) == '.h5') out = out(1:k - 3)
+      end if
+      call merge_sweep(out, args(2:), .true., err)
+      if (allocated(err)) call fail(err)
+      write(output_unit, '(a)') 'merged ' // str(size(args) - 1) // ' shard files into ' &
+         // out // '.h5'
+   end subroutine run_merge
+
+   subroutine fail_text(text)
+      character(len=*), intent(in) :: text
+      write(error_unit, '(a)') 'error: ' // text
+      flush(error_unit)
+      error stop 1
+   end subroutine fail_text
 
    subroutine fail(e)
       type(error_t), intent(in) :: e
@@ -170,6 +250,7 @@ contains
       type(error_t), allocatable, intent(out) :: e
       type(problem_t) :: prob
       type(transient_result_t) :: res
+      type(point_result_t) :: diag
       real(dp), allocatable :: u0(:), v0(:)
       integer :: j
       call describe_structure(dk%structure)
@@ -205,7 +286,14 @@ contains
             // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
             // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
       end do
-      call write_transient(dk, prob, res, e)
+      call point_diagnostics(prob, dk%solver, dk%diagnostics, res, diag, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+         // str(diag%period) // ' found up to ' // str(dk%diagnostics%period_max) &
+         // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
+         // str(diag%lyapunov_error) // ' 1/s over ' // str(dk%diagnostics%lyapunov_periods) &
+         // ' periods)'
+      call write_transient(dk, prob, res, diag, e)
       if (allocated(e)) return
       if (dk%output%write_text) then
          write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5, .history.dat, ' &

@@ -167,7 +167,7 @@ contains
             if (q /= ' ') then
                if (line(i:i) == q) q = ' '
             else if (line(i:i) == '"' .or. line(i:i) == "'") then
-               if (inside) q = line(i:i)
+               q = line(i:i)
             else if (line(i:i) == '!') then
                exit
             else if (.not. inside .and. (line(i:i) == '&' .or. line(i:i) == '$')) then

@@ -234,6 +234,12 @@ contains
          msg = ''
          call reader(block, ios, msg)
          if (ios == 0) cycle
+         ! an empty read of the group clears the runtime's state after a failed namelist read
+         ! (gfortran then returns iostat 0 without reading on the next internal file)
+         allocate(character(len=len(name) + 3) :: one(1))
+         one(1) = '&' // name // ' /'
+         call reader(one, ios, msg2)
+         deallocate(one)
          call split_assignments(block, items)
          do k = 1, size(items)
             p = scan(items(k), '(=')
@@ -756,6 +762,15 @@ contains
       call require_int('solver', 'transient_periods', transient_periods, 0, huge(1), err)
       call require_int('solver', 'record_periods', record_periods, 1, huge(1), err)
       if (allocated(err)) return
+      ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings)
+      if (log(real(transient_periods + record_periods, dp)) + log(real(steps_per_period, dp)) &
+          + max_halvings * log(2.0_dp) > 62.0_dp * log(2.0_dp)) then
+         call fatal_error(err, 'group &solver: (transient_periods + record_periods) * ' &
+            // 'steps_per_period * 2**max_halvings = ' // str(real(transient_periods &
+            + record_periods, dp) * steps_per_period * 2.0_dp**max_halvings) // ' ticks: must ' &
+            // 'be below 2**62; lower max_halvings or steps_per_period')
+         return
+      end if
       cfg = solver_settings_t(method=method, newmark_delta=newmark_delta, &
          newmark_alpha=newmark_alpha, stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
          fp_max_iterations=fp_max_iterations, step_control=step_control, &
@@ -881,25 +896,28 @@ contains
       character(len=16) :: mode, direction, axis
       real(dp), allocatable :: frequency_hz(:), amplitude_pp(:)
       real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
-      integer :: n_frequency, n_amplitude, chunk, nf, na, i
+      integer :: n_frequency, n_amplitude, chunk
       logical :: progress, checkpoint
+      real(dp) :: time_limit_s
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         progress, chunk, checkpoint
+         progress, chunk, checkpoint, time_limit_s
       allocate(frequency_hz(naxis), amplitude_pp(naxis))
       mode = cfg%mode;  direction = cfg%direction;  axis = cfg%axis
       frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp
       frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
       amplitude_start_pp = 0.0_dp;  amplitude_end_pp = 0.0_dp;  n_amplitude = 0
       progress = cfg%progress;  chunk = cfg%chunk;  checkpoint = cfg%checkpoint
+      time_limit_s = cfg%time_limit_s
       call apply_group(srcs, 'sweep', 'mode direction axis frequency_hz amplitude_pp ' &
          // 'frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint', reader, err)
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint time_limit_s', reader, err)
       if (allocated(err)) return
       call require_word('sweep', 'mode', mode, sweep_mode_words, err)
       call require_word('sweep', 'direction', direction, sweep_direction_words, err)
       call require_word('sweep', 'axis', axis, sweep_axis_words, err)
       call require_int('sweep', 'chunk', chunk, 0, huge(1), err)
+      call require_nonnegative('sweep', 'time_limit_s', time_limit_s, err)
       if (allocated(err)) return
       call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
          frequency_hz, frequency_start_hz, frequency_end_hz, n_frequency, &
@@ -909,10 +927,9 @@ contains
          amplitude_pp, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
          forcing%amplitude_pp, .false., cfg%amplitude_pp)
       if (allocated(err)) return
-      nf = size(cfg%frequency_hz);  na = size(cfg%amplitude_pp)
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
-      if (.false.) i = nf + na
+      cfg%time_limit_s = time_limit_s
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

@@ -12,6 +12,8 @@ module gapbeam_report
    use gapbeam_problem, only: problem_t
    use gapbeam_transient, only: transient_result_t
    use gapbeam_model, only: dof_w
+   use gapbeam_sweep, only: point_result_t
+   use gapbeam_diagnostics, only: label_text
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, mode_shape_table
@@ -119,10 +121,11 @@ contains
    end subroutine write_calibration
 
    !> Transient results: prefix.h5, prefix.history.dat, prefix.poincare.dat.
-   subroutine write_transient(deck, prob, res, err)
+   subroutine write_transient(deck, prob, res, diag, err)
       type(deck_t), intent(in) :: deck                 !! the deck
       type(problem_t), intent(in) :: prob              !! model
       type(transient_result_t), intent(in) :: res      !! results
+      type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure
       type(h5_writer_t) :: h5
       character(len=:), allocatable :: prefix
@@ -168,6 +171,19 @@ contains
       call h5%write('/impacts/impulse_per_period', res%impulse_per_period, 'N s', err)
       if (failed()) return
       call h5%write('/impacts/work_rate', res%work_rate, 'W', err);  if (failed()) return
+      call h5%write('/impacts/first_contact_time', res%first_contact_time, 's', err)
+      if (failed()) return
+      call h5%write('/diagnostics/period', diag%period, 'forcing periods', err)
+      if (failed()) return
+      call h5%write('/diagnostics/label', diag%label, 'p >= 1: period p; 0: undecided; ' &
+         // '-1: chaotic', err);  if (failed()) return
+      call h5%write_text('/diagnostics/label_text', label_text(diag%label), err)
+      if (failed()) return
+      call h5%write('/diagnostics/lyapunov', diag%lyapunov, '1/s', err);  if (failed()) return
+      call h5%write('/diagnostics/lyapunov_error', diag%lyapunov_error, '1/s', err)
+      if (failed()) return
+      call h5%write('/diagnostics/lyapunov_running', diag%lyapunov_running, '1/s', err)
+      if (failed()) return
       call h5%write('/final/u', res%u, 'm, rad', err);  if (failed()) return
       call h5%write('/final/v', res%v, 'm/s, rad/s', err);  if (failed()) return
       call h5%write('/final/time', res%t_end, 's', err);  if (failed()) return

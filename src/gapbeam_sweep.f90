@@ -10,7 +10,6 @@
 !> shards round robin (item k belongs to shard mod(k-1, N) + 1).
 module gapbeam_sweep
    use, intrinsic :: iso_fortran_env, only: int64
-   !$ use omp_lib, only: omp_get_max_threads
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t
    use gapbeam_problem, only: problem_t
@@ -22,7 +21,7 @@ module gapbeam_sweep
    private
    public :: sweep_settings_t, point_result_t, sweep_mode_words, sweep_direction_words, &
       sweep_axis_words, n_points, n_items, item_points, point_forcing, run_point, run_items, &
-      point_diagnostics
+      point_diagnostics, pack_point, unpack_point
 
    character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
    character(len=*), parameter :: sweep_direction_words = "'up', 'down'"
@@ -38,6 +37,9 @@ module gapbeam_sweep
       logical :: progress = .true.                   !! progress on standard error
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come
+      real(dp) :: time_limit_s = 0.0_dp              !! stop cleanly after this [s] (0: none)
+      integer :: shard_index = 1                     !! this process's shard (command line)
+      integer :: shard_count = 1                     !! number of shards (command line)
    end type sweep_settings_t
 
    !> Everything one point produces.
@@ -229,4 +231,50 @@ contains
       end do
       !$omp end parallel do
    end subroutine run_items
+
+   !> A point's results as one real array (for checkpoints); integers are stored exactly.
+   pure function pack_point(pr) result(x)
+      type(point_result_t), intent(in) :: pr   !! a finished point
+      real(dp), allocatable :: x(:)
+      x = [real(pr%status, dp), real(pr%period, dp), real(pr%label, dp), pr%lyapunov, &
+           pr%lyapunov_error, real(pr%steps, dp), pr%seconds, &
+           real(size(pr%lyapunov_running), dp), pr%lyapunov_running, &
+           real(size(pr%n_impacts), dp), real(pr%n_impacts, dp), pr%peak_force, pr%rms_force, &
+           pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
+           real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
+           real(size(pr%u_end), dp), pr%u_end, pr%v_end]
+   end function pack_point
+
+   !> Inverse of pack_point; ok is false when x is not a well-formed record.
+   pure subroutine unpack_point(x, pr, ok)
+      real(dp), intent(in) :: x(:)                !! packed record
+      type(point_result_t), intent(out) :: pr     !! the point
+      logical, intent(out) :: ok                  !! record well formed
+      integer :: k, m, ns, nr, n
+      ok = .false.
+      if (size(x) < 9) return
+      pr%status = nint(x(1));  pr%period = nint(x(2));  pr%label = nint(x(3))
+      pr%lyapunov = x(4);  pr%lyapunov_error = x(5);  pr%steps = nint(x(6), int64)
+      pr%seconds = x(7)
+      k = 8
+      m = nint(x(k));  if (m < 0 .or. k + m > size(x)) return
+      pr%lyapunov_running = x(k + 1:k + m);  k = k + m + 1
+      if (k > size(x)) return
+      ns = nint(x(k));  if (ns < 0 .or. k + 6 * ns > size(x)) return
+      pr%n_impacts = nint(x(k + 1:k + ns));  k = k + ns
+      pr%peak_force = x(k + 1:k + ns);  k = k + ns
+      pr%rms_force = x(k + 1:k + ns);  k = k + ns
+      pr%contact_fraction = x(k + 1:k + ns);  k = k + ns
+      pr%impulse_per_period = x(k + 1:k + ns);  k = k + ns
+      pr%work_rate = x(k + 1:k + ns);  k = k + ns + 1
+      if (k > size(x)) return
+      nr = nint(x(k));  if (nr < 0 .or. k + 2 * nr > size(x)) return
+      pr%p_strain = x(k + 1:k + nr);  k = k + nr
+      pr%p_strain_rate = x(k + 1:k + nr);  k = k + nr + 1
+      if (k > size(x)) return
+      n = nint(x(k));  if (n < 0 .or. k + 2 * n /= size(x)) return
+      pr%u_end = x(k + 1:k + n);  k = k + n
+      pr%v_end = x(k + 1:k + n)
+      ok = .true.
+   end subroutine unpack_point
 end module gapbeam_sweep

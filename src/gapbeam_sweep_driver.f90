@@ -1,0 +1,185 @@
+!> Runs a sweep job: its shard of the work items in chunks of parallel work, a checkpoint
+!> record for every finished point and a progress line after every chunk (both outside the
+!> parallel region), then the result files.
+module gapbeam_sweep_driver
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
+   !$ use omp_lib, only: omp_get_max_threads
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_input, only: deck_t
+   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
+   use gapbeam_sweep, only: sweep_settings_t, point_result_t, n_points, n_items, item_points, &
+      run_items
+   use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
+      checkpoint_close
+   use gapbeam_sweep_output, only: sweep_file_t, write_sweep
+   use gapbeam_diagnostics, only: label_chaotic, label_undecided
+   implicit none
+   private
+   public :: run_sweep_job, sweep_prefix
+
+   !> Exit status of a sweep stopped by its time limit (checkpoint kept, run again to finish).
+   integer, parameter, public :: status_interrupted = 3
+
+contains
+
+   !> Output prefix of a shard: PREFIX, or PREFIX.shard_I_of_N.
+   function sweep_prefix(deck) result(prefix)
+      type(deck_t), intent(in) :: deck   !! the deck (with the shard set)
+      character(len=:), allocatable :: prefix
+      prefix = trim(deck%job%output)
+      if (deck%sweep%shard_count > 1) prefix = prefix // '.shard_' &
+         // str(deck%sweep%shard_index) // '_of_' // str(deck%sweep%shard_count)
+   end function sweep_prefix
+
+   !> Run the deck's sweep (its shard); `complete` is false when the time limit stopped it.
+   subroutine run_sweep_job(deck, complete, err)
+      type(deck_t), intent(in) :: deck                 !! validated deck
+      logical, intent(out) :: complete                 !! all points of the shard done
+      type(error_t), allocatable, intent(out) :: err   !! setup, I/O or checkpoint failure
+      type(problem_t) :: base
+      type(point_result_t), allocatable :: results(:)
+      type(checkpoint_t) :: ck
+      type(sweep_file_t) :: sf
+      logical, allocatable :: done(:)
+      integer, allocatable :: mine(:), todo(:), pts(:)
+      real(dp), allocatable :: u0(:), v0(:)
+      integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_failed, &
+         n_run
+      integer(int64) :: c0, c1, rate
+      real(dp) :: elapsed, per_point
+      character(len=:), allocatable :: prefix
+
+      complete = .false.
+      call system_clock(c0, rate)
+      call build_problem(deck%structure, deck%stops, deck%damping, deck%forcing, base, err)
+      if (allocated(err)) return
+      call initial_vectors(base, deck%initial, u0, v0)
+      np = n_points(deck%sweep);  ni = n_items(deck%sweep)
+      mine = pack([(k, k = 1, ni)], [(mod(k - 1, deck%sweep%shard_count) + 1 &
+                  == deck%sweep%shard_index, k = 1, ni)])
+      allocate(results(np), done(np))
+      done = .false.
+      prefix = sweep_prefix(deck)
+      n_loaded = 0
+      if (deck%sweep%checkpoint) then
+         call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
+            // '! shard ' // str(deck%sweep%shard_index) // ' of ' &
+            // str(deck%sweep%shard_count), results, done, n_loaded, err)
+         if (allocated(err)) return
+      end if
+      allocate(todo(0))
+      n_total = 0
+      do k = 1, size(mine)
+         pts = item_points(deck%sweep, mine(k))
+         n_total = n_total + size(pts)
+         if (.not. all(done(pts))) todo = [todo, mine(k)]
+      end do
+      n_done = n_total - sum([(size(item_points(deck%sweep, todo(k))), k = 1, size(todo))])
+      threads = 1
+      !$ threads = omp_get_max_threads()
+      chunk = deck%sweep%chunk
+      if (chunk == 0) chunk = merge(2, 16, deck%sweep%mode == 'continuation') * threads
+      write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' &
+         // str(size(deck%sweep%frequency_hz)) // ' frequencies x ' &
+         // str(size(deck%sweep%amplitude_pp)) // ' amplitudes), mode ' &
+         // trim(deck%sweep%mode) // ', shard ' // str(deck%sweep%shard_index) // ' of ' &
+         // str(deck%sweep%shard_count) // ': ' // str(n_total) // ' points, ' &
+         // str(n_done) // ' already in the checkpoint; ' // str(threads) // ' threads'
+
+      first = 1;  n_run = 0
+      do while (first <= size(todo))
+         last = min(size(todo), first + chunk - 1)
+         call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+                        todo(first:last), u0, v0, results)
+         do k = first, last
+            pts = item_points(deck%sweep, todo(k))
+            do j = 1, size(pts)
+               done(pts(j)) = .true.
+               n_done = n_done + 1;  n_run = n_run + 1
+               if (deck%sweep%checkpoint .and. results(pts(j))%status == 0) then
+                  call checkpoint_append(ck, pts(j), results(pts(j)), err)
+                  if (allocated(err)) return
+               end if
+            end do
+         end do
+         first = last + 1
+         call system_clock(c1)
+         elapsed = real(c1 - c0, dp) / real(rate, dp)
+         if (deck%sweep%progress) then
+            per_point = elapsed / max(1, n_run)
+            write(error_unit, '(a)') 'sweep: ' // str(n_done) // '/' // str(n_total) &
+               // ' points, ' // str(1.0_dp / per_point) // ' points/s, ' &
+               // str(per_point * (n_total - n_done)) // ' s left'
+            flush(error_unit)
+         end if
+         if (deck%sweep%time_limit_s > 0.0_dp .and. elapsed >= deck%sweep%time_limit_s .and. &
+             first <= size(todo)) then
+            call checkpoint_close(ck, delete=.false.)
+            write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
+               // str(n_total) // ' points; the checkpoint ' // prefix // '.checkpoint keeps ' &
+               // 'them: run the same command again to finish'
+            return
+         end if
+      end do
+
+      n_failed = 0
+      do k = 1, size(mine)
+         pts = item_points(deck%sweep, mine(k))
+         do j = 1, size(pts)
+            if (results(pts(j))%status /= 0) then
+               n_failed = n_failed + 1
+               write(error_unit, '(a)') 'sweep: point ' // str(pts(j)) // ' failed: ' &
+                  // results(pts(j))%message
+            end if
+         end do
+      end do
+      sf%deck_text = deck%text
+      sf%title = trim(deck%job%title)
+      sf%grid_frequency_hz = deck%sweep%frequency_hz
+      sf%grid_amplitude_pp = deck%sweep%amplitude_pp
+      sf%shard_index = deck%sweep%shard_index
+      sf%shard_count = deck%sweep%shard_count
+      sf%points = sorted_points(deck%sweep, mine)
+      call write_sweep(prefix, sf, results, deck%output%write_text, err)
+      if (allocated(err)) return
+      if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
+      call summary(results(sf%points), n_failed)
+      call system_clock(c1)
+      write(output_unit, '(a)') 'sweep: ' // str(size(sf%points)) // ' points in ' &
+         // str(real(c1 - c0, dp) / real(rate, dp)) // ' s; files: ' // prefix // '.h5' &
+         // trim(merge(', .sweep.dat, .bifurcation.dat', '                              ', &
+         deck%output%write_text))
+      complete = .true.
+   end subroutine run_sweep_job
+
+   !> All points of the given items, ascending.
+   function sorted_points(sw, items) result(pts)
+      type(sweep_settings_t), intent(in) :: sw
+      integer, intent(in) :: items(:)
+      integer, allocatable :: pts(:)
+      logical, allocatable :: mask(:)
+      integer :: k
+      allocate(mask(n_points(sw)), source=.false.)
+      do k = 1, size(items)
+         mask(item_points(sw, items(k))) = .true.
+      end do
+      pts = pack([(k, k = 1, size(mask))], mask)
+   end function sorted_points
+
+   subroutine summary(res, n_failed)
+      type(point_result_t), intent(in) :: res(:)
+      integer, intent(in) :: n_failed
+      integer :: p, c
+      character(len=:), allocatable :: line
+      line = 'labels:'
+      do p = 1, 16
+         c = count(res%label == p)
+         if (c > 0) line = line // ' period ' // str(p) // ': ' // str(c) // ';'
+      end do
+      line = line // ' chaotic: ' // str(count(res%label == label_chaotic)) // '; undecided: ' &
+         // str(count(res%label == label_undecided .and. res%status == 0)) // '; failed: ' &
+         // str(n_failed)
+      write(output_unit, '(a)') line
+   end subroutine summary
+end module gapbeam_sweep_driver
