@@ -23,18 +23,19 @@ program main
    type(error_t), allocatable :: err
    character(len=:), allocatable :: path, arg
    character(len=:), allocatable :: overrides(:)
-   integer :: i, n_args, shard_index, shard_count
+   integer :: i, n_args, shard_index, shard_count, ios
+   real(dp) :: time_limit
    logical :: complete
 
    n_args = command_argument_count()
    if (n_args < 1) then
-      write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [OVERRIDE ...]'
+      write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'
       write(error_unit, '(a)') '       gapbeam merge OUT.h5 SHARD.h5 ...'
       write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. "&forcing frequency_hz=10.2 /"'
       error stop 2
    end if
    allocate(character(len=4096) :: overrides(0))
-   shard_index = 1;  shard_count = 1
+   shard_index = 1;  shard_count = 1;  time_limit = 0.0_dp
    i = 0
    do while (i < n_args)
       i = i + 1
@@ -52,6 +53,17 @@ program main
             arg = arg(9:)
          end if
          call parse_shard(arg, shard_index, shard_count)
+      else if (arg == '--time-limit' .or. index(arg, '--time-limit=') == 1) then
+         if (arg == '--time-limit') then
+            i = i + 1
+            if (i > n_args) call fail_text('--time-limit needs a number of seconds')
+            arg = argument(i)
+         else
+            arg = arg(14:)
+         end if
+         read(arg, *, iostat=ios) time_limit
+         if (ios /= 0 .or. .not. (time_limit > 0.0_dp)) call fail_text("--time-limit '" &
+            // arg // "': expected a positive number of seconds")
       else
          overrides = [character(len=4096) :: overrides, arg]
       end if
@@ -65,9 +77,10 @@ program main
    if (allocated(err)) call fail(err)
    deck%sweep%shard_index = shard_index
    deck%sweep%shard_count = shard_count
-   if (shard_count > 1 .and. deck%job%analysis /= 'sweep') call fail_text(path // &
-      ": --shard applies to analysis='sweep' only (this deck runs '" // trim(deck%job%analysis) &
-      // "')")
+   deck%sweep%time_limit_s = time_limit
+   if ((shard_count > 1 .or. time_limit > 0.0_dp) .and. deck%job%analysis /= 'sweep') &
+      call fail_text(path // ": --shard and --time-limit apply to analysis='sweep' only " &
+      // "(this deck runs '" // trim(deck%job%analysis) // "')")
    write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
    write(output_unit, '(a)') 'analysis: ' // trim(deck%job%analysis)
    select case (deck%job%analysis)

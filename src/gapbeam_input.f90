@@ -898,26 +898,23 @@ contains
       real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
       integer :: n_frequency, n_amplitude, chunk
       logical :: progress, checkpoint
-      real(dp) :: time_limit_s
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         progress, chunk, checkpoint, time_limit_s
+         progress, chunk, checkpoint
       allocate(frequency_hz(naxis), amplitude_pp(naxis))
       mode = cfg%mode;  direction = cfg%direction;  axis = cfg%axis
       frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp
       frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
       amplitude_start_pp = 0.0_dp;  amplitude_end_pp = 0.0_dp;  n_amplitude = 0
       progress = cfg%progress;  chunk = cfg%chunk;  checkpoint = cfg%checkpoint
-      time_limit_s = cfg%time_limit_s
       call apply_group(srcs, 'sweep', 'mode direction axis frequency_hz amplitude_pp ' &
          // 'frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint time_limit_s', reader, err)
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint', reader, err)
       if (allocated(err)) return
       call require_word('sweep', 'mode', mode, sweep_mode_words, err)
       call require_word('sweep', 'direction', direction, sweep_direction_words, err)
       call require_word('sweep', 'axis', axis, sweep_axis_words, err)
       call require_int('sweep', 'chunk', chunk, 0, huge(1), err)
-      call require_nonnegative('sweep', 'time_limit_s', time_limit_s, err)
       if (allocated(err)) return
       call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
          frequency_hz, frequency_start_hz, frequency_end_hz, n_frequency, &
@@ -929,7 +926,6 @@ contains
       if (allocated(err)) return
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
-      cfg%time_limit_s = time_limit_s
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

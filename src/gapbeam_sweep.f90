@@ -37,7 +37,7 @@ module gapbeam_sweep
       logical :: progress = .true.                   !! progress on standard error
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come
-      real(dp) :: time_limit_s = 0.0_dp              !! stop cleanly after this [s] (0: none)
+      real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none (command line)
       integer :: shard_index = 1                     !! this process's shard (command line)
       integer :: shard_count = 1                     !! number of shards (command line)
    end type sweep_settings_t
