@@ -126,4 +126,13 @@ else
 fi
 count test_cli.sh "${log}" "${status}"
 
+printf '\n== scripts/test_sweep_kill.sh\n'
+log=${work}/test_sweep_kill.log
+status=0
+if [[ -n ${gapbeam_exe} ]]; then
+   "${runner[@]}" bash "${root}/scripts/test_sweep_kill.sh" "${gapbeam_exe}" </dev/null 2>&1 \
+      | tee "${log}" || status=$?
+fi
+count test_sweep_kill.sh "${log}" "${status}"
+
 summary

@@ -56,15 +56,16 @@ contains
       integer, intent(in) :: n_test     !! points tested
       real(dp), intent(in) :: scale_x   !! size of the orbit in x
       real(dp), intent(in) :: scale_y   !! size of the orbit in y
-      integer :: n, first, q, i
+      integer :: n, first, q, i, pm
       real(dp) :: sx, sy
       logical :: ok
       p = 0
       n = size(x)
-      if (n < 2 * p_max + 1) return
-      first = max(p_max + 1, n - n_test + 1)
+      pm = min(p_max, (n - 1) / 2)   ! a short record tests the periods it can show twice
+      if (pm < 1) return
+      first = max(pm + 1, n - n_test + 1)
       sx = max(scale_x, tiny(1.0_dp));  sy = max(scale_y, tiny(1.0_dp))
-      do q = 1, p_max
+      do q = 1, pm
          ok = .true.
          do i = first, n
             if (abs(x(i) - x(i - q)) > tol * sx .or. abs(y(i) - y(i - q)) > tol * sy) then
