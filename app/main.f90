@@ -145,6 +145,13 @@ contains
 
    subroutine fail_text(text)
       character(len=*), intent(in) :: text
+      if (allocated(path)) then
+         if (path /= 'merge' .and. index(text, path // ': ') /= 1) then
+            write(error_unit, '(a)') 'error: ' // path // ': ' // text
+            flush(error_unit)
+            error stop 1
+         end if
+      end if
       write(error_unit, '(a)') 'error: ' // text
       flush(error_unit)
       error stop 1
@@ -152,6 +159,13 @@ contains
 
    subroutine fail(e)
       type(error_t), intent(in) :: e
+      if (allocated(path)) then
+         if (index(e%message, path // ': ') /= 1 .and. path /= 'merge') then
+            write(error_unit, '(a)') 'error: ' // path // ': ' // e%message
+            flush(error_unit)
+            error stop 1
+         end if
+      end if
       write(error_unit, '(a)') 'error: ' // e%message
       flush(error_unit)
       error stop 1

@@ -229,5 +229,19 @@ bad_case "override of unknown group"      -o '&nosuch x=1 /'                    
 bad_case "negative point mass"            -a '&masses node=5, mass=-1.0 /'      -- '&masses' 'mass' '-1'
 bad_case "zero root spring k_theta=0.0"   -r 'k_theta=0.0912' 'k_theta=0.0'     -- '&root' 'k_theta'
 
+# numerical failures and the sweep's command line
+bad_case "step below the minimum (transient)" -r "analysis='modes'" "analysis='transient'" \
+   -a '&forcing frequency_hz=10.5, amplitude_pp=3.7e-3 /' \
+   -a '&solver half_step_tolerance=1.0e-8, max_halvings=0, transient_periods=0, record_periods=2 /' \
+   -- 'step below the minimum' 'dt' 't ='
+bad_case "bad --shard value"                  -o '--shard' -o '4/3'                  -- '--shard' '4/3'
+bad_case "--shard on a modes deck"            -o '--shard' -o '1/2'                  -- 'sweep'
+bad_case "sweep without &sweep"               -r "analysis='modes'" "analysis='sweep'" \
+   -a '&forcing frequency_hz=10.5, amplitude_pp=3.7e-3 /'                          -- '&sweep' 'missing'
+bad_case "sweep axis list and range both"     -r "analysis='modes'" "analysis='sweep'" \
+   -a '&forcing frequency_hz=10.5, amplitude_pp=3.7e-3 /' \
+   -a '&sweep frequency_hz=9.0, 10.0, n_frequency=4, frequency_start_hz=8.0, frequency_end_hz=9.0 /' \
+   -- '&sweep' 'frequency_hz' 'n_frequency'
+
 printf 'test_cli.sh: %d checks, %d failed\n' "${n_checks}" "${n_failed}"
 [[ ${n_failed} -eq 0 ]]

@@ -22,6 +22,7 @@ program test_newmark
    call condensed_and_fixed_point()
    call half_step_efficiency()
    call attractor_against_finer_step()
+   call symmetric_two_sided_stop()
    call finish('test_newmark')
 
 contains
@@ -386,6 +387,27 @@ contains
       call check('10.5 Hz deck: default settings give the attractor of a 16x finer fixed step', &
          p_def == p_fine .and. p_def > 0)
    end subroutine attractor_against_finer_step
+
+   !> A two-sided symmetric stop under symmetric forcing: u(t + T/2) = -u(t) on the orbit.
+   subroutine symmetric_two_sided_stop()
+      type(problem_t) :: prob
+      type(transient_result_t) :: r
+      integer :: half
+      real(dp) :: asym
+      call run(ref, [character(len=200) :: "&stops side = 'both', gap = 5.0e-4 /", &
+         '&forcing frequency_hz = 3.0, amplitude_pp = 2.0e-3 /', &
+         '&solver transient_periods = 300, record_periods = 20 /', &
+         '&output samples_per_period = 64, history_periods = 4 /'], prob, r)
+      half = 32
+      asym = maxval(abs(r%strain(half + 1:) + r%strain(:size(r%strain) - half))) &
+             / maxval(abs(r%strain))
+      call note('two-sided stop, 3 Hz, 2 mm: impacts per period ' &
+         // str(real(r%n_impacts(1), dp) / 20) // ', max |eps(t + T/2) + eps(t)| / max|eps| = ' &
+         // str(asym))
+      call check('two-sided stop: impacts on both sides', r%n_impacts(1) >= 40)
+      call check_le('two-sided symmetric stop: the orbit is symmetric, eps(t + T/2) = -eps(t)', &
+         asym, 1.0e-6_dp)
+   end subroutine symmetric_two_sided_stop
 
    integer function period_of(r)
       type(transient_result_t), intent(in) :: r
