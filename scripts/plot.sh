@@ -12,6 +12,17 @@
 #                                            against strain once per period, paper Figs. 4-9)
 # ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies)
 #                                         -> PREFIX.shapes.png   (scripts/mode_shapes.gp)
+# ANALYSIS=sweep:     PREFIX.bifurcation.dat -> PREFIX.bifurcation.png (scripts/bifurcation.gp:
+#                                            Poincare root strain against the forcing frequency,
+#                                            or against the amplitude when the sweep has a single
+#                                            frequency: distinct values of column 1 of
+#                                            PREFIX.sweep.dat)
+#                     PREFIX.sweep.dat    -> PREFIX.chaos_map.png (scripts/chaos_map.gp: class of
+#                                            each point, chaotic / undecided / period p, over the
+#                                            frequency-amplitude plane; a strip for a line sweep)
+#                                         -> PREFIX.lyapunov.png (scripts/lyapunov.gp: largest
+#                                            Lyapunov exponent with error bars, same x as above)
+#                     (PREFIX may be a shard's, PREFIX.shard_I_of_N, or a merged file's prefix.)
 # Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
 # Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
 # Prints `plot: wrote FILE.png` per PNG written. A .dat file that is missing or holds no data row
@@ -34,7 +45,7 @@ analysis=$1
 prefix=$2
 
 case ${analysis} in
-   transient | modes) ;;
+   transient | modes | sweep) ;;
    *) exit 0 ;;
 esac
 
@@ -111,6 +122,32 @@ case ${analysis} in
       if has_data "${modes}"; then modes_arg=${modes}; else modes_arg=""; fi
       render mode_shapes.gp "${prefix}.shapes.png" \
          "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); plottitle=$(gp_quote "${title}")"
+      ;;
+   sweep)
+      points="${prefix}.sweep.dat"
+      bifurcation="${prefix}.bifurcation.dat"
+      if ! has_data "${points}"; then
+         skip "${points}"
+         exit 0
+      fi
+      # The points file's title line reads '<deck title>: sweep points (...)'; the plots say
+      # what they show themselves.
+      title=$(dat_title "${points}")
+      title=${title%%: sweep points*}
+      # x axis: the frequency, unless the sweep has a single frequency (a line in amplitude).
+      n_freq=$(awk '!/^[[:space:]]*(#|$)/ { seen[$1] = 1 } END { n = 0; for (f in seen) n++; print n }' \
+         "${points}")
+      if [[ ${n_freq} -gt 1 ]]; then xaxis=frequency; else xaxis=amplitude; fi
+      common="plottitle=$(gp_quote "${title}"); xaxis=$(gp_quote "${xaxis}")"
+      if has_data "${bifurcation}"; then
+         render bifurcation.gp "${prefix}.bifurcation.png" \
+            "datafile=$(gp_quote "${bifurcation}"); ${common}"
+      else
+         skip "${bifurcation}"
+      fi
+      render chaos_map.gp "${prefix}.chaos_map.png" \
+         "datafile=$(gp_quote "${points}"); plottitle=$(gp_quote "${title}")"
+      render lyapunov.gp "${prefix}.lyapunov.png" "datafile=$(gp_quote "${points}"); ${common}"
       ;;
 esac
 exit 0

@@ -167,7 +167,7 @@ contains
    !> One whole condensed step (predictor, exact contact forces, correction) fused for speed:
    !> the hot path of every transient run. Same arithmetic as newmark_predict +
    !> condensed_contact + newmark_correct, with explicit-shape arrays and no temporaries.
-   pure subroutine condensed_step(prob, op, s1, u, v, a, f, u1, v1, a1, f1, hm, hc)
+   pure subroutine condensed_step(prob, op, s1, u, v, a, f, u1, v1, a1, f1, hm, hc, open_contact)
       type(problem_t), intent(in) :: prob              !! model
       type(step_op_t), intent(in) :: op                !! step operator (dense or banded)
       real(dp), intent(in) :: s1                       !! load factor at the end of the step
@@ -176,10 +176,15 @@ contains
       real(dp), intent(out) :: u1(prob%n), v1(prob%n), a1(prob%n) !! state at the end
       real(dp), intent(out) :: f1(prob%n_contacts)     !! contact forces at the end [N]
       real(dp), intent(out) :: hm(prob%n), hc(prob%n)  !! workspaces
+      integer, intent(in), optional :: open_contact    !! contact held open (a located onset
+                                                       !! ends this sub-step: left limit)
       integer :: n, i, j, c, sweeps
       real(dp) :: xj, ds, vs, fc
+      logical :: hold
       n = prob%n
-      if (op%dense .and. prob%n_contacts == 1) then
+      hold = .false.
+      if (present(open_contact)) hold = open_contact > 0
+      if (op%dense .and. prob%n_contacts == 1 .and. .not. hold) then
          call dense_single_contact_step(n, op%am, op%gp, op%g(:, 1), op%h(1, 1), op%a0, op%a1, &
             op%a2, op%a3, op%a4, op%a5, op%cw, op%ch, s1, prob%c_dof(1), prob%c_sign(1), &
             prob%c_gap(1), prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), u, v, a, &
@@ -204,6 +209,7 @@ contains
       if (prob%n_contacts == 1) then
          i = prob%c_dof(1)
          ds = prob%c_sign(1) * u1(i) - prob%c_gap(1)
+         if (hold) ds = 0.0_dp
          if (ds > 0.0_dp) then
             vs = prob%c_sign(1) * (op%a1 * u1(i) - hc(i))
             fc = solve_scalar_contact(prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), &
@@ -221,6 +227,7 @@ contains
       else if (prob%n_contacts > 1) then
          f1 = f
          call condensed_contact(prob, op, u, v, a, u1, f1, sweeps)
+         if (hold) f1(open_contact) = 0.0_dp   ! approximate when contacts are coupled
          do c = 1, prob%n_contacts
             if (f1(c) /= 0.0_dp) u1 = u1 - op%g(:, prob%c_slot(c)) * (prob%c_sign(c) * f1(c))
          end do
@@ -347,7 +354,7 @@ contains
    !> The paper's fixed point on F_NL: y = Kbar^-1 (Pbar - E F) solved in full each iteration,
    !> F from the stop law at y, until max|dF| <= tol max|F|. Starts from `f` (extrapolated).
    subroutine fixed_point_step(prob, op, s1, u, v, a, tol, max_iter, f, u1, v1, a1, &
-                               iterations, converged, hm, hc, rhs, y)
+                               iterations, converged, hm, hc, rhs, y, open_contact)
       type(problem_t), intent(in) :: prob     !! model
       type(step_op_t), intent(in) :: op       !! step operator
       real(dp), intent(in) :: s1              !! load factor at the end of the step
@@ -359,7 +366,8 @@ contains
       integer, intent(out) :: iterations      !! iterations used
       logical, intent(out) :: converged       !! converged within max_iter
       real(dp), intent(inout) :: hm(:), hc(:), rhs(:), y(:)  !! workspaces (n)
-      integer :: n, c, i, info, it
+      integer, intent(in), optional :: open_contact   !! contact held open (see condensed_step)
+      integer :: n, c, i, info, it, held
       real(dp) :: pbar(size(u)), tmp(size(u)), fnew(size(f)), d, ddot, change, fmax
       n = prob%n
       hm = op%a0 * u + op%a2 * v + op%a3 * a
@@ -369,6 +377,9 @@ contains
       call dense_or_band(prob%sys%m, prob%sys%m_band, tmp, pbar)
       call dense_or_band(prob%sys%k, prob%sys%k_band, hc, rhs)
       pbar = pbar + prob%gamma * rhs + s1 * prob%q
+      held = 0
+      if (present(open_contact)) held = open_contact
+      if (held > 0) f(held) = 0.0_dp
       converged = .false.
       do it = 1, max_iter
          rhs = pbar
@@ -388,6 +399,7 @@ contains
             d = prob%c_sign(c) * y(i) - prob%c_gap(c)
             ddot = prob%c_sign(c) * (op%a1 * y(i) - hc(i))
             fnew(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), d, ddot)
+            if (c == held) fnew(c) = 0.0_dp
             change = max(change, abs(fnew(c) - f(c)))
             fmax = max(fmax, fnew(c))
          end do

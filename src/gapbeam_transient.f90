@@ -17,7 +17,7 @@ module gapbeam_transient
    use gapbeam_settings, only: solver_settings_t, output_settings_t
    use gapbeam_newmark, only: step_op_t, build_step_op, condensed_step, fixed_point_step, &
       half_step_ratio, state_load
-   use gapbeam_contact, only: contact_force
+   use gapbeam_contact, only: contact_force, law_bilinear
    use gapbeam_model, only: dof_name
    use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
@@ -108,17 +108,30 @@ contains
       real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: u(:), v(:)        !! state
       real(dp), intent(out) :: a(:)             !! acceleration
+      real(dp) :: f(prob%n_contacts)
+      integer :: c, i
+      do c = 1, prob%n_contacts
+         i = prob%c_dof(c)
+         f(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
+            prob%c_sign(c) * u(i) - prob%c_gap(c), prob%c_sign(c) * v(i))
+      end do
+      call equilibrium_acceleration(prob, t, u, v, f, a)
+   end subroutine initial_acceleration
+
+   !> Acceleration in equilibrium with (t, u, v) and given contact forces f.
+   subroutine equilibrium_acceleration(prob, t, u, v, f, a)
+      type(problem_t), intent(in) :: prob       !! model
+      real(dp), intent(in) :: t                 !! time [s]
+      real(dp), intent(in) :: u(:), v(:)        !! state
+      real(dp), intent(in) :: f(:)              !! contact force magnitudes [N]
+      real(dp), intent(out) :: a(:)             !! acceleration
       real(dp), allocatable :: rhs(:), msub(:, :), b(:)
       integer, allocatable :: idx(:)
       integer :: c, i, info, nm
-      real(dp) :: d, f
       rhs = state_load(prob, t) * prob%q - matmul(prob%c, v) - matmul(prob%sys%k, u)
       do c = 1, prob%n_contacts
          i = prob%c_dof(c)
-         d = prob%c_sign(c) * u(i) - prob%c_gap(c)
-         f = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), d, &
-                           prob%c_sign(c) * v(i))
-         rhs(i) = rhs(i) - prob%c_sign(c) * f
+         rhs(i) = rhs(i) - prob%c_sign(c) * f(c)
       end do
       a = 0.0_dp
       idx = pack([(i, i = 1, prob%n)], [(prob%sys%m(i, i) > 0.0_dp, i = 1, prob%n)])
@@ -129,7 +142,7 @@ contains
       call dpotrf('U', nm, msub, nm, info)
       if (info == 0) call dpotrs('U', nm, 1, msub, nm, b, nm, info)
       a(idx) = b
-   end subroutine initial_acceleration
+   end subroutine equilibrium_acceleration
 
    !> Integrate from (u0, v0) at t = 0 over transient + recorded periods.
    subroutine run_transient(prob, cfg, out, u0, v0, res, err)
@@ -156,6 +169,10 @@ contains
       logical, allocatable :: was_active(:)
       integer, allocatable :: si(:)
       real(dp), allocatable :: sw(:)
+      integer :: i_ev, cc_ev, k_ev     ! contact, dof and sub-step examined by first_event
+      real(dp) :: h_ev
+      integer :: ev_contact            ! contact of the located event
+      logical :: ev_onset              ! the event closes it (else opens it)
 
       call system_clock(count0, rate)
       n = prob%n;  nc = prob%n_contacts;  ns = prob%n_stops
@@ -247,12 +264,17 @@ contains
                                      dense, scratch, err)
                   if (allocated(err)) return
                   res%factorizations = res%factorizations + 1
-                  call one_step(scratch, t_cur + theta * dt_r, nsub, ok)
+                  if (ev_onset) then
+                     call one_step(scratch, t_cur + theta * dt_r, nsub, ok, ev_contact)
+                  else
+                     call one_step(scratch, t_cur + theta * dt_r, nsub, ok)
+                  end if
                   if (.not. ok) exit
                   nsub = nsub + 1
                   sub_t(nsub) = t_cur + theta * dt_r
                   t_cur = sub_t(nsub)
                   res%events = res%events + 1
+                  call restart_after_event(nsub)
                   cycle
                end if
             end if
@@ -354,11 +376,12 @@ contains
    contains
 
       !> One Newmark solve from sub-state nsub to time t_end, into slot nsub+1.
-      subroutine one_step(op, t_end, k, success)
+      subroutine one_step(op, t_end, k, success, open_contact)
          type(step_op_t), intent(in) :: op
          real(dp), intent(in) :: t_end
          integer, intent(in) :: k
          logical, intent(out) :: success
+         integer, intent(in), optional :: open_contact   ! held open: a located onset ends the step
          real(dp) :: s1, hstep
          s1 = state_load(prob, t_end)
          success = .true.
@@ -372,13 +395,13 @@ contains
             end if
             call fixed_point_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
                cfg%fp_tolerance, cfg%fp_max_iterations, fguess, sub_u(:, k + 1), &
-               sub_v(:, k + 1), sub_a(:, k + 1), fp_it, success, hm, hc, rhs, yy)
+               sub_v(:, k + 1), sub_a(:, k + 1), fp_it, success, hm, hc, rhs, yy, open_contact)
             res%fp_iterations = res%fp_iterations + fp_it
             sub_f(:, k + 1) = fguess
          else
             call condensed_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
                sub_f(:, k), sub_u(:, k + 1), sub_v(:, k + 1), sub_a(:, k + 1), &
-               sub_f(:, k + 1), hm, hc)
+               sub_f(:, k + 1), hm, hc, open_contact)
          end if
       end subroutine one_step
 
@@ -386,45 +409,93 @@ contains
       real(dp) function first_event(k, h) result(th)
          integer, intent(in) :: k
          real(dp), intent(in) :: h
-         integer :: cc, i, m, it
+         integer :: cc, m, it
          real(dp) :: lo, hi, mid, p0, b1, b2, b3
-         logical :: closed0
+         logical :: closed0, damped
          integer, parameter :: n_sample = 8
          th = 2.0_dp
          do cc = 1, nc
-            i = prob%c_dof(cc)
-            p0 = prob%c_sign(cc) * sub_u(i, k) - prob%c_gap(cc)
-            closed0 = p0 > 0.0_dp
-            ! Bernstein coefficients of the cubic bound it: no sign change, no event
-            b1 = p0 + prob%c_sign(cc) * h * sub_v(i, k) / 3.0_dp
-            b3 = prob%c_sign(cc) * sub_u(i, k + 1) - prob%c_gap(cc)
-            b2 = b3 - prob%c_sign(cc) * h * sub_v(i, k + 1) / 3.0_dp
-            if (closed0) then
-               if (min(b1, b2, b3) > 0.0_dp) cycle
-            else
-               if (max(b1, b2, b3) <= 0.0_dp) cycle
+            i_ev = prob%c_dof(cc);  cc_ev = cc;  k_ev = k;  h_ev = h
+            damped = prob%c_law(cc) == law_bilinear .and. prob%c_c(cc) > 0.0_dp
+            closed0 = active(0.0_dp, damped)
+            if (.not. damped) then
+               ! Bernstein coefficients of the cubic bound it: no sign change, no event
+               p0 = prob%c_sign(cc) * sub_u(i_ev, k) - prob%c_gap(cc)
+               b1 = p0 + prob%c_sign(cc) * h * sub_v(i_ev, k) / 3.0_dp
+               b3 = prob%c_sign(cc) * sub_u(i_ev, k + 1) - prob%c_gap(cc)
+               b2 = b3 - prob%c_sign(cc) * h * sub_v(i_ev, k + 1) / 3.0_dp
+               if (closed0) then
+                  if (min(b1, b2, b3) > 0.0_dp) cycle
+               else
+                  if (max(b1, b2, b3) <= 0.0_dp) cycle
+               end if
             end if
             do m = 1, n_sample
                hi = real(m, dp) / n_sample
                if (hi >= th) exit
-               if ((prob%c_sign(cc) * hermite_value(hi, h, sub_u(i, k), sub_v(i, k), sub_u(i, k + 1), &
-                   sub_v(i, k + 1)) - prob%c_gap(cc) > 0.0_dp) .neqv. closed0) then
+               if (active(hi, damped) .neqv. closed0) then
                   lo = real(m - 1, dp) / n_sample
                   do it = 1, 60
                      mid = 0.5_dp * (lo + hi)
-                     if ((prob%c_sign(cc) * hermite_value(mid, h, sub_u(i, k), sub_v(i, k), &
-                         sub_u(i, k + 1), sub_v(i, k + 1)) - prob%c_gap(cc) > 0.0_dp) .neqv. closed0) then
+                     if (active(mid, damped) .neqv. closed0) then
                         hi = mid
                      else
                         lo = mid
                      end if
                   end do
-                  th = min(th, hi)
+                  if (hi < th) then
+                     th = hi;  ev_contact = cc;  ev_onset = .not. closed0
+                  end if
                   exit
                end if
             end do
          end do
       end function first_event
+
+      !> At a located event the contact force may jump (a damper's force c d' at impact): the
+      !> next sub-step starts from the right limit, forces of the new contact state and the
+      !> acceleration in equilibrium with them, so that the trapezoidal rule does not average
+      !> across the jump (which would cost an O(dt) velocity error per impact).
+      subroutine restart_after_event(k)
+         integer, intent(in) :: k
+         integer :: c2, i2
+         real(dp) :: d, dd
+         do c2 = 1, nc
+            i2 = prob%c_dof(c2)
+            d = prob%c_sign(c2) * sub_u(i2, k) - prob%c_gap(c2)
+            dd = prob%c_sign(c2) * sub_v(i2, k)
+            if (c2 == ev_contact) then
+               if (ev_onset) then
+                  sub_f(c2, k) = contact_force(prob%c_law(c2), prob%c_k(c2), prob%c_c(c2), &
+                     prob%c_p(c2), max(d, tiny(1.0_dp)), dd)
+               else
+                  sub_f(c2, k) = 0.0_dp
+               end if
+            else
+               sub_f(c2, k) = contact_force(prob%c_law(c2), prob%c_k(c2), prob%c_c(c2), &
+                  prob%c_p(c2), d, dd)
+            end if
+         end do
+         call equilibrium_acceleration(prob, sub_t(k), sub_u(:, k), sub_v(:, k), &
+                                       sub_f(:, k), sub_a(:, k))
+      end subroutine restart_after_event
+
+      !> Is contact cc_ev active at fraction x of the sub-step (cubic Hermite interpolant)?
+      !> Penetration > 0, and for a bilinear law with a damper also k d + c d' > 0 (release).
+      logical function active(x, damped)
+         real(dp), intent(in) :: x
+         logical, intent(in) :: damped
+         real(dp) :: d, dd, h00, h10, h01, h11, g00, g10, g01, g11
+         call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+         d = prob%c_sign(cc_ev) * (h00 * sub_u(i_ev, k_ev) + h10 * h_ev * sub_v(i_ev, k_ev) &
+             + h01 * sub_u(i_ev, k_ev + 1) + h11 * h_ev * sub_v(i_ev, k_ev + 1)) - prob%c_gap(cc_ev)
+         active = d > 0.0_dp
+         if (active .and. damped) then
+            dd = prob%c_sign(cc_ev) * (g00 * sub_u(i_ev, k_ev) + g10 * h_ev * sub_v(i_ev, k_ev) &
+                 + g01 * sub_u(i_ev, k_ev + 1) + g11 * h_ev * sub_v(i_ev, k_ev + 1)) / h_ev
+            active = prob%c_k(cc_ev) * d + prob%c_c(cc_ev) * dd > 0.0_dp
+         end if
+      end function active
 
       !> Samples and statistics of accepted sub-step j (from j-1 to j).
       subroutine record_substep(jj)

@@ -221,6 +221,29 @@ contains
          e(3, 1) < e(2, 1) .and. e(2, 1) < e(1, 1) .and. e(3, 2) < e(2, 2))
       call check_close('SDOF bilinear: second order against the exact solution', &
          order_ev, 2.0_dp, atol=0.2_dp)
+      ! a contact damper makes the force jump at impact: measure the order with and without
+      ! event location against a fine reference (T/32768 with events)
+      call run(sdof, [character(len=200) :: ov, '&stops damping = 0.07 /', &
+         '&solver steps_per_period = 32768 /'], prob, res_ref)
+      do j = 1, 2
+         do i = 1, 3
+            ovs3(1) = ov;  ovs3(2) = ev(j)
+            ovs3(3) = '&stops damping = 0.07 / &solver steps_per_period = ' &
+               // str(128 * 2**(i - 1)) // ' /'
+            call run(sdof, ovs3, prob, res)
+            e(i, j) = maxval(abs(res%tip_displacement - res_ref%tip_displacement)) / abs(u0)
+         end do
+      end do
+      order_ev = log(e(2, 1) / e(3, 1)) / log(2.0_dp)
+      order_no = log(e(2, 2) / e(3, 2)) / log(2.0_dp)
+      call note('SDOF with a contact damper (force jumps at impact): error at T/128, T/256, ' &
+         // 'T/512 with events ' // str(e(1, 1)) // ', ' // str(e(2, 1)) // ', ' // str(e(3, 1)) &
+         // ' (order ' // str(order_ev) // '); without ' // str(e(1, 2)) // ', ' &
+         // str(e(2, 2)) // ', ' // str(e(3, 2)) // ' (order ' // str(order_no) // ')')
+      call check_close('contact damper: event location keeps second order across impacts', &
+         order_ev, 2.0_dp, atol=0.25_dp)
+      call check('contact damper: event location beats plain stepping at T/512', &
+         e(3, 1) < 0.5_dp * e(3, 2))
       ! the 4-element beam: the stop force is continuous too, but impacts excite the high modes
       call run(ref, [character(len=200) :: "&solver step_control = 'fixed', " &
          // 'steps_per_period = 65536, transient_periods = 0, record_periods = 2 /'], prob, res_ref)

@@ -1,0 +1,111 @@
+# scripts/chaos_map.gp - chaos map of a sweep: every sweep point as a filled tile in the plane of
+# forcing frequency [Hz] (x) and forcing amplitude [mm peak to peak] (y), coloured by its label,
+# from a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz], 2 amplitude_pp [m], 3 period,
+# 4 label (p >= 1: period p; 0: undecided; -1: chaotic), 5 lyapunov [1/s], 6 lyapunov_error
+# [1/s], 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N], 10 work_rate_stop1 [W]).
+#
+# Usage:
+#   gnuplot -e "datafile='x.sweep.dat'; outfile='x.chaos_map.png'" scripts/chaos_map.gp
+#   gnuplot -e "datafile='x.sweep.dat'; outfile='x.png'; plottitle='gap 1 mm'" scripts/chaos_map.gp
+# Variables: datafile (required), outfile (required, PNG), plottitle (optional).
+# Colours: chaotic red; undecided grey; period 1 blue, 2 green, 3 orange, 4 purple, 5-8 cyan,
+# more than 8 brown. The legend (right) lists the classes present with their point counts. A
+# small white dot with a black ring marks a point whose stop 1 saw no impact in the recorded periods (the linear,
+# non-impacting response; such points are usually 'undecided' as long as the free vibration of
+# the first mode has not died out).
+# Tiles are as wide and as high as the grid spacing (the axis's extent over its number of distinct
+# values less one: exact on a uniform grid). A single frequency or a single amplitude (a line
+# sweep) gives a strip of tiles in a shorter picture.
+# Terminal: pngcairo if this gnuplot has it, else png (libgd); 1000x650 (1000x330 for a strip).
+
+if (!exists("datafile") || !exists("outfile")) {
+   print "chaos_map.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/chaos_map.gp"
+   exit status 1
+}
+if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: sweep" }
+
+# Distinct values of a column: a datablock of "value count" rows (smooth frequency sorts and
+# merges equal values); format with enough digits that distinct grid values stay distinct.
+# (Fixed wide ranges: no autoscaling, so no warning about an empty range.)
+set format x "%.12g"
+set xrange [-1.0e30 : 1.0e30]
+set yrange [-1.0e30 : 1.0e30]
+set table $chaos_map_f
+plot datafile using 1:(1) smooth frequency
+set table $chaos_map_a
+plot datafile using ($2*1.0e3):(1) smooth frequency
+unset table
+stats $chaos_map_f using 1 nooutput
+nf = STATS_records;  fmin = STATS_min;  fmax = STATS_max
+stats $chaos_map_a using 1 nooutput
+na = STATS_records;  amin = STATS_min;  amax = STATS_max
+
+# Half-widths of a tile (92 % of the spacing, so that a thin white seam shows between tiles);
+# a single value gets a tile of 2 % of its magnitude (0.05 if zero) on that axis.
+single(v) = (abs(v) > 0) ? 0.02*abs(v) : 0.05
+hf = (nf > 1) ? 0.46*(fmax - fmin)/(nf - 1) : single(fmin)
+ha = (na > 1) ? 0.46*(amax - amin)/(na - 1) : single(amin)
+strip = (nf == 1 || na == 1) ? 1 : 0
+
+# Classes: 1 chaotic, 2 undecided, 3 period 1, 4 period 2, 5 period 3, 6 period 4,
+# 7 period 5-8, 8 period > 8.
+cls(l) = (l < -0.5) ? 1 : (l < 0.5) ? 2 : (l < 1.5) ? 3 : (l < 2.5) ? 4 : (l < 3.5) ? 5 : \
+   (l < 4.5) ? 6 : (l < 8.5) ? 7 : 8
+array cname[8] = ["chaotic", "undecided", "period 1", "period 2", "period 3", "period 4", \
+   "period 5-8", "period > 8"]
+array ccolour[8] = ["#d62728", "#a8a8a8", "#1f4e9c", "#2ca02c", "#ff7f0e", "#8c4fbf", \
+   "#17becf", "#8c564b"]
+array ccount[8]
+present = ""
+do for [k = 1:8] {
+   stats datafile using (cls($4) == k ? 1 : 0) nooutput
+   ccount[k] = int(STATS_sum)
+   if (ccount[k] > 0) { present = present . sprintf(" %d", k) }
+}
+stats datafile using (($7 == 0) ? 1 : 0) nooutput
+nquiet = int(STATS_sum)
+npts = STATS_records
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
+   if (strip) {
+      set terminal pngcairo noenhanced size 1000,330 font ",11"
+   } else {
+      set terminal pngcairo noenhanced size 1000,650 font ",11"
+   }
+   ringsize = 1.2
+} else {
+   if (strip) {
+      set terminal png noenhanced size 1000,330
+   } else {
+      set terminal png noenhanced size 1000,650
+   }
+   ringsize = 0.8
+}
+
+set output outfile
+set xrange [fmin - 1.2*hf : fmax + 1.2*hf]
+set yrange [amin - 1.2*ha : amax + 1.2*ha]
+plural(n, one, many) = sprintf("%d %s", n, (n == 1) ? one : many)
+set title sprintf("%s\nChaos map: response class of each of %s (%s x %s)", plottitle, \
+   plural(npts, "sweep point", "sweep points"), plural(nf, "frequency", "frequencies"), \
+   plural(na, "amplitude", "amplitudes"))
+set xlabel "forcing frequency [Hz]"
+set ylabel "forcing amplitude [mm p-p]"
+set format x "%g"
+set format y "%g"
+if (na == 1) { set ytics (sprintf("%g", amin) amin) }
+if (nf == 1) { set xtics (sprintf("%g", fmin) fmin) }
+set key outside right top vertical Left reverse noautotitle samplen 1.5 spacing 1.2
+set tics front out
+set style fill solid 1.0 noborder
+
+ringtitle = sprintf("no impact at stop 1 (%d)", nquiet)
+plot for [w in present] datafile \
+        using 1:(cls($4) == int(w) ? $2*1.0e3 : 1/0):(hf):(ha) with boxxyerror \
+        lc rgb ccolour[int(w)] title sprintf("%s (%d)", cname[int(w)], ccount[int(w)]), \
+     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
+        with points pt 7 ps ringsize lc rgb "white" notitle, \
+     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
+        with points pt 6 ps ringsize lc rgb "black" title ringtitle
+
+unset output

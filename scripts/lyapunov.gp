@@ -1,0 +1,117 @@
+# scripts/lyapunov.gp - largest Lyapunov exponent [1/s] of every sweep point, with its standard
+# error as an error bar, against the forcing frequency [Hz] (or amplitude [mm peak to peak]),
+# from a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz], 2 amplitude_pp [m], 3 period,
+# 4 label (p >= 1: period p; 0: undecided; -1: chaotic), 5 lyapunov [1/s], 6 lyapunov_error
+# [1/s], 7.. impact statistics).
+#
+# Usage:
+#   gnuplot -e "datafile='x.sweep.dat'; outfile='x.lyapunov.png'" scripts/lyapunov.gp
+#   gnuplot -e "datafile='x.sweep.dat'; outfile='x.png'; xaxis='amplitude'" scripts/lyapunov.gp
+# Variables: datafile (required), outfile (required, PNG), plottitle (optional),
+#   xaxis (optional): 'frequency' (default; x = column 1 [Hz]) or 'amplitude' (x = column 2
+#   in mm p-p). scripts/plot.sh picks 'amplitude' when the sweep has a single frequency.
+# A black zero line separates contraction (periodic, < 0) from divergence (chaos, > 0).
+# One line of the sweep (the other forcing variable takes one value): points coloured by the
+# program's label, chaotic red, periodic blue, undecided grey, joined by a thin grey line in
+# point order. A grid: one curve per value of the other variable, coloured by that value
+# (palette, colour box on the right) and drawn in grid order; chaotic points filled, the others
+# open.
+# Terminal: pngcairo if this gnuplot has it, else png (libgd); 1000x600.
+
+if (!exists("datafile") || !exists("outfile")) {
+   print "lyapunov.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/lyapunov.gp"
+   exit status 1
+}
+if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: sweep" }
+if (!exists("xaxis") || strlen(xaxis) == 0) { xaxis = "frequency" }
+if (xaxis ne "frequency" && xaxis ne "amplitude") {
+   print sprintf("lyapunov.gp: xaxis = '%s': expected 'frequency' or 'amplitude'", xaxis)
+   exit status 1
+}
+
+# x: frequency [Hz] or amplitude [mm p-p]; c: the other forcing variable (one curve per value).
+byfreq = (xaxis eq "frequency") ? 1 : 0
+xval(f, a) = byfreq ? f : a*1.0e3
+cval(f, a) = byfreq ? a*1.0e3 : f
+
+# Distinct values of c: a datablock of "value count" rows (smooth frequency sorts and merges
+# equal values), read into a word list. Fixed wide ranges: no autoscaling warnings.
+set format x "%.15g"
+set xrange [-1.0e30 : 1.0e30]
+set yrange [-1.0e30 : 1.0e30]
+set table $lyapunov_c
+plot datafile using (cval($1, $2)):(1) smooth frequency
+unset table
+cvalues = ""
+do for [i = 1:|$lyapunov_c|] {
+   line = $lyapunov_c[i]
+   if (strlen(line) > 0 && line[1:1] ne "#" && words(line) >= 2) { cvalues = cvalues . " " . word(line, 1) }
+}
+nc = words(cvalues)
+set autoscale
+set format x "%g"
+
+stats datafile using (xval($1, $2)):5 nooutput
+npts = STATS_records
+xmin = STATS_min_x;  xmax = STATS_max_x
+stats datafile using (($4 == -1) ? 1 : 0) nooutput
+nchaos = int(STATS_sum)
+cmin = real(word(cvalues, 1));  cmax = real(word(cvalues, nc))
+# Same value to 1e-9 relative (the text tables carry 17 digits, the word list 15).
+same(a, b) = abs(a - b) <= 1.0e-9*(abs(a) + abs(b)) + 1.0e-300
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
+   set terminal pngcairo noenhanced size 1000,600 font ",11"
+   psz = 0.9
+} else {
+   set terminal png noenhanced size 1000,600
+   psz = 1.3
+}
+
+set output outfile
+set title sprintf("%s\nLargest Lyapunov exponent of each of %d sweep points (%d chaotic), error bars: its standard error", \
+   plottitle, npts, nchaos)
+set xlabel byfreq ? "forcing frequency [Hz]" : "forcing amplitude [mm peak to peak]"
+set ylabel "largest Lyapunov exponent [1/s]"
+set format x "%g"
+set format y "%g"
+set grid lc rgb "#d8d8d8"
+set xzeroaxis lt 1 lw 1.5 lc rgb "black"
+# x: the extent plus 3 % each side (+-5 % of the value for a single one); y: autoscaled.
+xpad = (xmax > xmin) ? 0.03*(xmax - xmin) : ((abs(xmin) > 0) ? 0.05*abs(xmin) : 1.0)
+set xrange [xmin - xpad : xmax + xpad]
+set offsets 0, 0, graph 0.05, graph 0.05
+set key below horizontal box samplen 1.5 width 1
+set bmargin 5
+set tics front
+
+if (nc <= 1) {
+   unset colorbox
+   plot datafile using (xval($1, $2)):5 with lines lw 1 lc rgb "#c0c0c0" notitle, \
+        datafile using (xval($1, $2)):(($4 >= 1) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
+           lc rgb "#1f4e9c" title "periodic", \
+        datafile using (xval($1, $2)):(($4 == 0) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
+           lc rgb "#8a8a8a" title "undecided", \
+        datafile using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
+           lc rgb "#d62728" title "chaotic"
+} else {
+   set palette defined (0 "#2c3e9e", 1 "#1e9bd7", 2 "#2fb36b", 3 "#e3b21b", 4 "#d73027")
+   set cbrange [cmin : cmax]
+   set cblabel byfreq ? "forcing amplitude [mm peak to peak]" : "forcing frequency [Hz]"
+   set colorbox vertical user origin screen 0.905, screen 0.22 size screen 0.02, screen 0.62
+   set rmargin at screen 0.86
+   cv(i) = real(word(cvalues, i))
+   # The rows of each curve, in file (grid) order, tagged with the curve's number: a curve's
+   # rows are then consecutive, so that each is drawn as one unbroken line.
+   set table $lyapunov_curves
+   plot for [i = 1:nc] datafile using (xval($1, $2)):5:(i) with table if (same(cval($1, $2), cv(i)))
+   unset table
+   plot for [i = 1:nc] $lyapunov_curves using 1:(($3 == i) ? $2 : 1/0) \
+           with lines lw 1 lc palette cb cv(i) notitle, \
+        datafile using (xval($1, $2)):(($4 != -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
+           pt 6 ps psz lc palette title "periodic or undecided (open)", \
+        datafile using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
+           pt 7 ps psz lc palette title "chaotic (filled)"
+}
+
+unset output
