@@ -274,7 +274,8 @@ contains
                   sub_t(nsub) = t_cur + theta * dt_r
                   t_cur = sub_t(nsub)
                   res%events = res%events + 1
-                  call restart_after_event(nsub)
+                  ! only a damper makes the force jump at a switch
+                  if (prob%c_c(ev_contact) > 0.0_dp) call restart_after_event(nsub)
                   cycle
                end if
             end if
