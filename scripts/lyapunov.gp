@@ -87,13 +87,18 @@ set tics front
 
 if (nc <= 1) {
    unset colorbox
+   # Classes: 1 periodic (label >= 1), 2 undecided (0), 3 chaotic (-1); the key lists those present.
+   lcls(l) = (l > 0.5) ? 1 : (l > -0.5) ? 2 : 3
+   array lname[3] = ["periodic", "undecided", "chaotic"]
+   array lcolour[3] = ["#1f4e9c", "#8a8a8a", "#d62728"]
+   lpresent = ""
+   do for [k = 1:3] {
+      stats datafile using (lcls($4) == k ? 1 : 0) nooutput
+      if (STATS_sum > 0) { lpresent = lpresent . sprintf(" %d", k) }
+   }
    plot datafile using (xval($1, $2)):5 with lines lw 1 lc rgb "#c0c0c0" notitle, \
-        datafile using (xval($1, $2)):(($4 >= 1) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
-           lc rgb "#1f4e9c" title "periodic", \
-        datafile using (xval($1, $2)):(($4 == 0) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
-           lc rgb "#8a8a8a" title "undecided", \
-        datafile using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6 with yerrorbars pt 7 ps psz \
-           lc rgb "#d62728" title "chaotic"
+        for [w in lpresent] datafile using (xval($1, $2)):((lcls($4) == int(w)) ? $5 : 1/0):6 \
+           with yerrorbars pt 7 ps psz lc rgb lcolour[int(w)] title lname[int(w)]
 } else {
    set palette defined (0 "#2c3e9e", 1 "#1e9bd7", 2 "#2fb36b", 3 "#e3b21b", 4 "#d73027")
    set cbrange [cmin : cmax]
@@ -108,9 +113,11 @@ if (nc <= 1) {
    unset table
    plot for [i = 1:nc] $lyapunov_curves using 1:(($3 == i) ? $2 : 1/0) \
            with lines lw 1 lc palette cb cv(i) notitle, \
-        datafile using (xval($1, $2)):(($4 != -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
+        for [q = 1:((nchaos < npts) ? 1 : 0)] datafile \
+           using (xval($1, $2)):(($4 != -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
            pt 6 ps psz lc palette title "periodic or undecided (open)", \
-        datafile using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
+        for [q = 1:((nchaos > 0) ? 1 : 0)] datafile \
+           using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
            pt 7 ps psz lc palette title "chaotic (filled)"
 }
 

@@ -721,17 +721,20 @@ contains
       type(source_t), intent(in) :: srcs(:)
       type(solver_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      character(len=16) :: method, stop_solution, step_control, linear_solver
+      character(len=24) :: method, stop_solution, step_control, linear_solver
       real(dp) :: newmark_delta, newmark_alpha, fp_tolerance, half_step_tolerance, &
-         residual_floor, grow_ratio
+         residual_floor, grow_ratio, hht_alpha, rho_infinity, rk_rtol, rk_atol, energy_bound
       integer :: fp_max_iterations, steps_per_period, max_halvings, grow_after, &
          transient_periods, record_periods
       logical :: locate_events
-      namelist /solver/ method, newmark_delta, newmark_alpha, stop_solution, fp_tolerance, &
+      namelist /solver/ method, newmark_delta, newmark_alpha, hht_alpha, rho_infinity, rk_rtol, &
+         rk_atol, energy_bound, stop_solution, fp_tolerance, &
          fp_max_iterations, step_control, steps_per_period, half_step_tolerance, &
          residual_floor, max_halvings, grow_after, grow_ratio, locate_events, linear_solver, &
          transient_periods, record_periods
       method = cfg%method;  newmark_delta = cfg%newmark_delta;  newmark_alpha = cfg%newmark_alpha
+      hht_alpha = cfg%hht_alpha;  rho_infinity = cfg%rho_infinity;  rk_rtol = cfg%rk_rtol
+      rk_atol = cfg%rk_atol;  energy_bound = cfg%energy_bound
       stop_solution = cfg%stop_solution;  fp_tolerance = cfg%fp_tolerance
       fp_max_iterations = cfg%fp_max_iterations;  step_control = cfg%step_control
       steps_per_period = cfg%steps_per_period;  half_step_tolerance = cfg%half_step_tolerance
@@ -739,7 +742,8 @@ contains
       grow_after = cfg%grow_after;  grow_ratio = cfg%grow_ratio
       locate_events = cfg%locate_events;  linear_solver = cfg%linear_solver
       transient_periods = cfg%transient_periods;  record_periods = cfg%record_periods
-      call apply_group(srcs, 'solver', 'method newmark_delta newmark_alpha stop_solution ' &
+      call apply_group(srcs, 'solver', 'method newmark_delta newmark_alpha hht_alpha ' &
+         // 'rho_infinity rk_rtol rk_atol energy_bound stop_solution ' &
          // 'fp_tolerance fp_max_iterations step_control steps_per_period ' &
          // 'half_step_tolerance residual_floor max_halvings grow_after grow_ratio ' &
          // 'locate_events linear_solver transient_periods record_periods', reader, err)
@@ -747,6 +751,11 @@ contains
       call require_word('solver', 'method', method, method_words, err)
       call require_range('solver', 'newmark_delta', newmark_delta, 0.5_dp, 1.0_dp, err)
       call require_range('solver', 'newmark_alpha', newmark_alpha, 1.0e-3_dp, 1.0_dp, err)
+      call require_range('solver', 'hht_alpha', hht_alpha, -1.0_dp / 3.0_dp, 0.0_dp, err)
+      call require_range('solver', 'rho_infinity', rho_infinity, 0.0_dp, 1.0_dp, err)
+      call require_range('solver', 'rk_rtol', rk_rtol, 1.0e-14_dp, 1.0_dp, err)
+      call require_range('solver', 'rk_atol', rk_atol, 0.0_dp, 1.0_dp, err)
+      call require_range('solver', 'energy_bound', energy_bound, 1.0_dp, 1.0e300_dp, err)
       call require_word('solver', 'stop_solution', stop_solution, stop_solution_words, err)
       call require_range('solver', 'fp_tolerance', fp_tolerance, 1.0e-15_dp, 0.1_dp, err)
       call require_int('solver', 'fp_max_iterations', fp_max_iterations, 1, 100000, err)
@@ -762,6 +771,25 @@ contains
       call require_int('solver', 'transient_periods', transient_periods, 0, huge(1), err)
       call require_int('solver', 'record_periods', record_periods, 1, huge(1), err)
       if (allocated(err)) return
+      ! combinations of method and step control
+      select case (method)
+      case ('newmark', 'hht', 'generalized_alpha')
+         if (step_control == 'embedded') call fatal_error(err, "group &solver: step_control = " &
+            // "'embedded' needs method = 'rk45' (the implicit methods use 'fixed' or " &
+            // "'half_step')")
+         if (method /= 'newmark' .and. stop_solution == 'fixed_point') call fatal_error(err, &
+            "group &solver: stop_solution = 'fixed_point' is the Newmark solver's (method = " &
+            // "'newmark'); method = '" // trim(method) // "' uses the condensed solution")
+      case ('rk45')
+         if (step_control /= 'embedded') call fatal_error(err, "group &solver: method = 'rk45' " &
+            // "needs step_control = 'embedded' (its own error estimate), got '" &
+            // trim(step_control) // "'")
+      case ('central_difference', 'rk4')
+         if (step_control /= 'fixed') call fatal_error(err, "group &solver: method = '" &
+            // trim(method) // "' runs with step_control = 'fixed', got '" // trim(step_control) &
+            // "'")
+      end select
+      if (allocated(err)) return
       ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings)
       if (log(real(transient_periods + record_periods, dp)) + log(real(steps_per_period, dp)) &
           + max_halvings * log(2.0_dp) > 62.0_dp * log(2.0_dp)) then
@@ -772,7 +800,9 @@ contains
          return
       end if
       cfg = solver_settings_t(method=method, newmark_delta=newmark_delta, &
-         newmark_alpha=newmark_alpha, stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
+         newmark_alpha=newmark_alpha, hht_alpha=hht_alpha, rho_infinity=rho_infinity, &
+         rk_rtol=rk_rtol, rk_atol=rk_atol, energy_bound=energy_bound, &
+         stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
          fp_max_iterations=fp_max_iterations, step_control=step_control, &
          steps_per_period=steps_per_period, half_step_tolerance=half_step_tolerance, &
          residual_floor=residual_floor, max_halvings=max_halvings, grow_after=grow_after, &

@@ -16,9 +16,11 @@ module gapbeam_newmark
    use gapbeam_assembly, only: dense_to_band
    use gapbeam_problem, only: problem_t
    use gapbeam_contact, only: contact_force, solve_scalar_contact
+   use gapbeam_stepper, only: stepper_t
+   use gapbeam_settings, only: solver_settings_t
    implicit none
    private
-   public :: step_op_t, build_step_op, newmark_predict, condensed_contact, fixed_point_step, &
+   public :: newmark_stepper_t, step_op_t, build_step_op, newmark_predict, condensed_contact, fixed_point_step, &
       newmark_correct, half_step_ratio, state_load, condensed_step
 
    !> Everything one step size needs, factorized once.
@@ -36,7 +38,71 @@ module gapbeam_newmark
       real(dp), allocatable :: h(:, :)           !! (n_slots, n_slots) E' Kbar^-1 E
    end type step_op_t
 
+   !> The Newmark (delta, alpha) method as a stepper: condensed or fixed-point stop forces.
+   type, extends(stepper_t) :: newmark_stepper_t
+      type(step_op_t) :: op                      !! factorized operator for dt
+      logical :: fixed_point = .false.           !! the paper's fixed point (else condensed)
+      real(dp) :: fp_tolerance = 1.0e-6_dp       !! fixed point: relative change
+      integer :: fp_max_iterations = 50          !! fixed point: iteration limit
+      real(dp), allocatable :: hm(:), hc(:), rhs(:), y(:)   !! workspaces
+   contains
+      procedure :: prepare => newmark_prepare
+      procedure :: step => newmark_stepper_step
+   end type newmark_stepper_t
+
 contains
+
+   !> Factorize Kbar for dt (dense below 61 dofs unless the deck says otherwise).
+   subroutine newmark_prepare(self, prob, cfg, dt, err)
+      class(newmark_stepper_t), intent(inout) :: self  !! stepper
+      type(problem_t), intent(in) :: prob              !! model
+      type(solver_settings_t), intent(in) :: cfg       !! settings
+      real(dp), intent(in) :: dt                       !! step [s]
+      type(error_t), allocatable, intent(out) :: err   !! factorization failure
+      logical :: dense
+      select case (cfg%linear_solver)
+      case ('dense');  dense = .true.
+      case ('banded'); dense = .false.
+      case default;    dense = prob%n <= 60
+      end select
+      call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, dt, dense, self%op, err)
+      if (allocated(err)) return
+      self%dt = dt
+      self%fixed_point = cfg%stop_solution == 'fixed_point'
+      self%fp_tolerance = cfg%fp_tolerance
+      self%fp_max_iterations = cfg%fp_max_iterations
+      if (.not. allocated(self%hm)) allocate(self%hm(prob%n), self%hc(prob%n), &
+                                             self%rhs(prob%n), self%y(prob%n))
+      self%ready = .true.
+   end subroutine newmark_prepare
+
+   !> One Newmark step (see stepper_t%step).
+   subroutine newmark_stepper_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, &
+                                   f1, ok, ratio, open_contact)
+      class(newmark_stepper_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
+      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      logical, intent(out) :: ok
+      real(dp), intent(out) :: ratio
+      integer, intent(in) :: open_contact
+      real(dp) :: s1
+      integer :: it
+      s1 = state_load(prob, t0 + self%dt)
+      ratio = -1.0_dp
+      ok = .true.
+      if (self%fixed_point .and. prob%n_contacts > 0) then
+         ! first guess: linear extrapolation of the last two steps (paper 4.1)
+         f1 = max(0.0_dp, f + (f - f_prev) * self%dt / dt_prev)
+         call fixed_point_step(prob, self%op, s1, u, v, a, self%fp_tolerance, &
+            self%fp_max_iterations, f1, u1, v1, a1, it, ok, self%hm, self%hc, self%rhs, self%y, &
+            open_contact)
+         self%iterations = self%iterations + it
+      else
+         call condensed_step(prob, self%op, s1, u, v, a, f, u1, v1, a1, f1, self%hm, self%hc, &
+                             open_contact)
+      end if
+   end subroutine newmark_stepper_step
 
    !> Factorize Kbar for a step size and precompute the predictor and contact influences.
    subroutine build_step_op(prob, delta, alpha, dt, dense, op, err)

@@ -9,17 +9,23 @@ module gapbeam_settings
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words
 
-   character(len=*), parameter :: method_words = "'newmark'"
+   character(len=*), parameter :: method_words = "'newmark', 'hht', 'generalized_alpha', " &
+      // "'central_difference', 'rk4', 'rk45', 'exact'"
    character(len=*), parameter :: stop_solution_words = "'condensed', 'fixed_point'"
-   character(len=*), parameter :: step_control_words = "'fixed', 'half_step'"
+   character(len=*), parameter :: step_control_words = "'fixed', 'half_step', 'embedded'"
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
 
    !> Time integration settings.
    type :: solver_settings_t
-      character(len=16) :: method = 'newmark'         !! integrator
+      character(len=24) :: method = 'newmark'         !! integrator
       real(dp) :: newmark_delta = 0.5_dp              !! Newmark delta (gamma in other texts) [-]
       real(dp) :: newmark_alpha = 0.25_dp             !! Newmark alpha (beta in other texts) [-]
+      real(dp) :: hht_alpha = -0.05_dp                !! HHT alpha in [-1/3, 0] [-]
+      real(dp) :: rho_infinity = 0.8_dp               !! generalized-alpha rho_inf in [0, 1] [-]
+      real(dp) :: rk_rtol = 1.0e-6_dp                 !! rk45 relative tolerance [-]
+      real(dp) :: rk_atol = 1.0e-12_dp                !! rk45 absolute tolerance [m, m/s]
+      real(dp) :: energy_bound = 1.0e8_dp             !! divergence: energy / scale above this
       character(len=16) :: stop_solution = 'condensed'   !! 'condensed' or 'fixed_point'
       real(dp) :: fp_tolerance = 1.0e-6_dp            !! fixed point: relative change of F_NL [-]
       integer  :: fp_max_iterations = 50              !! fixed point: iterations before a halving

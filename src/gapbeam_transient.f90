@@ -15,8 +15,9 @@ module gapbeam_transient
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_problem, only: problem_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_newmark, only: step_op_t, build_step_op, condensed_step, fixed_point_step, &
-      half_step_ratio, state_load
+   use gapbeam_newmark, only: half_step_ratio, state_load
+   use gapbeam_stepper, only: stepper_t
+   use gapbeam_integrators, only: make_stepper
    use gapbeam_contact, only: contact_force, law_bilinear
    use gapbeam_model, only: dof_name
    use gapbeam_lapack, only: dpotrf, dpotrs
@@ -152,19 +153,19 @@ contains
       real(dp), intent(in) :: u0(:), v0(:)             !! initial state relative to the base
       type(transient_result_t), intent(out) :: res     !! results
       type(error_t), allocatable, intent(out) :: err   !! numerical failure
-      type(step_op_t), allocatable :: ops(:)
-      type(step_op_t) :: scratch
+      class(stepper_t), allocatable :: ops(:), scratch, proto
       integer :: n, nc, ns, kmax, level, nsub, comfortable, worst, j, c, n_hist, n_poinc, &
-         ih, ip, s_stop, fp_it
+         ih, ip, s_stop
       integer(int64) :: tick, end_tick, rec_tick, nt, count0, count1, rate
       integer(int64), allocatable :: nt_of(:)
       real(dp) :: period, dt_max, tick_dt, t0, t1, ratio, r, t_rec, theta, dt_r, t_cur, &
          dt_prev, t_h, t_p, t_rec_len, fsum
-      logical :: ok, dense, fixed_point, half_step, recording, all_found
+      logical :: ok, half_step, recording, all_found, embedded
+      real(dp) :: eratio
       real(dp) :: next_sample
-      real(dp), allocatable :: u(:), v(:), a(:), f(:), fprev(:), hm(:), hc(:), ys(:), &
+      real(dp), allocatable :: u(:), v(:), a(:), f(:), fprev(:), &
          work(:), work6(:, :), sub_u(:, :), sub_v(:, :), sub_a(:, :), sub_f(:, :), sub_t(:), &
-         fguess(:), rhs(:), yy(:)
+         yy(:)
       real(dp), allocatable :: acc_f2(:), acc_f(:), acc_contact(:), acc_work(:)
       logical, allocatable :: was_active(:)
       integer, allocatable :: si(:)
@@ -185,17 +186,15 @@ contains
                  * 2_int64**kmax
       t_rec = real(rec_tick, dp) * tick_dt
       t_rec_len = real(cfg%record_periods, dp) * period
-      select case (cfg%linear_solver)
-      case ('dense');  dense = .true.
-      case ('banded'); dense = .false.
-      case default;    dense = n <= 60
-      end select
-      fixed_point = cfg%stop_solution == 'fixed_point'
       half_step = cfg%step_control == 'half_step'
-      allocate(ops(0:kmax))
+      call make_stepper(cfg, proto, err)
+      if (allocated(err)) return
+      allocate(ops(0:kmax), mold=proto)
+      allocate(scratch, mold=proto)
+      embedded = cfg%step_control == 'embedded'
 
-      allocate(u(n), v(n), a(n), hm(n), hc(n), ys(n), work(n), work6(n, 6), rhs(n), yy(n))
-      allocate(f(nc), fprev(nc), fguess(nc), source=0.0_dp)
+      allocate(u(n), v(n), a(n), work(n), work6(n, 6), yy(n))
+      allocate(f(nc), fprev(nc), source=0.0_dp)
       allocate(sub_u(n, 0:max_sub), sub_v(n, 0:max_sub), sub_a(n, 0:max_sub), &
                sub_f(nc, 0:max_sub), sub_t(0:max_sub))
       u = u0;  v = v0
@@ -235,39 +234,36 @@ contains
          t0 = real(tick, dp) * tick_dt
          t1 = real(tick + nt, dp) * tick_dt
          if (.not. ops(level)%ready) then
-            call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, t1 - t0, dense, &
-                               ops(level), err)
+            call ops(level)%prepare(prob, cfg, t1 - t0, err)
             if (allocated(err)) return
             res%factorizations = res%factorizations + 1
          end if
 
          ! ---- attempt the step, split at contact events
          sub_t(0) = t0
-         nsub = 0;  ok = .true.;  t_cur = t0
+         nsub = 0;  ok = .true.;  t_cur = t0;  eratio = 0.0_dp
          do
             dt_r = t1 - t_cur
             if (nsub == 0) then
-               call one_step(ops(level), t_cur + dt_r, nsub, ok)
+               call one_step(ops(level), nsub, 0)
             else
-               call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, dt_r, dense, &
-                                  scratch, err)
+               call scratch%prepare(prob, cfg, dt_r, err)
                if (allocated(err)) return
                res%factorizations = res%factorizations + 1
-               call one_step(scratch, t_cur + dt_r, nsub, ok)
+               call one_step(scratch, nsub, 0)
             end if
             if (.not. ok) exit
             if (cfg%locate_events .and. nc > 0 .and. nsub < max_sub - 1) then
                theta = first_event(nsub, dt_r)
                if (theta * dt_r > min_split * (t1 - t0) .and. &
                    (1.0_dp - theta) * dt_r > min_split * (t1 - t0)) then
-                  call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, theta * dt_r, &
-                                     dense, scratch, err)
+                  call scratch%prepare(prob, cfg, theta * dt_r, err)
                   if (allocated(err)) return
                   res%factorizations = res%factorizations + 1
                   if (ev_onset) then
-                     call one_step(scratch, t_cur + theta * dt_r, nsub, ok, ev_contact)
+                     call one_step(scratch, nsub, ev_contact)
                   else
-                     call one_step(scratch, t_cur + theta * dt_r, nsub, ok)
+                     call one_step(scratch, nsub, 0)
                   end if
                   if (.not. ok) exit
                   nsub = nsub + 1
@@ -285,6 +281,7 @@ contains
          end do
 
          ratio = 0.0_dp;  worst = 1
+         if (embedded) ratio = eratio
          if (ok .and. half_step) then
             do j = 1, nsub
                call half_step_ratio(prob, cfg%newmark_delta, cfg%newmark_alpha, &
@@ -346,7 +343,7 @@ contains
          tick = tick + nt
 
          ! ---- grow
-         if (.not. half_step .or. ratio < cfg%grow_ratio) then
+         if (.not. (half_step .or. embedded) .or. ratio < cfg%grow_ratio) then
             comfortable = comfortable + 1
          else
             comfortable = 0
@@ -358,6 +355,10 @@ contains
          end if
       end do
 
+      res%fp_iterations = scratch%iterations
+      do j = 0, kmax
+         res%fp_iterations = res%fp_iterations + ops(j)%iterations
+      end do
       ! ---- statistics over the record
       res%rms_force = sqrt(acc_f2 / t_rec_len)
       res%contact_fraction = acc_contact / t_rec_len
@@ -376,34 +377,22 @@ contains
 
    contains
 
-      !> One Newmark solve from sub-state nsub to time t_end, into slot nsub+1.
-      subroutine one_step(op, t_end, k, success, open_contact)
-         type(step_op_t), intent(in) :: op
-         real(dp), intent(in) :: t_end
+      !> One step of the method from sub-state k to time sub_t(k) + stepper dt, into slot k+1.
+      subroutine one_step(st, k, open_contact)
+         class(stepper_t), intent(inout) :: st
          integer, intent(in) :: k
-         logical, intent(out) :: success
-         integer, intent(in), optional :: open_contact   ! held open: a located onset ends the step
-         real(dp) :: s1, hstep
-         s1 = state_load(prob, t_end)
-         success = .true.
-         if (fixed_point .and. nc > 0) then
-            hstep = t_end - sub_t(k)
-            if (k == 0) then
-               fguess = max(0.0_dp, sub_f(:, k) + (sub_f(:, k) - fprev) * hstep / dt_prev)
-            else
-               fguess = max(0.0_dp, sub_f(:, k) + (sub_f(:, k) - sub_f(:, k - 1)) * hstep &
-                            / (sub_t(k) - sub_t(k - 1)))
-            end if
-            call fixed_point_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
-               cfg%fp_tolerance, cfg%fp_max_iterations, fguess, sub_u(:, k + 1), &
-               sub_v(:, k + 1), sub_a(:, k + 1), fp_it, success, hm, hc, rhs, yy, open_contact)
-            res%fp_iterations = res%fp_iterations + fp_it
-            sub_f(:, k + 1) = fguess
+         integer, intent(in) :: open_contact   ! held open: a located onset ends the step
+         real(dp) :: r
+         if (k == 0) then
+            call st%step(prob, sub_t(k), sub_u(:, k), sub_v(:, k), sub_a(:, k), sub_f(:, k), &
+               fprev, dt_prev, sub_u(:, k + 1), sub_v(:, k + 1), sub_a(:, k + 1), &
+               sub_f(:, k + 1), ok, r, open_contact)
          else
-            call condensed_step(prob, op, s1, sub_u(:, k), sub_v(:, k), sub_a(:, k), &
-               sub_f(:, k), sub_u(:, k + 1), sub_v(:, k + 1), sub_a(:, k + 1), &
-               sub_f(:, k + 1), hm, hc, open_contact)
+            call st%step(prob, sub_t(k), sub_u(:, k), sub_v(:, k), sub_a(:, k), sub_f(:, k), &
+               sub_f(:, k - 1), sub_t(k) - sub_t(k - 1), sub_u(:, k + 1), sub_v(:, k + 1), &
+               sub_a(:, k + 1), sub_f(:, k + 1), ok, r, open_contact)
          end if
+         if (r > eratio) eratio = r
       end subroutine one_step
 
       !> First instant (fraction of the sub-step) where a contact opens or closes.

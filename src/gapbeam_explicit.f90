@@ -1,0 +1,240 @@
+!> Explicit comparison integrators: the central difference method (Newmark delta = 1/2,
+!> alpha = 0, in its explicit form) and the Runge-Kutta methods RK4 (classical, fixed step)
+!> and RK45 (Dormand-Prince 5(4) with its embedded error estimate) on the first-order form
+!>    u' = v,   v' = M^-1 (s(t) q - C v - K u - sum_c (-s_c f_c) e_c).
+!> All need a mass at every dof (M positive definite): lumped mass without rotary inertia
+!> is refused with a clear error. Contact forces are evaluated from the stop laws at each
+!> stage (explicitly). Known stability limits (undamped, omega_max dt): central difference 2,
+!> RK4 2 sqrt(2) on the imaginary axis.
+module gapbeam_explicit
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_problem, only: problem_t
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_stepper, only: stepper_t
+   use gapbeam_contact, only: contact_force
+   use gapbeam_linalg, only: dense_matvec
+   implicit none
+   private
+   public :: central_difference_t, runge_kutta_t
+
+   !> Central difference: u1 = u + dt v + dt^2/2 a; (M + dt/2 C) a1 = P1 - K u1 - C (v + dt/2 a)
+   !> - F(u1, v + dt/2 a); v1 = v + dt/2 (a + a1).
+   type, extends(stepper_t) :: central_difference_t
+      real(dp), allocatable :: fac(:, :)      !! Cholesky factor of M + dt/2 C
+      real(dp), allocatable :: w(:), r(:)     !! workspaces
+   contains
+      procedure :: prepare => cd_prepare
+      procedure :: step => cd_step
+   end type central_difference_t
+
+   !> Runge-Kutta on the first-order form: 'rk4' or 'rk45' (Dormand-Prince).
+   type, extends(stepper_t) :: runge_kutta_t
+      logical :: embedded = .false.           !! rk45: adaptive with the embedded estimate
+      real(dp) :: rtol = 1.0e-6_dp            !! rk45 relative tolerance
+      real(dp) :: atol = 1.0e-12_dp           !! rk45 absolute tolerance (SI units of u, v)
+      real(dp), allocatable :: mfac(:, :)     !! Cholesky factor of M
+      real(dp), allocatable :: ku(:, :), kv(:, :)  !! stage slopes (n, 7)
+      real(dp), allocatable :: ut(:), vt(:), r(:)  !! workspaces
+   contains
+      procedure :: prepare => rk_prepare
+      procedure :: step => rk_step
+   end type runge_kutta_t
+
+   ! Dormand-Prince 5(4) tableau
+   real(dp), parameter :: c2 = 1.0_dp / 5, c3 = 3.0_dp / 10, c4 = 4.0_dp / 5, c5 = 8.0_dp / 9
+   real(dp), parameter :: a21 = 1.0_dp / 5
+   real(dp), parameter :: a31 = 3.0_dp / 40, a32 = 9.0_dp / 40
+   real(dp), parameter :: a41 = 44.0_dp / 45, a42 = -56.0_dp / 15, a43 = 32.0_dp / 9
+   real(dp), parameter :: a51 = 19372.0_dp / 6561, a52 = -25360.0_dp / 2187, &
+      a53 = 64448.0_dp / 6561, a54 = -212.0_dp / 729
+   real(dp), parameter :: a61 = 9017.0_dp / 3168, a62 = -355.0_dp / 33, &
+      a63 = 46732.0_dp / 5247, a64 = 49.0_dp / 176, a65 = -5103.0_dp / 18656
+   real(dp), parameter :: b1 = 35.0_dp / 384, b3 = 500.0_dp / 1113, b4 = 125.0_dp / 192, &
+      b5 = -2187.0_dp / 6784, b6 = 11.0_dp / 84
+   real(dp), parameter :: e1 = 71.0_dp / 57600, e3 = -71.0_dp / 16695, e4 = 71.0_dp / 1920, &
+      e5 = -17253.0_dp / 339200, e6 = 22.0_dp / 525, e7 = -1.0_dp / 40
+
+contains
+
+   !> Factor a mass-like SPD matrix; error naming the method when it is singular.
+   subroutine factor_spd(name, a, fac, err)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: a(:, :)
+      real(dp), allocatable, intent(out) :: fac(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: info, n
+      n = size(a, 1)
+      fac = a
+      call dpotrf('U', n, fac, n, info)
+      if (info /= 0) call fatal_error(err, "method '" // name // "': the mass matrix is " &
+         // 'singular (dof ' // str(info) // ' has no mass); explicit methods need a mass at ' &
+         // "every dof: use &beam rotary_inertia = 'half_element' or 'hrz', or an implicit method")
+   end subroutine factor_spd
+
+   !> Contact forces from the laws at (u, v); `hold` > 0 is held open.
+   pure subroutine contact_forces(prob, u, v, hold, f, r)
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: u(:), v(:)
+      integer, intent(in) :: hold
+      real(dp), intent(out) :: f(:)
+      real(dp), intent(inout) :: r(:)      !! force vector: r = r + sum (-s_c f_c) e_c
+      integer :: c, i
+      do c = 1, prob%n_contacts
+         i = prob%c_dof(c)
+         f(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
+            prob%c_sign(c) * u(i) - prob%c_gap(c), prob%c_sign(c) * v(i))
+         if (c == hold) f(c) = 0.0_dp
+         r(i) = r(i) - prob%c_sign(c) * f(c)
+      end do
+   end subroutine contact_forces
+
+   subroutine cd_prepare(self, prob, cfg, dt, err)
+      class(central_difference_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      type(solver_settings_t), intent(in) :: cfg
+      real(dp), intent(in) :: dt
+      type(error_t), allocatable, intent(out) :: err
+      call factor_spd('central_difference', prob%sys%m + 0.5_dp * dt * prob%c, self%fac, err)
+      if (allocated(err)) return
+      if (.not. allocated(self%w)) allocate(self%w(prob%n), self%r(prob%n))
+      self%dt = dt
+      self%ready = .true.
+      if (.false.) self%dt = cfg%newmark_delta
+   end subroutine cd_prepare
+
+   subroutine cd_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
+                      open_contact)
+      class(central_difference_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
+      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      logical, intent(out) :: ok
+      real(dp), intent(out) :: ratio
+      integer, intent(in) :: open_contact
+      real(dp) :: h, s1
+      integer :: n, info
+      n = prob%n;  h = self%dt
+      ok = .true.;  ratio = -1.0_dp
+      u1 = u + h * v + 0.5_dp * h**2 * a
+      self%w = v + 0.5_dp * h * a                       ! velocity predictor
+      s1 = prob%half_amplitude * prob%omega**2 * sin(prob%omega * (t0 + h))
+      call dense_matvec(n, prob%sys%k, u1, a1)
+      call dense_matvec(n, prob%c, self%w, self%r)
+      self%r = s1 * prob%q - a1 - self%r
+      call contact_forces(prob, u1, self%w, open_contact, f1, self%r)
+      a1 = self%r
+      call dpotrs('U', n, 1, self%fac, n, a1, n, info)
+      v1 = self%w + 0.5_dp * h * a1
+      self%evaluations = self%evaluations + 1
+      if (.false.) ratio = f(1) + f_prev(1) + dt_prev
+   end subroutine cd_step
+
+   subroutine rk_prepare(self, prob, cfg, dt, err)
+      class(runge_kutta_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      type(solver_settings_t), intent(in) :: cfg
+      real(dp), intent(in) :: dt
+      type(error_t), allocatable, intent(out) :: err
+      self%embedded = cfg%method == 'rk45'
+      self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
+      call factor_spd(trim(cfg%method), prob%sys%m, self%mfac, err)
+      if (allocated(err)) return
+      if (.not. allocated(self%ku)) allocate(self%ku(prob%n, 7), self%kv(prob%n, 7), &
+         self%ut(prob%n), self%vt(prob%n), self%r(prob%n))
+      self%dt = dt
+      self%ready = .true.
+   end subroutine rk_prepare
+
+   !> Acceleration M^-1 (s(t) q - C v - K u - F(u, v)).
+   subroutine rk_accel(self, prob, t, u, v, hold, acc, f)
+      class(runge_kutta_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t, u(:), v(:)
+      integer, intent(in) :: hold
+      real(dp), intent(out) :: acc(:), f(:)
+      integer :: n, info
+      n = prob%n
+      call dense_matvec(n, prob%sys%k, u, acc)
+      call dense_matvec(n, prob%c, v, self%r)
+      self%r = prob%half_amplitude * prob%omega**2 * sin(prob%omega * t) * prob%q - acc - self%r
+      call contact_forces(prob, u, v, hold, f, self%r)
+      acc = self%r
+      call dpotrs('U', n, 1, self%mfac, n, acc, n, info)
+      self%evaluations = self%evaluations + 1
+   end subroutine rk_accel
+
+   subroutine rk_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
+                      open_contact)
+      class(runge_kutta_t), intent(inout) :: self
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
+      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      logical, intent(out) :: ok
+      real(dp), intent(out) :: ratio
+      integer, intent(in) :: open_contact
+      real(dp) :: h, eu, ev, sc
+      integer :: i
+      h = self%dt;  ok = .true.;  ratio = -1.0_dp
+      associate (ku => self%ku, kv => self%kv, ut => self%ut, vt => self%vt)
+         if (.not. self%embedded) then
+            ku(:, 1) = v;  call rk_accel(self, prob, t0, u, v, open_contact, kv(:, 1), f1)
+            ut = u + 0.5_dp * h * ku(:, 1);  vt = v + 0.5_dp * h * kv(:, 1)
+            ku(:, 2) = vt;  call rk_accel(self, prob, t0 + 0.5_dp * h, ut, vt, open_contact, &
+                                          kv(:, 2), f1)
+            ut = u + 0.5_dp * h * ku(:, 2);  vt = v + 0.5_dp * h * kv(:, 2)
+            ku(:, 3) = vt;  call rk_accel(self, prob, t0 + 0.5_dp * h, ut, vt, open_contact, &
+                                          kv(:, 3), f1)
+            ut = u + h * ku(:, 3);  vt = v + h * kv(:, 3)
+            ku(:, 4) = vt;  call rk_accel(self, prob, t0 + h, ut, vt, open_contact, kv(:, 4), f1)
+            u1 = u + h / 6 * (ku(:, 1) + 2 * ku(:, 2) + 2 * ku(:, 3) + ku(:, 4))
+            v1 = v + h / 6 * (kv(:, 1) + 2 * kv(:, 2) + 2 * kv(:, 3) + kv(:, 4))
+            ! acceleration and forces at the end (the next step's first stage)
+            call rk_accel(self, prob, t0 + h, u1, v1, 0, a1, f1)
+            self%evaluations = self%evaluations - 1   ! reused as the next first stage
+         else
+            ku(:, 1) = v;  kv(:, 1) = a
+            if (open_contact > 0) call rk_accel(self, prob, t0, u, v, open_contact, kv(:, 1), f1)
+            call stage(2, c2, [a21])
+            call stage(3, c3, [a31, a32])
+            call stage(4, c4, [a41, a42, a43])
+            call stage(5, c5, [a51, a52, a53, a54])
+            call stage(6, 1.0_dp, [a61, a62, a63, a64, a65])
+            u1 = u + h * (b1 * ku(:, 1) + b3 * ku(:, 3) + b4 * ku(:, 4) + b5 * ku(:, 5) &
+                 + b6 * ku(:, 6))
+            v1 = v + h * (b1 * kv(:, 1) + b3 * kv(:, 3) + b4 * kv(:, 4) + b5 * kv(:, 5) &
+                 + b6 * kv(:, 6))
+            ku(:, 7) = v1
+            call rk_accel(self, prob, t0 + h, u1, v1, 0, kv(:, 7), f1)   ! FSAL: next a
+            a1 = kv(:, 7)
+            ratio = 0.0_dp
+            do i = 1, prob%n
+               eu = h * (e1 * ku(i, 1) + e3 * ku(i, 3) + e4 * ku(i, 4) + e5 * ku(i, 5) &
+                    + e6 * ku(i, 6) + e7 * ku(i, 7))
+               ev = h * (e1 * kv(i, 1) + e3 * kv(i, 3) + e4 * kv(i, 4) + e5 * kv(i, 5) &
+                    + e6 * kv(i, 6) + e7 * kv(i, 7))
+               sc = self%atol + self%rtol * max(abs(u(i)), abs(u1(i)))
+               ratio = max(ratio, abs(eu) / sc)
+               sc = self%atol + self%rtol * max(abs(v(i)), abs(v1(i)))
+               ratio = max(ratio, abs(ev) / sc)
+            end do
+         end if
+      end associate
+      if (.false.) ratio = ratio + f(1) + f_prev(1) + dt_prev
+   contains
+      subroutine stage(j, cj, aj)
+         integer, intent(in) :: j
+         real(dp), intent(in) :: cj, aj(:)
+         integer :: m
+         self%ut = u;  self%vt = v
+         do m = 1, j - 1
+            self%ut = self%ut + h * aj(m) * self%ku(:, m)
+            self%vt = self%vt + h * aj(m) * self%kv(:, m)
+         end do
+         self%ku(:, j) = self%vt
+         call rk_accel(self, prob, t0 + cj * h, self%ut, self%vt, open_contact, &
+                       self%kv(:, j), f1)
+      end subroutine stage
+   end subroutine rk_step
+end module gapbeam_explicit
