@@ -18,6 +18,7 @@ program main
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_sweep, only: point_result_t, point_diagnostics
    use gapbeam_diagnostics, only: label_text
+   use gapbeam_blas_threads, only: serial_blas
    implicit none
    type(deck_t) :: deck
    type(error_t), allocatable :: err
@@ -27,6 +28,7 @@ program main
    real(dp) :: time_limit
    logical :: complete
 
+   if (serial_blas()) continue     ! results must not depend on BLAS threads
    n_args = command_argument_count()
    if (n_args < 1) then
       write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'

@@ -108,8 +108,9 @@ contains
                       open_contact)
       class(central_difference_t), intent(inout) :: self
       type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
-      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      real(dp), intent(in) :: t0, dt_prev
+      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
+      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
       logical, intent(out) :: ok
       real(dp), intent(out) :: ratio
       integer, intent(in) :: open_contact
@@ -169,8 +170,9 @@ contains
                       open_contact)
       class(runge_kutta_t), intent(inout) :: self
       type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
-      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      real(dp), intent(in) :: t0, dt_prev
+      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
+      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
       logical, intent(out) :: ok
       real(dp), intent(out) :: ratio
       integer, intent(in) :: open_contact

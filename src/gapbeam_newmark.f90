@@ -81,8 +81,9 @@ contains
                                    f1, ok, ratio, open_contact)
       class(newmark_stepper_t), intent(inout) :: self
       type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, u(:), v(:), a(:), f(:), f_prev(:), dt_prev
-      real(dp), intent(out) :: u1(:), v1(:), a1(:), f1(:)
+      real(dp), intent(in) :: t0, dt_prev
+      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
+      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
       logical, intent(out) :: ok
       real(dp), intent(out) :: ratio
       integer, intent(in) :: open_contact

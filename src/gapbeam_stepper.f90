@@ -46,12 +46,12 @@ module gapbeam_stepper
          class(stepper_t), intent(inout) :: self          !! stepper
          type(problem_t), intent(in) :: prob              !! model
          real(dp), intent(in) :: t0                       !! start time [s]
-         real(dp), intent(in) :: u(:), v(:), a(:)         !! state at t0
-         real(dp), intent(in) :: f(:)                     !! contact forces at t0 [N]
-         real(dp), intent(in) :: f_prev(:)                !! contact forces one step earlier [N]
+         real(dp), intent(in), contiguous :: u(:), v(:), a(:)   !! state at t0
+         real(dp), intent(in), contiguous :: f(:)         !! contact forces at t0 [N]
+         real(dp), intent(in), contiguous :: f_prev(:)    !! contact forces one step earlier [N]
          real(dp), intent(in) :: dt_prev                  !! length of that step [s]
-         real(dp), intent(out) :: u1(:), v1(:), a1(:)     !! state at t0 + dt
-         real(dp), intent(out) :: f1(:)                   !! contact forces at t0 + dt [N]
+         real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:)   !! state at t0 + dt
+         real(dp), intent(out), contiguous :: f1(:)       !! contact forces at t0 + dt [N]
          logical, intent(out) :: ok                       !! step succeeded
          real(dp), intent(out) :: ratio                   !! embedded error / tolerance, or < 0
          integer, intent(in) :: open_contact              !! contact held open (0: none)

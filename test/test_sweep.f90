@@ -13,10 +13,12 @@ program test_sweep
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
    use gapbeam_diagnostics, only: detect_period
    use gapbeam_files, only: remove_file, file_exists
+   use gapbeam_blas_threads, only: serial_blas
    implicit none
    character(len=*), parameter :: small = 'test/decks/sweep_small.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_bilinear.nml'
 
+   if (serial_blas()) call note('OpenBLAS set to one thread')
    call lyapunov_of_linear_oscillator()
    call periodic_point_has_negative_exponent()
    call period_detection()
