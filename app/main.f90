@@ -237,6 +237,24 @@ contains
       call write_modes(dk, sys, modes, k_stop, e)
    end subroutine run_modes
 
+   function method_text(dk) result(t)
+      type(deck_t), intent(in) :: dk
+      character(len=:), allocatable :: t
+      select case (dk%solver%method)
+      case ('newmark')
+         t = 'newmark (delta ' // str(dk%solver%newmark_delta) // ', alpha ' &
+             // str(dk%solver%newmark_alpha) // '), stop force ' // trim(dk%solver%stop_solution)
+      case ('hht')
+         t = 'hht (alpha ' // str(dk%solver%hht_alpha) // ')'
+      case ('generalized_alpha')
+         t = 'generalized_alpha (rho_inf ' // str(dk%solver%rho_infinity) // ')'
+      case ('rk45')
+         t = 'rk45 (rtol ' // str(dk%solver%rk_rtol) // ', atol ' // str(dk%solver%rk_atol) // ')'
+      case default
+         t = trim(dk%solver%method)
+      end select
+   end function method_text
+
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
       character(len=:), allocatable :: t
@@ -293,11 +311,9 @@ contains
          write(output_unit, '(a)') 'stop ' // str(j) // ': stiffness ' &
             // str(prob%stop_stiffness(j)) // ' N/m, gap ' // str(dk%stops(j)%gap) // ' m'
       end do
-      write(output_unit, '(a)') 'solver: newmark (delta ' // str(dk%solver%newmark_delta) &
-         // ', alpha ' // str(dk%solver%newmark_alpha) // '), stop force ' &
-         // trim(dk%solver%stop_solution) // ', step control ' // trim(dk%solver%step_control) &
-         // ', T/' // str(dk%solver%steps_per_period) // ', events ' &
-         // merge('located', 'ignored', dk%solver%locate_events)
+      write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
+         // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
+         // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
       call initial_vectors(prob, dk%initial, u0, v0)
       call run_transient(prob, dk%solver, dk%output, u0, v0, res, e)
       if (allocated(e)) return

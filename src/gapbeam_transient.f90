@@ -161,6 +161,8 @@ contains
       real(dp) :: period, dt_max, tick_dt, t0, t1, ratio, r, t_rec, theta, dt_r, t_cur, &
          dt_prev, t_h, t_p, t_rec_len, fsum
       logical :: ok, half_step, recording, all_found, embedded
+      integer :: n_since
+      real(dp) :: energy, energy_ref
       real(dp) :: eratio
       real(dp) :: next_sample
       real(dp), allocatable :: u(:), v(:), a(:), f(:), fprev(:), &
@@ -228,7 +230,9 @@ contains
       ih = 1;  ip = 1;  next_sample = -huge(1.0_dp);  all_found = ns == 0
       res%dt_smallest = huge(1.0_dp);  res%dt_largest = 0.0_dp
 
-      tick = 0;  level = 0;  comfortable = 0;  dt_prev = dt_max
+      tick = 0;  level = 0;  comfortable = 0;  dt_prev = dt_max;  n_since = 0
+      energy_ref = 0.5_dp * dot_product(u, matmul(prob%sys%k, u)) &
+                   + 0.5_dp * dot_product(v, matmul(prob%sys%m, v))
       do while (tick < end_tick)
          nt = nt_of(level)
          t0 = real(tick, dp) * tick_dt
@@ -324,10 +328,28 @@ contains
                if (.not. (abs(sub_u(j, nsub)) <= huge(1.0_dp)) .or. &
                    .not. (abs(sub_v(j, nsub)) <= huge(1.0_dp))) exit
             end do
-            call fatal_error(err, 'gapbeam_transient:run_transient: the solution is not ' &
-               // 'finite at t = ' // str(t1) // ' s, dt = ' // str(t1 - t0) // ' s, ' &
-               // dof_label(prob, min(j, n)))
+            call fatal_error(err, 'gapbeam_transient:run_transient: method ''' &
+               // trim(cfg%method) // ''' diverged: the solution is not finite at t = ' &
+               // str(t1) // ' s, dt = ' // str(t1 - t0) // ' s, ' // dof_label(prob, min(j, n)))
             return
+         end if
+         ! energy bound: every 64 steps, against the largest energy of the first period
+         n_since = n_since + 1
+         if (n_since >= 64) then
+            n_since = 0
+            energy = 0.5_dp * dot_product(sub_u(:, nsub), matmul(prob%sys%k, sub_u(:, nsub))) &
+                     + 0.5_dp * dot_product(sub_v(:, nsub), matmul(prob%sys%m, sub_v(:, nsub)))
+            if (t1 <= period) then
+               energy_ref = max(energy_ref, energy)
+            else if (energy > cfg%energy_bound * energy_ref) then
+               call fatal_error(err, 'gapbeam_transient:run_transient: method ''' &
+                  // trim(cfg%method) // ''' diverged: the energy at t = ' // str(t1) &
+                  // ' s is ' // str(energy / energy_ref) // ' times its largest value in ' &
+                  // 'the first forcing period (bound energy_bound = ' &
+                  // str(cfg%energy_bound) // '), dt = ' // str(t1 - t0) // ' s; omega_max dt = ' &
+                  // str(prob%omega_max * (t1 - t0)))
+               return
+            end if
          end if
          recording = tick >= rec_tick
          do j = 1, nsub
