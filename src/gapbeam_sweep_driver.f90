@@ -78,8 +78,12 @@ contains
       n_done = n_total - sum([(size(item_points(deck%sweep, todo(k))), k = 1, size(todo))])
       threads = 1
       !$ threads = omp_get_max_threads()
+      ! work items between checkpoint writes and progress lines: each chunk ends in a barrier,
+      ! so chunks are long; without checkpoint and progress the whole shard is one chunk
       chunk = deck%sweep%chunk
-      if (chunk == 0) chunk = merge(2, 16, deck%sweep%mode == 'continuation') * threads
+      if (chunk == 0) chunk = merge(4, 64, deck%sweep%mode == 'continuation') * threads
+      if (.not. deck%sweep%checkpoint .and. .not. deck%sweep%progress .and. &
+          deck%sweep%chunk == 0) chunk = max(1, size(todo))
       write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' &
          // str(size(deck%sweep%frequency_hz)) // ' frequencies x ' &
          // str(size(deck%sweep%amplitude_pp)) // ' amplitudes), mode ' &
