@@ -19,6 +19,7 @@ program main
    use gapbeam_sweep, only: point_result_t, point_diagnostics
    use gapbeam_diagnostics, only: label_text
    use gapbeam_blas_threads, only: serial_blas
+   use gapbeam_setup, only: build_model
    implicit none
    type(deck_t) :: deck
    type(error_t), allocatable :: err
@@ -301,8 +302,12 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       integer :: j
       call describe_structure(dk%structure)
-      call build_problem(dk%structure, dk%stops, dk%damping, dk%forcing, prob, e)
+      call build_model(dk, prob, u0, v0, e)
       if (allocated(e)) return
+      if (dk%reduction%kind == 'modal') write(output_unit, '(a)') 'model: modal, ' &
+         // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
+         '                    ', dk%reduction%static_correction)) // ': ' // str(prob%n) &
+         // ' coordinates'
       write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
          // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
          // str(prob%f1_open_hz) // ' Hz; highest mode ' // str(prob%omega_max / 6.283185307179586_dp) &
@@ -314,7 +319,6 @@ contains
       write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
          // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
          // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
-      call initial_vectors(prob, dk%initial, u0, v0)
       call run_transient(prob, dk%solver, dk%output, u0, v0, res, e)
       if (allocated(e)) return
       write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &

@@ -18,7 +18,7 @@ module gapbeam_input
    use gapbeam_excitation, only: forcing_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
       stop_solution_words, step_control_words, linear_solver_words, method_words, &
-      initial_state_words, diagnostics_settings_t
+      initial_state_words, diagnostics_settings_t, reduction_settings_t
    use gapbeam_sweep, only: sweep_settings_t, sweep_mode_words, sweep_direction_words, &
       sweep_axis_words
    use gapbeam_calibration, only: calibration_words
@@ -30,7 +30,7 @@ module gapbeam_input
 
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', 'sweep'"
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
-      'calibrate stops damping forcing solver initial output diagnostics sweep'
+      'calibrate stops damping forcing solver initial output diagnostics sweep reduction'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
 
    !> &job: what to run and where the results go.
@@ -63,6 +63,7 @@ module gapbeam_input
       type(output_settings_t) :: output              !! &output
       type(diagnostics_settings_t) :: diagnostics    !! &diagnostics
       type(sweep_settings_t) :: sweep                !! &sweep
+      type(reduction_settings_t) :: reduction        !! &reduction
    end type deck_t
 
    abstract interface
@@ -149,6 +150,7 @@ contains
       call read_output(srcs, deck%output, err);  if (failed()) return
       call read_diagnostics(srcs, deck%diagnostics, err);  if (failed()) return
       call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed()) return
+      call read_reduction(srcs, deck%reduction, err);  if (failed()) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
@@ -1004,4 +1006,28 @@ contains
          if (n < 0) call require_int('sweep', vn, n, 0, huge(1), err)
       end subroutine make_axis
    end subroutine read_sweep
+
+   subroutine read_reduction(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(reduction_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: kind
+      integer :: n_modes
+      logical :: static_correction
+      namelist /reduction/ kind, n_modes, static_correction
+      kind = cfg%kind;  n_modes = cfg%n_modes;  static_correction = cfg%static_correction
+      call apply_group(srcs, 'reduction', 'kind n_modes static_correction', reader, err)
+      if (allocated(err)) return
+      call require_word('reduction', 'kind', kind, "'none', 'modal'", err)
+      call require_int('reduction', 'n_modes', n_modes, 1, 100000, err)
+      if (allocated(err)) return
+      cfg = reduction_settings_t(kind=kind, n_modes=n_modes, static_correction=static_correction)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=reduction, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_reduction
 end module gapbeam_input

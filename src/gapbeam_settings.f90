@@ -5,7 +5,8 @@ module gapbeam_settings
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: solver_settings_t, output_settings_t, initial_state_t, diagnostics_settings_t
+   public :: solver_settings_t, output_settings_t, initial_state_t, diagnostics_settings_t, &
+      reduction_settings_t
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words
 
@@ -68,4 +69,11 @@ module gapbeam_settings
       real(dp) :: lyapunov_perturbation = 1.0e-7_dp  !! initial separation / state norm [-]
       real(dp) :: chaos_sigmas = 3.0_dp           !! chaotic: lambda > chaos_sigmas * uncertainty
    end type diagnostics_settings_t
+
+   !> Which model the analysis integrates: the full finite element model or a modal one.
+   type :: reduction_settings_t
+      character(len=16) :: kind = 'none'          !! 'none' or 'modal'
+      integer  :: n_modes = 4                     !! modes of the open structure kept [-]
+      logical  :: static_correction = .true.      !! residual flexibility at each stop dof
+   end type reduction_settings_t
 end module gapbeam_settings

@@ -7,7 +7,8 @@ module gapbeam_sweep_driver
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_input, only: deck_t
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
+   use gapbeam_problem, only: problem_t
+   use gapbeam_setup, only: build_model
    use gapbeam_sweep, only: sweep_settings_t, point_result_t, n_points, n_items, item_points, &
       run_items
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
@@ -52,9 +53,8 @@ contains
 
       complete = .false.
       call system_clock(c0, rate)
-      call build_problem(deck%structure, deck%stops, deck%damping, deck%forcing, base, err)
+      call build_model(deck, base, u0, v0, err)
       if (allocated(err)) return
-      call initial_vectors(base, deck%initial, u0, v0)
       np = n_points(deck%sweep);  ni = n_items(deck%sweep)
       mine = pack([(k, k = 1, ni)], [(mod(k - 1, deck%sweep%shard_count) + 1 &
                   == deck%sweep%shard_index, k = 1, ni)])
