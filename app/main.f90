@@ -20,6 +20,11 @@ program main
    use gapbeam_diagnostics, only: label_text
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_setup, only: build_model
+   use gapbeam_integrate, only: integrate
+   use gapbeam_studies, only: series_result_t, stable_step_t, work_precision, stability_study
+   use gapbeam_study_output, only: write_work_precision, write_stability, &
+      work_precision_summary, write_model_size
+   use gapbeam_model_size, only: candidate_t, model_size_study
    implicit none
    type(deck_t) :: deck
    type(error_t), allocatable :: err
@@ -93,6 +98,12 @@ program main
       call run_calibrate(deck, err)
    case ('transient')
       call run_transient_analysis(deck, err)
+   case ('work_precision')
+      call run_work_precision(deck, err)
+   case ('stability')
+      call run_stability(deck, err)
+   case ('model_size')
+      call run_model_size(deck, err)
    case ('sweep')
       call run_sweep_job(deck, complete, err)
       if (allocated(err)) call fail(err)
@@ -293,6 +304,81 @@ contains
       call write_calibration(dk, value, units, f1, e)
    end subroutine run_calibrate
 
+   subroutine run_work_precision(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      type(problem_t) :: prob
+      type(series_result_t), allocatable :: results(:)
+      real(dp), allocatable :: u0(:), v0(:)
+      call describe_structure(dk%structure)
+      call build_model(dk, prob, u0, v0, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') 'work-precision: ' // str(size(dk%study%series)) // ' series x ' &
+         // str(dk%study%levels) // ' levels, ' // str(dk%study%periods) // ' forcing periods ' &
+         // 'from the initial state; reference: the exact integrator'
+      call work_precision(prob, dk%solver, dk%output, u0, v0, dk%study, results, e)
+      if (allocated(e)) return
+      write(output_unit, '(a)') work_precision_summary(results, 'newmark_half_step')
+      call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
+                                'newmark_half_step', e)
+   end subroutine run_work_precision
+
+   subroutine run_stability(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      type(problem_t) :: prob
+      type(stable_step_t), allocatable :: steps(:)
+      real(dp), allocatable :: omega_dt(:), rho(:, :), u0(:), v0(:)
+      character(len=32), allocatable :: methods(:)
+      integer :: k
+      call describe_structure(dk%structure)
+      call build_model(dk, prob, u0, v0, e)
+      if (allocated(e)) return
+      methods = pack(dk%study%series, dk%study%series /= 'exact')
+      call stability_study(prob, dk%study, methods, omega_dt, rho, steps, e)
+      if (allocated(e)) return
+      do k = 1, size(steps)
+         write(output_unit, '(a)') 'largest stable step, ' // steps(k)%name // ': ' &
+            // str(steps(k)%measured) // ' s measured, ' // str(steps(k)%theory) &
+            // ' s theory (' // str(steps(k)%limit) // '/omega_max), ratio ' &
+            // str(steps(k)%measured / steps(k)%theory)
+      end do
+      call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
+                           rho, steps, prob%omega_max, e)
+   end subroutine run_stability
+
+   subroutine run_model_size(dk, e)
+      type(deck_t), intent(in) :: dk
+      type(error_t), allocatable, intent(out) :: e
+      type(candidate_t), allocatable :: cands(:)
+      integer :: best, k
+      call describe_structure(dk%structure)
+      write(output_unit, '(a)') 'model size: ' // str(size(dk%model_size%elements)) &
+         // ' meshes and ' // str(2 * size(dk%model_size%modes)) // ' modal models against ' &
+         // 'the ' // str(maxval(dk%model_size%elements)) // '-element model'
+      call model_size_study(dk, dk%model_size, cands, best, e)
+      if (allocated(e)) return
+      do k = 1, size(cands)
+         if (cands(k)%status /= 0) then
+            write(output_unit, '(a)') '  ' // cands(k)%name // ': failed: ' // cands(k)%message
+         else
+            write(output_unit, '(a)') '  ' // cands(k)%name // ': ' &
+               // str(cands(k)%n_coordinates) // ' coordinates, f-error ' &
+               // str(cands(k)%frequency_error) // ', ' // label_text(cands(k)%label) &
+               // ', lambda ' // str(cands(k)%lyapunov) // ' 1/s, Poincare distance ' &
+               // str(cands(k)%poincare_distance) // ', peak force ' &
+               // str(cands(k)%peak_force) // ' N, ' // str(cands(k)%seconds) // ' s' &
+               // trim(merge(' ok', '   ', cands(k)%acceptable))
+         end if
+      end do
+      if (best > 0) then
+         write(output_unit, '(a)') 'recommended: ' // cands(best)%name
+      else
+         write(output_unit, '(a)') 'recommended: none meets every tolerance'
+      end if
+      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e)
+   end subroutine run_model_size
+
    subroutine run_transient_analysis(dk, e)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
@@ -319,7 +405,7 @@ contains
       write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
          // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
          // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
-      call run_transient(prob, dk%solver, dk%output, u0, v0, res, e)
+      call integrate(prob, dk%solver, dk%output, u0, v0, res, e)
       if (allocated(e)) return
       write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
          // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &

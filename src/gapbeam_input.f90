@@ -21,6 +21,8 @@ module gapbeam_input
       initial_state_words, diagnostics_settings_t, reduction_settings_t
    use gapbeam_sweep, only: sweep_settings_t, sweep_mode_words, sweep_direction_words, &
       sweep_axis_words
+   use gapbeam_studies, only: study_settings_t, series_words
+   use gapbeam_settings, only: model_size_settings_t
    use gapbeam_calibration, only: calibration_words
    implicit none
    private
@@ -28,9 +30,11 @@ module gapbeam_input
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
 
-   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', 'sweep'"
+   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
+      // "'sweep', 'work_precision', 'stability', 'model_size'"
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
-      'calibrate stops damping forcing solver initial output diagnostics sweep reduction'
+      'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
+      'study model_size'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
 
    !> &job: what to run and where the results go.
@@ -64,6 +68,8 @@ module gapbeam_input
       type(diagnostics_settings_t) :: diagnostics    !! &diagnostics
       type(sweep_settings_t) :: sweep                !! &sweep
       type(reduction_settings_t) :: reduction        !! &reduction
+      type(study_settings_t) :: study                !! &study
+      type(model_size_settings_t) :: model_size      !! &model_size
    end type deck_t
 
    abstract interface
@@ -150,6 +156,8 @@ contains
       call read_output(srcs, deck%output, err);  if (failed()) return
       call read_diagnostics(srcs, deck%diagnostics, err);  if (failed()) return
       call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed()) return
+      call read_study(srcs, deck%study, err);  if (failed()) return
+      call read_model_size(srcs, deck%model_size, err);  if (failed()) return
       call read_reduction(srcs, deck%reduction, err);  if (failed()) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
@@ -157,7 +165,8 @@ contains
             // str(deck%calibrate%target_f1_hz) // ": must be > 0 for analysis='calibrate'")
          return
       end if
-      if ((deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep') .and. &
+      if ((deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep' .or. &
+           deck%job%analysis == 'work_precision' .or. deck%job%analysis == 'model_size') .and. &
           .not. group_present(srcs, 'forcing')) then
          call fatal_error(err, path // ": group &forcing is missing: analysis='" &
             // trim(deck%job%analysis) // "' needs frequency_hz (use amplitude_pp=0 for free " &
@@ -1030,4 +1039,94 @@ contains
          read(lines, nml=reduction, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_reduction
+
+   subroutine read_study(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(study_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      character(len=32) :: series(16)
+      integer :: levels, periods, base_steps, repeats, n_omega_dt, n, i
+      real(dp) :: tolerance_start, rtol_start, omega_dt_min, omega_dt_max
+      namelist /study/ series, levels, periods, base_steps, tolerance_start, rtol_start, &
+         repeats, omega_dt_min, omega_dt_max, n_omega_dt
+      series = ''
+      series(1:8) = [character(len=32) :: 'newmark_half_step', 'newmark_fixed', 'paper', 'hht', &
+         'generalized_alpha', 'rk4', 'rk45', 'exact']
+      levels = cfg%levels;  periods = cfg%periods;  base_steps = cfg%base_steps
+      repeats = cfg%repeats;  n_omega_dt = cfg%n_omega_dt
+      tolerance_start = cfg%tolerance_start;  rtol_start = cfg%rtol_start
+      omega_dt_min = cfg%omega_dt_min;  omega_dt_max = cfg%omega_dt_max
+      call apply_group(srcs, 'study', 'series levels periods base_steps tolerance_start ' &
+         // 'rtol_start repeats omega_dt_min omega_dt_max n_omega_dt', reader, err)
+      if (allocated(err)) return
+      n = 0
+      do i = 1, size(series)
+         if (len_trim(series(i)) == 0) exit
+         call require_word('study', 'series(' // str(i) // ')', series(i), series_words, err)
+         n = i
+      end do
+      call require_int('study', 'levels', levels, 1, 30, err)
+      call require_int('study', 'periods', periods, 1, huge(1), err)
+      call require_int('study', 'base_steps', base_steps, 4, 100000000, err)
+      call require_int('study', 'repeats', repeats, 1, 100, err)
+      call require_int('study', 'n_omega_dt', n_omega_dt, 2, 100000, err)
+      call require_range('study', 'tolerance_start', tolerance_start, 1.0e-12_dp, 10.0_dp, err)
+      call require_range('study', 'rtol_start', rtol_start, 1.0e-14_dp, 1.0_dp, err)
+      call require_positive('study', 'omega_dt_min', omega_dt_min, err)
+      call require_range('study', 'omega_dt_max', omega_dt_max, omega_dt_min, 1.0e12_dp, err)
+      if (allocated(err)) return
+      cfg%series = series(1:n)
+      cfg%levels = levels;  cfg%periods = periods;  cfg%base_steps = base_steps
+      cfg%repeats = repeats;  cfg%n_omega_dt = n_omega_dt
+      cfg%tolerance_start = tolerance_start;  cfg%rtol_start = rtol_start
+      cfg%omega_dt_min = omega_dt_min;  cfg%omega_dt_max = omega_dt_max
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=study, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_study
+
+   subroutine read_model_size(srcs, cfg, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(model_size_settings_t), intent(inout) :: cfg
+      type(error_t), allocatable, intent(out) :: err
+      integer :: elements(16), modes(16), ne, nm, i
+      real(dp) :: cutoff_hz, frequency_tolerance, poincare_tolerance, force_tolerance
+      namelist /model_size/ elements, modes, cutoff_hz, frequency_tolerance, poincare_tolerance, &
+         force_tolerance
+      elements = 0;  modes = 0
+      elements(1:7) = [2, 3, 4, 6, 8, 15, 30]
+      modes(1:6) = [1, 2, 3, 4, 5, 6]
+      cutoff_hz = cfg%cutoff_hz;  frequency_tolerance = cfg%frequency_tolerance
+      poincare_tolerance = cfg%poincare_tolerance;  force_tolerance = cfg%force_tolerance
+      call apply_group(srcs, 'model_size', 'elements modes cutoff_hz frequency_tolerance ' &
+         // 'poincare_tolerance force_tolerance', reader, err)
+      if (allocated(err)) return
+      ne = count(elements > 0);  nm = count(modes > 0)
+      do i = 1, size(elements)
+         call require_int('model_size', 'elements(' // str(i) // ')', elements(i), 0, 10000, err)
+         call require_int('model_size', 'modes(' // str(i) // ')', modes(i), 0, 10000, err)
+      end do
+      if (ne == 0 .and. .not. allocated(err)) call fatal_error(err, 'group &model_size: ' &
+         // 'elements: give at least one element count')
+      call require_positive('model_size', 'cutoff_hz', cutoff_hz, err)
+      call require_positive('model_size', 'frequency_tolerance', frequency_tolerance, err)
+      call require_positive('model_size', 'poincare_tolerance', poincare_tolerance, err)
+      call require_positive('model_size', 'force_tolerance', force_tolerance, err)
+      if (allocated(err)) return
+      cfg%elements = pack(elements, elements > 0)
+      cfg%modes = pack(modes, modes > 0)
+      cfg%cutoff_hz = cutoff_hz;  cfg%frequency_tolerance = frequency_tolerance
+      cfg%poincare_tolerance = poincare_tolerance;  cfg%force_tolerance = force_tolerance
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=model_size, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_model_size
 end module gapbeam_input

@@ -5,6 +5,7 @@ module gapbeam_lapack
    implicit none
    private
    public :: dsygv, dpotrf, dpotrs, dpotri, dpbtrf, dpbtrs, dgesv, dgetrf, dgetrs, dsyev, dgeev
+   public :: zgesv
 
    interface
       !> Generalized symmetric-definite eigenproblem A x = lambda B x.
@@ -110,5 +111,13 @@ module gapbeam_lapack
          real(dp),  intent(inout) :: b(ldb, *)
          integer,   intent(out)   :: info
       end subroutine dgetrs
+
+      !> Complex general linear solve (LU with partial pivoting).
+      subroutine zgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+         import :: dp
+         integer,     intent(in)    :: n, nrhs, lda, ldb
+         complex(dp), intent(inout) :: a(lda, *), b(ldb, *)
+         integer,     intent(out)   :: ipiv(*), info
+      end subroutine zgesv
    end interface
 end module gapbeam_lapack

@@ -14,7 +14,8 @@ module gapbeam_lyapunov
    use gapbeam_error, only: error_t
    use gapbeam_problem, only: problem_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_transient, only: transient_result_t
+   use gapbeam_integrate, only: integrate
    implicit none
    private
    public :: lyapunov_t, largest_lyapunov
@@ -66,8 +67,8 @@ contains
       ub = ua + du * (d0 / d);  vb = va + dv * (d0 / d)
       allocate(lyap%running(n_periods), logs(n_periods))
       do k = 1, n_periods
-         call run_transient(prob, one, quiet, ua, va, ra, err);  if (allocated(err)) return
-         call run_transient(prob, one, quiet, ub, vb, rb, err);  if (allocated(err)) return
+         call integrate(prob, one, quiet, ua, va, ra, err);  if (allocated(err)) return
+         call integrate(prob, one, quiet, ub, vb, rb, err);  if (allocated(err)) return
          ua = ra%u;  va = ra%v
          du = rb%u - ua;  dv = rb%v - va
          d = energy_norm(prob, du, dv)

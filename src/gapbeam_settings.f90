@@ -6,7 +6,7 @@ module gapbeam_settings
    implicit none
    private
    public :: solver_settings_t, output_settings_t, initial_state_t, diagnostics_settings_t, &
-      reduction_settings_t
+      reduction_settings_t, model_size_settings_t
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words
 
@@ -76,4 +76,14 @@ module gapbeam_settings
       integer  :: n_modes = 4                     !! modes of the open structure kept [-]
       logical  :: static_correction = .true.      !! residual flexibility at each stop dof
    end type reduction_settings_t
+
+   !> &model_size: the ladder and the tolerances.
+   type :: model_size_settings_t
+      integer, allocatable :: elements(:)           !! element counts of the ladder
+      integer, allocatable :: modes(:)              !! mode counts of the modal models
+      real(dp) :: cutoff_hz = 100.0_dp              !! frequencies compared below this [Hz]
+      real(dp) :: frequency_tolerance = 0.02_dp     !! largest relative frequency error [-]
+      real(dp) :: poincare_tolerance = 0.05_dp      !! largest Poincare distance [-]
+      real(dp) :: force_tolerance = 0.10_dp         !! largest relative peak-force error [-]
+   end type model_size_settings_t
 end module gapbeam_settings

@@ -14,7 +14,8 @@ module gapbeam_sweep
    use gapbeam_error, only: error_t
    use gapbeam_problem, only: problem_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
-   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_transient, only: transient_result_t
+   use gapbeam_integrate, only: integrate
    use gapbeam_lyapunov, only: lyapunov_t, largest_lyapunov
    use gapbeam_diagnostics, only: detect_period, classify
    implicit none
@@ -162,7 +163,7 @@ contains
       prob%half_amplitude = 0.5_dp * a_pp
       o = out
       o%history_periods = 0
-      call run_transient(prob, cfg, o, u0, v0, res, err)
+      call integrate(prob, cfg, o, u0, v0, res, err)
       if (.not. allocated(err)) then
          pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
          pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction

@@ -1,0 +1,281 @@
+!> Studies that chart speed against accuracy and test stability where methods fail.
+!>
+!> Work-precision: each series (a method with one setting varied over a ladder: the number of
+!> fixed steps per period, or a tolerance) runs the same case from rest over the same horizon;
+!> its error is measured against the exact event-driven integrator (the reference: the
+!> model must be piecewise linear), as the relative energy-norm error of the final state and
+!> the largest error of the recorded Poincare points relative to the strain range, and its
+!> cost as elapsed time on one core (best of `repeats` runs when a run is short).
+!> Stability: the spectral radius of one step against omega dt on the undamped test equation
+!> for each method, and the largest stable fixed step found by bisection with real runs on the
+!> deck's model against the theory of the conditionally stable methods.
+module gapbeam_studies
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_problem, only: problem_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t
+   use gapbeam_transient, only: transient_result_t
+   use gapbeam_integrate, only: integrate
+   use gapbeam_stability, only: spectral_radius, largest_stable_step
+   use gapbeam_contact, only: law_bilinear
+   implicit none
+   private
+   public :: study_settings_t, series_result_t, work_precision, stability_study, &
+      stable_step_t, series_words, cpu_to_reach
+
+   character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
+      // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
+      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
+
+   !> &study: what to compare.
+   type :: study_settings_t
+      character(len=32), allocatable :: series(:)   !! series words
+      integer :: levels = 8                         !! settings per series [-]
+      integer :: periods = 10                       !! horizon from rest [forcing periods]
+      integer :: base_steps = 64                    !! coarsest fixed steps per period [-]
+      real(dp) :: tolerance_start = 0.1_dp          !! loosest half-step tolerance [-]
+      real(dp) :: rtol_start = 1.0e-2_dp            !! loosest rk45 rtol [-]
+      integer :: repeats = 3                        !! timing repeats of short runs [-]
+      real(dp) :: omega_dt_min = 1.0e-2_dp          !! stability chart range [-]
+      real(dp) :: omega_dt_max = 1.0e3_dp           !! [-]
+      integer :: n_omega_dt = 101                   !! points of the chart [-]
+   end type study_settings_t
+
+   !> One series of the work-precision study.
+   type :: series_result_t
+      character(len=:), allocatable :: name          !! series word
+      character(len=:), allocatable :: parameter_name  !! what varies
+      real(dp), allocatable :: parameter(:)          !! its values
+      real(dp), allocatable :: seconds(:)            !! elapsed time of a run [s]
+      real(dp), allocatable :: error(:)              !! final-state error [-]
+      real(dp), allocatable :: poincare_error(:)     !! Poincare points error [-]
+      real(dp), allocatable :: steps(:)              !! steps accepted [-]
+      integer, allocatable :: status(:)              !! 0 done, 1 failed (e.g. unstable)
+   end type series_result_t
+
+   !> Measured and theoretical largest stable step of a method.
+   type :: stable_step_t
+      character(len=:), allocatable :: name          !! method
+      real(dp) :: measured = 0.0_dp                  !! by bisection [s]
+      real(dp) :: theory = 0.0_dp                    !! limit / omega_max [s]
+      real(dp) :: limit = 0.0_dp                     !! omega_max dt at the limit [-]
+   end type stable_step_t
+
+contains
+
+   !> Settings of series `name` at ladder level k (1 = coarsest); false if unknown.
+   logical function series_setting(name, k, st, base, cfg, param, pname) result(known)
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: k
+      type(study_settings_t), intent(in) :: st
+      type(solver_settings_t), intent(in) :: base
+      type(solver_settings_t), intent(out) :: cfg
+      real(dp), intent(out) :: param
+      character(len=:), allocatable, intent(out) :: pname
+      integer :: n
+      cfg = base
+      known = .true.
+      n = st%base_steps * 2**(k - 1)
+      cfg%step_control = 'fixed';  cfg%locate_events = .true.
+      cfg%steps_per_period = n;  param = n;  pname = 'steps per period'
+      select case (name)
+      case ('newmark_half_step', 'paper')
+         cfg%method = 'newmark';  cfg%step_control = 'half_step'
+         cfg%steps_per_period = st%base_steps
+         cfg%half_step_tolerance = st%tolerance_start * 10.0_dp**(-0.5_dp * (k - 1))
+         param = cfg%half_step_tolerance;  pname = 'half-step tolerance'
+         if (name == 'paper') then
+            cfg%stop_solution = 'fixed_point';  cfg%locate_events = .false.
+         end if
+      case ('newmark_fixed')
+         cfg%method = 'newmark'
+      case ('newmark_fixed_no_events')
+         cfg%method = 'newmark';  cfg%locate_events = .false.
+      case ('hht', 'generalized_alpha', 'central_difference', 'rk4')
+         cfg%method = name
+      case ('linear_acceleration')
+         cfg%method = 'newmark';  cfg%newmark_alpha = 1.0_dp / 6.0_dp
+      case ('fox_goodwin')
+         cfg%method = 'newmark';  cfg%newmark_alpha = 1.0_dp / 12.0_dp
+      case ('rk45')
+         cfg%method = 'rk45';  cfg%step_control = 'embedded'
+         cfg%steps_per_period = st%base_steps
+         cfg%rk_rtol = st%rtol_start * 10.0_dp**(-(k - 1));  cfg%rk_atol = 1.0e-3_dp * cfg%rk_rtol &
+            * 1.0e-6_dp
+         param = cfg%rk_rtol;  pname = 'rtol'
+      case ('exact')
+         cfg%method = 'exact';  param = 0.0_dp;  pname = '-'
+      case default
+         known = .false.
+      end select
+      if (cfg%method /= 'newmark') cfg%stop_solution = 'condensed'
+   end function series_setting
+
+   !> The work-precision study of the deck's case.
+   subroutine work_precision(prob, base, out, u0, v0, st, results, err)
+      type(problem_t), intent(in) :: prob              !! model
+      type(solver_settings_t), intent(in) :: base      !! deck's solver settings
+      type(output_settings_t), intent(in) :: out       !! recording (Poincare phase)
+      real(dp), intent(in) :: u0(:), v0(:)             !! initial state
+      type(study_settings_t), intent(in) :: st         !! study
+      type(series_result_t), allocatable, intent(out) :: results(:)  !! one per series
+      type(error_t), allocatable, intent(out) :: err   !! the reference cannot run
+      type(solver_settings_t) :: cfg
+      type(output_settings_t) :: o
+      type(transient_result_t) :: ref, res
+      type(error_t), allocatable :: e
+      real(dp) :: param, t, norm_ref, srange
+      character(len=:), allocatable :: pname
+      integer :: s, k, nl
+      if (any(prob%c_law /= law_bilinear)) then
+         call fatal_error(err, "work_precision: the reference is the exact integrator, which " &
+            // "needs bilinear stops (law = 'bilinear'); this model has a Hertz stop")
+         return
+      end if
+      o = out;  o%history_periods = 0
+      cfg = base;  cfg%method = 'exact'
+      cfg%transient_periods = 0;  cfg%record_periods = st%periods
+      call integrate(prob, cfg, o, u0, v0, ref, err)
+      if (allocated(err)) return
+      norm_ref = energy_norm(prob, ref%u, ref%v)
+      srange = max(ref%strain_max - ref%strain_min, tiny(1.0_dp))
+      allocate(results(size(st%series)))
+      do s = 1, size(st%series)
+         nl = st%levels
+         if (st%series(s) == 'exact') nl = 1
+         results(s)%name = trim(st%series(s))
+         allocate(results(s)%parameter(nl), results(s)%seconds(nl), results(s)%error(nl), &
+                  results(s)%poincare_error(nl), results(s)%steps(nl), results(s)%status(nl))
+         do k = 1, nl
+            if (.not. series_setting(trim(st%series(s)), k, st, base, cfg, param, pname)) then
+               call fatal_error(err, "work_precision: unknown series '" // trim(st%series(s)) &
+                  // "'")
+               return
+            end if
+            results(s)%parameter_name = pname
+            cfg%transient_periods = 0;  cfg%record_periods = st%periods
+            results(s)%parameter(k) = param
+            call timed_run(prob, cfg, o, u0, v0, st%repeats, res, t, e)
+            results(s)%seconds(k) = t
+            if (allocated(e)) then
+               results(s)%status(k) = 1
+               results(s)%error(k) = huge(1.0_dp);  results(s)%poincare_error(k) = huge(1.0_dp)
+               results(s)%steps(k) = 0.0_dp
+               deallocate(e)
+               cycle
+            end if
+            results(s)%status(k) = 0
+            results(s)%steps(k) = real(res%steps_accepted, dp)
+            results(s)%error(k) = energy_norm(prob, res%u - ref%u, res%v - ref%v) / norm_ref
+            results(s)%poincare_error(k) = maxval(abs(res%p_strain - ref%p_strain)) / srange
+         end do
+      end do
+   end subroutine work_precision
+
+   !> Run and time (best of `repeats` when the run is shorter than 0.2 s).
+   subroutine timed_run(prob, cfg, out, u0, v0, repeats, res, seconds, err)
+      type(problem_t), intent(in) :: prob
+      type(solver_settings_t), intent(in) :: cfg
+      type(output_settings_t), intent(in) :: out
+      real(dp), intent(in) :: u0(:), v0(:)
+      integer, intent(in) :: repeats
+      type(transient_result_t), intent(out) :: res
+      real(dp), intent(out) :: seconds
+      type(error_t), allocatable, intent(out) :: err
+      integer(int64) :: c0, c1, rate
+      integer :: r
+      real(dp) :: t
+      seconds = huge(1.0_dp)
+      do r = 1, max(1, repeats)
+         call system_clock(c0, rate)
+         call integrate(prob, cfg, out, u0, v0, res, err)
+         call system_clock(c1)
+         t = real(c1 - c0, dp) / real(rate, dp)
+         seconds = min(seconds, t)
+         if (allocated(err) .or. t > 0.2_dp) exit
+      end do
+   end subroutine timed_run
+
+   !> Elapsed time for a series to reach an error level (log-log interpolation between the
+   !> runs that bracket it); a negative number when the series never reaches it.
+   pure real(dp) function cpu_to_reach(sr, level) result(t)
+      type(series_result_t), intent(in) :: sr      !! series
+      real(dp), intent(in) :: level                !! error level [-]
+      integer :: k
+      real(dp) :: w
+      t = -1.0_dp
+      do k = 1, size(sr%error)
+         if (sr%status(k) /= 0) cycle
+         if (sr%error(k) <= level) then
+            if (k > 1) then
+               if (sr%status(k - 1) == 0 .and. sr%error(k - 1) > level .and. &
+                   sr%error(k) > 0.0_dp) then
+                  w = log(level / sr%error(k - 1)) / log(sr%error(k) / sr%error(k - 1))
+                  t = exp(log(sr%seconds(k - 1)) + w * (log(sr%seconds(k)) &
+                      - log(sr%seconds(k - 1))))
+                  return
+               end if
+            end if
+            t = sr%seconds(k)
+            return
+         end if
+      end do
+   end function cpu_to_reach
+
+   !> Spectral radius against omega dt for each method, and the largest stable fixed steps.
+   subroutine stability_study(prob, st, methods, omega_dt, rho, steps, err)
+      type(problem_t), intent(in) :: prob                  !! model for the stable steps
+      type(study_settings_t), intent(in) :: st             !! chart range
+      character(len=*), intent(in) :: methods(:)           !! series words (no 'exact')
+      real(dp), allocatable, intent(out) :: omega_dt(:)    !! chart abscissae [-]
+      real(dp), allocatable, intent(out) :: rho(:, :)      !! (points, methods) [-]
+      type(stable_step_t), allocatable, intent(out) :: steps(:)  !! conditionally stable ones
+      type(error_t), allocatable, intent(out) :: err       !! a method cannot run
+      type(solver_settings_t) :: cfg, base
+      type(study_settings_t) :: one
+      real(dp) :: param
+      character(len=:), allocatable :: pname
+      integer :: i, m, ns
+      logical :: known
+      real(dp), parameter :: limits(4) = [2.0_dp, 3.4641016151377544_dp, 2.449489742783178_dp, &
+                                          2.8284271247461903_dp]
+      character(len=*), parameter :: conditional(4) = [character(len=20) :: &
+         'central_difference', 'linear_acceleration', 'fox_goodwin', 'rk4']
+      one = st;  one%base_steps = 64
+      allocate(omega_dt(st%n_omega_dt), rho(st%n_omega_dt, size(methods)))
+      do i = 1, st%n_omega_dt
+         omega_dt(i) = st%omega_dt_min * (st%omega_dt_max / st%omega_dt_min)**(real(i - 1, dp) &
+                       / max(1, st%n_omega_dt - 1))
+      end do
+      do m = 1, size(methods)
+         known = series_setting(trim(methods(m)), 1, one, base, cfg, param, pname)
+         if (.not. known .or. cfg%method == 'exact') then
+            call fatal_error(err, "stability: no amplification matrix for '" // trim(methods(m)) &
+               // "'")
+            return
+         end if
+         do i = 1, size(omega_dt)
+            call spectral_radius(cfg, omega_dt(i), rho(i, m), err)
+            if (allocated(err)) return
+         end do
+      end do
+      allocate(steps(4))
+      do ns = 1, 4
+         known = series_setting(trim(conditional(ns)), 1, one, base, cfg, param, pname)
+         steps(ns)%name = trim(conditional(ns))
+         steps(ns)%limit = limits(ns)
+         steps(ns)%theory = limits(ns) / prob%omega_max
+         call largest_stable_step(prob, cfg, 0.5_dp * steps(ns)%theory, 3000, 1.0e-4_dp, &
+                                  steps(ns)%measured, err)
+         if (allocated(err)) return
+      end do
+   end subroutine stability_study
+
+   real(dp) function energy_norm(prob, u, v)
+      type(problem_t), intent(in) :: prob
+      real(dp), intent(in) :: u(:), v(:)
+      energy_norm = sqrt(max(0.0_dp, dot_product(u, matmul(prob%sys%k, u)) &
+                         + dot_product(v, matmul(prob%sys%m, v))))
+   end function energy_norm
+end module gapbeam_studies
