@@ -868,23 +868,39 @@ contains
       type(source_t), intent(in) :: srcs(:)
       type(output_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      real(dp) :: poincare_phase_deg
-      integer :: samples_per_period, history_periods
+      real(dp) :: poincare_phase_deg, filter_cutoff_hz
+      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period
       logical :: write_text
-      namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text
+      namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
+         filter_cutoff_hz, filter_order, filter_samples_per_period
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
+      filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
+      filter_samples_per_period = cfg%filter_samples_per_period
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
-         // 'write_text', reader, err)
+         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period', reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
       call require_int('output', 'samples_per_period', samples_per_period, 1, 100000, err)
       call require_int('output', 'history_periods', history_periods, 0, huge(1), err)
       if (allocated(err)) return
+      call require_nonnegative('output', 'filter_cutoff_hz', filter_cutoff_hz, err)
+      call require_int('output', 'filter_order', filter_order, 1, 12, err)
+      call require_int('output', 'filter_samples_per_period', filter_samples_per_period, 16, &
+         1000000, err)
+      if (allocated(err)) return
+      if (filter_cutoff_hz > 0.0_dp .and. mod(filter_samples_per_period, samples_per_period) &
+          /= 0) then
+         call fatal_error(err, 'group &output: filter_samples_per_period = ' &
+            // str(filter_samples_per_period) // ': must be a multiple of samples_per_period = ' &
+            // str(samples_per_period) // ' (the filtered history is taken at the filter samples)')
+         return
+      end if
       cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
          samples_per_period=samples_per_period, history_periods=history_periods, &
-         write_text=write_text)
+         write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
+         filter_samples_per_period=filter_samples_per_period)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

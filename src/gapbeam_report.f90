@@ -131,7 +131,7 @@ contains
       character(len=:), allocatable :: prefix
       real(dp), allocatable :: cols(:, :)
       character(len=20), allocatable :: names(:), units(:)
-      integer :: j, ns
+      integer :: j, ns, nf
       prefix = trim(deck%job%output)
       ns = prob%n_stops
       call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
@@ -140,6 +140,12 @@ contains
       call h5%write('/history/time', res%time, 's', err);  if (failed()) return
       call h5%write('/history/strain', res%strain, '-', err);  if (failed()) return
       call h5%write('/history/strain_rate', res%strain_rate, '1/s', err);  if (failed()) return
+      if (deck%output%filter_cutoff_hz > 0.0_dp) then
+         call h5%write('/history/strain_filtered', res%strain_filtered, '-', err)
+         if (failed()) return
+         call h5%write('/poincare/filter_cutoff_hz', deck%output%filter_cutoff_hz, 'Hz', err)
+         if (failed()) return
+      end if
       call h5%write('/history/tip_displacement', res%tip_displacement, 'm', err)
       if (failed()) return
       call h5%write('/history/stop_force', res%stop_force, 'N', err);  if (failed()) return
@@ -190,7 +196,8 @@ contains
       call h5%close(err);  if (allocated(err)) return
 
       if (.not. deck%output%write_text) return
-      allocate(cols(size(res%time), 4 + ns), names(4 + ns), units(4 + ns))
+      nf = merge(1, 0, deck%output%filter_cutoff_hz > 0.0_dp)
+      allocate(cols(size(res%time), 4 + ns + nf), names(4 + ns + nf), units(4 + ns + nf))
       cols(:, 1) = res%time;  cols(:, 2) = res%strain;  cols(:, 3) = res%strain_rate
       cols(:, 4) = res%tip_displacement
       names(1:4) = [character(len=20) :: 'time', 'strain', 'strain_rate', 'tip_displacement']
@@ -199,6 +206,10 @@ contains
          cols(:, 4 + j) = res%stop_force(:, j)
          names(4 + j) = 'stop_force_' // str(j);  units(4 + j) = 'N'
       end do
+      if (nf == 1) then
+         cols(:, 5 + ns) = res%strain_filtered
+         names(5 + ns) = 'strain_filtered';  units(5 + ns) = '-'
+      end if
       call write_table(prefix // '.history.dat', trim(deck%job%title), names, units, cols, err)
       if (allocated(err)) return
       deallocate(cols)

@@ -49,6 +49,9 @@ module gapbeam_settings
       integer  :: samples_per_period = 64       !! history samples per forcing period [-]
       integer  :: history_periods = 20          !! periods of history kept (start of record) [-]
       logical  :: write_text = .true.           !! gnuplot-ready .dat files next to the HDF5
+      real(dp) :: filter_cutoff_hz = 0.0_dp     !! low-pass before Poincare sampling (0: off) [Hz]
+      integer  :: filter_order = 4              !! Butterworth order of that filter [-]
+      integer  :: filter_samples_per_period = 256  !! filter sampling rate / forcing frequency [-]
    end type output_settings_t
 
    !> Initial state relative to the base: at rest, or given values at listed dofs.

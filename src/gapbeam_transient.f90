@@ -21,6 +21,7 @@ module gapbeam_transient
    use gapbeam_contact, only: contact_force, law_bilinear
    use gapbeam_model, only: dof_name
    use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_filter, only: lowpass_t, design_lowpass
    implicit none
    private
    public :: transient_result_t, run_transient, initial_acceleration, dof_label
@@ -32,6 +33,7 @@ module gapbeam_transient
    type :: transient_result_t
       real(dp), allocatable :: time(:)              !! history sample times [s]
       real(dp), allocatable :: strain(:)            !! root strain [-]
+      real(dp), allocatable :: strain_filtered(:)   !! low-pass filtered root strain (if asked) [-]
       real(dp), allocatable :: strain_rate(:)       !! root strain rate [1/s]
       real(dp), allocatable :: tip_displacement(:)  !! tip w relative to the base [m]
       real(dp), allocatable :: stop_force(:, :)     !! (samples, stops) contact force [N]
@@ -160,7 +162,11 @@ contains
       integer(int64), allocatable :: nt_of(:)
       real(dp) :: period, dt_max, tick_dt, t0, t1, ratio, r, t_rec, theta, dt_r, t_cur, &
          dt_prev, t_h, t_p, t_rec_len, fsum
-      logical :: ok, half_step, recording, all_found, embedded
+      logical :: ok, half_step, recording, all_found, embedded, filtering
+      type(lowpass_t) :: fil_s, fil_r
+      integer(int64) :: jf, jp_next, jh_next
+      integer :: nf, ipf, ihf
+      real(dp) :: dt_f
       integer :: n_since
       real(dp) :: energy, energy_ref
       real(dp) :: eratio
@@ -228,6 +234,21 @@ contains
       allocate(res%peak_force(ns), acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), &
                source=0.0_dp)
       ih = 1;  ip = 1;  next_sample = -huge(1.0_dp);  all_found = ns == 0
+      filtering = out%filter_cutoff_hz > 0.0_dp
+      allocate(res%strain_filtered(merge(n_hist, 0, filtering)))
+      if (filtering) then
+         nf = out%filter_samples_per_period
+         dt_f = period / real(nf, dp)
+         call design_lowpass(out%filter_order, out%filter_cutoff_hz, 1.0_dp / dt_f, fil_s, err)
+         if (allocated(err)) then
+            err%message = 'group &output: ' // err%message // ' (the filter samples ' &
+               // str(nf) // ' times per forcing period: raise filter_samples_per_period)'
+            return
+         end if
+         call design_lowpass(out%filter_order, out%filter_cutoff_hz, 1.0_dp / dt_f, fil_r, err)
+         jf = 0;  ipf = 1;  ihf = 1
+         jp_next = poincare_filter_index(1);  jh_next = history_filter_index(1)
+      end if
       res%dt_smallest = huge(1.0_dp);  res%dt_largest = 0.0_dp
 
       tick = 0;  level = 0;  comfortable = 0;  dt_prev = dt_max;  n_since = 0
@@ -582,9 +603,11 @@ contains
             res%p_time(ip) = t_p;  res%p_strain(ip) = st;  res%p_strain_rate(ip) = sv
             ip = ip + 1
          end do
+         if (filtering) call filter_samples(jj)
          next_sample = huge(1.0_dp)
-         if (ih <= n_hist) next_sample = t_rec + real(ih - 1, dp) * period &
-            / real(out%samples_per_period, dp)
+         if (filtering) next_sample = real(jf, dp) * dt_f
+         if (ih <= n_hist) next_sample = min(next_sample, t_rec + real(ih - 1, dp) * period &
+            / real(out%samples_per_period, dp))
          if (ip <= n_poinc) next_sample = min(next_sample, t_rec + (real(ip - 1, dp) &
             + out%poincare_phase_deg / 360.0_dp) * period)
          ! first contact onset of each stop, interpolated linearly in the penetration
@@ -611,6 +634,53 @@ contains
          end if
          call accumulate(jj, h)
       end subroutine record_substep
+
+      !> Feed the low-pass filters with the root strain and its rate at their uniform sample
+      !> times inside sub-step jj (cubic Hermite interpolation); store the filtered values at
+      !> the Poincare instants (the nearest filter sample) and at the history samples.
+      subroutine filter_samples(jj)
+         integer, intent(in) :: jj
+         real(dp) :: ta, tb, h, x, w(8), st, sv, ys, yr, tf
+         integer :: q
+         ta = sub_t(jj - 1);  tb = sub_t(jj);  h = tb - ta
+         do
+            tf = real(jf, dp) * dt_f
+            if (tf > tb + 1.0e-12_dp * period) exit
+            x = min(1.0_dp, max(0.0_dp, (tf - ta) / h))
+            call hermite_weights(x, w(1), w(2), w(3), w(4), w(5), w(6), w(7), w(8))
+            st = 0.0_dp;  sv = 0.0_dp
+            do q = 1, size(si)
+               st = st + sw(q) * (w(1) * sub_u(si(q), jj - 1) + w(2) * h * sub_v(si(q), jj - 1) &
+                    + w(3) * sub_u(si(q), jj) + w(4) * h * sub_v(si(q), jj))
+               sv = sv + sw(q) * (w(5) * sub_u(si(q), jj - 1) + w(6) * h * sub_v(si(q), jj - 1) &
+                    + w(7) * sub_u(si(q), jj) + w(8) * h * sub_v(si(q), jj)) / h
+            end do
+            ys = fil_s%apply(st);  yr = fil_r%apply(sv)
+            if (ipf <= n_poinc .and. jf == jp_next) then
+               res%p_strain(ipf) = ys;  res%p_strain_rate(ipf) = yr
+               ipf = ipf + 1;  jp_next = poincare_filter_index(ipf)
+            end if
+            if (ihf <= n_hist .and. jf == jh_next) then
+               res%strain_filtered(ihf) = ys
+               ihf = ihf + 1;  jh_next = history_filter_index(ihf)
+            end if
+            jf = jf + 1
+         end do
+      end subroutine filter_samples
+
+      !> Filter sample index of Poincare point k (the nearest to its instant).
+      integer(int64) function poincare_filter_index(k)
+         integer, intent(in) :: k
+         poincare_filter_index = int(cfg%transient_periods + k - 1, int64) * nf &
+            + nint(out%poincare_phase_deg / 360.0_dp * nf, int64)
+      end function poincare_filter_index
+
+      !> Filter sample index of history sample i.
+      integer(int64) function history_filter_index(i)
+         integer, intent(in) :: i
+         history_filter_index = int(cfg%transient_periods, int64) * nf &
+            + int(i - 1, int64) * (nf / out%samples_per_period)
+      end function history_filter_index
 
       !> Impact statistics of the record (trapezoid over sub-step jj of length h).
       subroutine accumulate(jj, h)
