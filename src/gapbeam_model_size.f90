@@ -7,8 +7,8 @@
 !> the distance of its Poincare set to the finest model's, the peak stop force, and the
 !> elapsed time. The Poincare distance is the modified Hausdorff distance of Dubuisson and
 !> Jain: the larger of the two mean nearest-neighbour distances (candidate to reference and
-!> back) in the plane (strain, strain rate), each axis scaled by the reference's range over the
-!> record. The recommended model is the one with the fewest coordinates (then the least time)
+!> back) in the plane (strain, strain rate), each axis scaled by the range of the reference's
+!> root strain (and strain rate) over the recorded motion, i.e. by the size of its orbit. The recommended model is the one with the fewest coordinates (then the least time)
 !> whose frequency error, label, Poincare distance and peak force all meet the tolerances.
 module gapbeam_model_size
    use, intrinsic :: iso_fortran_env, only: int64
@@ -42,6 +42,8 @@ module gapbeam_model_size
       real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
       real(dp) :: poincare_distance = 0.0_dp         !! to the finest model's set [-]
       real(dp) :: peak_force = 0.0_dp                !! stop 1 [N]
+      real(dp) :: strain_range = 0.0_dp              !! root strain range over the record [-]
+      real(dp) :: strain_rate_range = 0.0_dp         !! root strain rate range [1/s]
       real(dp) :: seconds = 0.0_dp                   !! elapsed time of the run [s]
       logical :: acceptable = .false.                !! meets every tolerance
       integer :: status = 0                          !! 0 done, 1 failed
@@ -85,8 +87,10 @@ contains
       call run_candidate(d, pts(nc), ref_modes, cands(nc), err)   ! slot nc: scratch first
       if (allocated(err)) return
       ref_ps = pts(nc)%p_strain;  ref_pr = pts(nc)%p_strain_rate
-      sx = max(maxval(ref_ps) - minval(ref_ps), 1.0e-12_dp * maxval(abs(ref_ps)), tiny(1.0_dp))
-      sy = max(maxval(ref_pr) - minval(ref_pr), 1.0e-12_dp * maxval(abs(ref_pr)), tiny(1.0_dp))
+      ! scales: the size of the reference orbit (its strain range over the record), so that a
+      ! fixed point of the reference is compared against the motion's size, not zero
+      sx = max(cands(nc)%strain_range, tiny(1.0_dp))
+      sy = max(cands(nc)%strain_rate_range, tiny(1.0_dp))
       do k = 1, nc
          call candidate_deck(deck, cands(k)%n_elem, cands(k)%n_modes, &
                              cands(k)%static_correction, d, err)
@@ -229,6 +233,8 @@ contains
       call system_clock(c1)
       if (allocated(err)) return
       cand%seconds = real(c1 - c0, dp) / real(rate, dp)
+      cand%strain_range = res%strain_max - res%strain_min
+      cand%strain_rate_range = res%strain_rate_max - res%strain_rate_min
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
       call point_diagnostics(prob, d%solver, d%diagnostics, res, pr, err)
       if (allocated(err)) return
