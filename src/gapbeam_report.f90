@@ -169,6 +169,23 @@ contains
       call h5%write('/model/stop_stiffness', prob%stop_stiffness, 'N/m', err)
       if (failed()) return
       call h5%write('/model/f1_open_hz', prob%f1_open_hz, 'Hz', err);  if (failed()) return
+      ! the discrete model, so that other tools can integrate exactly the same equations
+      call h5%write('/model/stiffness', prob%sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
+      call h5%write('/model/mass', prob%sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
+      call h5%write('/model/damping', prob%c, 'N s/m, ...', err);  if (failed()) return
+      call h5%write('/model/load_shape', prob%q, 'kg (P = s(t) q)', err);  if (failed()) return
+      call h5%write('/model/forcing_omega', prob%omega, 'rad/s', err);  if (failed()) return
+      call h5%write('/model/forcing_half_amplitude', prob%half_amplitude, &
+                    'm (s(t) = a omega^2 sin(omega t))', err);  if (failed()) return
+      call h5%write('/model/strain_row', prob%sys%strain_row, '1/m', err);  if (failed()) return
+      call h5%write('/model/contact_dof', prob%c_dof, '1-based dof index', err)
+      if (failed()) return
+      call h5%write('/model/contact_sign', prob%c_sign, '-', err);  if (failed()) return
+      call h5%write('/model/contact_gap', prob%c_gap, 'm', err);  if (failed()) return
+      call h5%write('/model/contact_stiffness', prob%c_k, 'N/m', err);  if (failed()) return
+      call h5%write('/model/contact_damping', prob%c_c, 'N s/m', err);  if (failed()) return
+      call h5%write('/model/contact_law', prob%c_law, '1: bilinear, 2: hertz', err)
+      if (failed()) return
       call h5%write('/impacts/count', res%n_impacts, '-', err);  if (failed()) return
       call h5%write('/impacts/peak_force', res%peak_force, 'N', err);  if (failed()) return
       call h5%write('/impacts/rms_force', res%rms_force, 'N', err);  if (failed()) return
