@@ -49,8 +49,16 @@ index_of(w, list) = (strstrt(" " . list . " ", " " . w . " ") == 0) ? 0 : \
    words(substr(list, 1, strstrt(" " . list . " ", " " . w . " ") - 1)) + 1
 colour(i) = (index_of(name(i), known) > 0) ? word(palette, index_of(name(i), known)) \
    : word(spare, (i - 2) % words(spare) + 1)
-# Line width: widest first, so that curves lying on each other at radius 1 all show.
-lwidth(i) = 1.5 + 1.2*(ncol - i)
+# Methods lying on the line at 1 (|radius - 1| < 1e-6 wherever omega dt <= 1, e.g. the trapezoidal
+# rule, and the explicit methods below their limits): drawn after the others, widest first (2 px
+# steps), so that each shows as a coloured band, and named in a note above the line.
+flat = system("awk '!/^[[:space:]]*(#|$)/ && $1 <= 1 { for (i = 2; i <= NF; i++) if ($i - 1 > 1e-6 || 1 - $i > 1e-6) off[i] = 1; n = NF } END { s = \"\"; for (i = 2; i <= n; i++) if (!(i in off)) s = s \" \" i; print s }' " . shquote(datafile))
+nflat = words(flat)
+flat_rank(i) = (strstrt(flat . " ", " " . sprintf("%d", i) . " ") == 0) ? 0 : \
+   words(substr(flat, 1, strstrt(flat . " ", " " . sprintf("%d", i) . " "))) + 1
+lwidth(i) = (flat_rank(i) > 0) ? 2.0 + 2.0*(nflat - flat_rank(i)) : 2.0
+flat_names = ""
+do for [k = 1 : nflat] { flat_names = flat_names . ((k > 1) ? ", " : "") . name(int(word(flat, k))) }
 
 set output outfile
 set title sprintf("%s\nspectral radius of one step, undamped test equation (%d methods)", \
@@ -64,22 +72,35 @@ set format x "%g"
 set mxtics 10
 set ytics 0.25
 set grid xtics ytics lc rgb "#d8d8d8"
-set key left bottom invert opaque box lc rgb "#b0b0b0" spacing 1.1 width 1
+set key right bottom opaque box lc rgb "#b0b0b0" spacing 1.1 width 1
 
-# Theoretical limits (omega dt): dotted vertical lines, labelled in steps above the line at 1.
+# Theoretical limits (omega dt): dotted vertical lines, labelled near the bottom, each label
+# ending at its line, in steps (the curves there are all above 0.5).
 limit_x = "2.0 2.449489742783178 2.8284271247461903 3.4641016151377544"
-limit_tag = "CD FG RK4 LA"
-limit_text = "2 sqrt(6) 2sqrt(2) 2sqrt(3)"
+limit_text = "CD: 2|FG: sqrt(6) = 2.449|RK4: 2 sqrt(2) = 2.828|LA: 2 sqrt(3) = 3.464"
+field(s, k) = (k == 1) ? s[1 : strstrt(s . "|", "|") - 1] : field(s[strstrt(s, "|") + 1 :], k - 1)
 set style textbox opaque noborder margins 1, 1
 do for [k = 1 : 4] {
    xl = real(word(limit_x, k))
-   set arrow k from xl, graph 0 to xl, graph 1 nohead dt 3 lw 1.2 lc rgb "#404040" front
-   set label 10 + k sprintf("%s: %s", word(limit_tag, k), word(limit_text, k)) \
-      at xl/1.04, 1.46 - 0.075*(k - 1) right boxed front font ",10"
+   set arrow k from xl, graph 0 to xl, graph 1 nohead dt 3 lw 1.2 lc rgb "#404040" back
+   set label 10 + k field(limit_text, k) at xl/1.02, 0.06 + 0.075*(k - 1) right boxed front \
+      font ",10" textcolor rgb "#303030"
+}
+set label 20 "theoretical stability limits:" at 2.0/1.02, 0.06 + 0.075*4 right front font ",10" \
+   textcolor rgb "#303030"
+if (nflat > 0) {
+   set label 21 sprintf("radius 1 below the limit: %s", flat_names) at 0.013, 1.04 left front \
+      font ",10" textcolor rgb "#303030"
 }
 
-plot 1 with lines dt 2 lw 1.2 lc rgb "#000000" title "radius 1", \
-     for [i = ncol : 2 : -1] datafile using 1:i with lines lw lwidth(i) lc rgb colour(i) \
-        title name(i)
+# Drawing order: the other methods first, then those on the line at 1, widest first, then the
+# dashed line; the legend (NaN entries) lists the methods in the header's order.
+plot for [i = 2 : ncol] datafile using 1:(flat_rank(i) == 0 ? column(i) : NaN) with lines \
+        lw lwidth(i) lc rgb colour(i) notitle, \
+     for [k = 1 : nflat] datafile using 1:int(word(flat, k)) with lines \
+        lw lwidth(int(word(flat, k))) lc rgb colour(int(word(flat, k))) notitle, \
+     1 with lines dt 2 lw 1.2 lc rgb "#000000" notitle, \
+     for [i = 2 : ncol] NaN with lines lw 3 lc rgb colour(i) title name(i), \
+     NaN with lines dt 2 lw 1.2 lc rgb "#000000" title "radius 1"
 
 unset output
