@@ -23,6 +23,18 @@
 #                                         -> PREFIX.lyapunov.png (scripts/lyapunov.gp: largest
 #                                            Lyapunov exponent with error bars, same x as above)
 #                     (PREFIX may be a shard's, PREFIX.shard_I_of_N, or a merged file's prefix.)
+# ANALYSIS=work_precision: PREFIX.wp_<series>.dat (all of them) -> PREFIX.work_precision.png
+#                                           (scripts/work_precision.gp: relative final-state error
+#                                            against elapsed time, log-log, one line per series, the
+#                                            exact integrator as a single marker)
+# ANALYSIS=stability: PREFIX.spectral_radius.dat -> PREFIX.spectral_radius.png
+#                                           (scripts/spectral_radius.gp: spectral radius of one step
+#                                            against omega dt, one curve per method, with the
+#                                            theoretical stability limits)
+# ANALYSIS=model_size: PREFIX.model_size.dat (+ PREFIX.model_size.txt for the candidates' names)
+#                                         -> PREFIX.model_size.png (scripts/model_size.gp: Poincare
+#                                            distance to the reference against run time, log-log,
+#                                            acceptable candidates filled, tolerance line)
 # Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
 # Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
 # Prints `plot: wrote FILE.png` per PNG written. A .dat file that is missing or holds no data row
@@ -45,7 +57,7 @@ analysis=$1
 prefix=$2
 
 case ${analysis} in
-   transient | modes | sweep) ;;
+   transient | modes | sweep | work_precision | stability | model_size) ;;
    *) exit 0 ;;
 esac
 
@@ -148,6 +160,52 @@ case ${analysis} in
       render chaos_map.gp "${prefix}.chaos_map.png" \
          "datafile=$(gp_quote "${points}"); plottitle=$(gp_quote "${title}")"
       render lyapunov.gp "${prefix}.lyapunov.png" "datafile=$(gp_quote "${points}"); ${common}"
+      ;;
+   work_precision)
+      # One table per series, PREFIX.wp_<series>.dat, title line '<deck title>: <series>'; the
+      # script finds them itself. The plot's title: the first table with data rows, less the series.
+      first=""
+      for dat in "${prefix}".wp_*.dat; do
+         if has_data "${dat}"; then
+            first=${dat}
+            break
+         fi
+      done
+      if [[ -z ${first} ]]; then
+         skip "${prefix}.wp_*.dat"
+         exit 0
+      fi
+      title=$(dat_title "${first}")
+      title=${title%: *}
+      render work_precision.gp "${prefix}.work_precision.png" \
+         "prefix=$(gp_quote "${prefix}"); plottitle=$(gp_quote "${title}")"
+      ;;
+   stability)
+      radius="${prefix}.spectral_radius.dat"
+      if ! has_data "${radius}"; then
+         skip "${radius}"
+         exit 0
+      fi
+      # The title line reads '<deck title>: spectral radius of one step, ...'; the plot says that.
+      title=$(dat_title "${radius}")
+      title=${title%%: spectral radius*}
+      render spectral_radius.gp "${prefix}.spectral_radius.png" \
+         "datafile=$(gp_quote "${radius}"); plottitle=$(gp_quote "${title}")"
+      ;;
+   model_size)
+      ladder="${prefix}.model_size.dat"
+      report="${prefix}.model_size.txt"
+      if ! has_data "${ladder}"; then
+         skip "${ladder}"
+         exit 0
+      fi
+      # The title line reads '<deck title>: model-size ladder (...)'; the plot says what it shows.
+      title=$(dat_title "${ladder}")
+      title=${title%%: model-size ladder*}
+      # The report gives the candidates' names; without it the points are labelled #<candidate>.
+      if [[ -f ${report} ]]; then names=${report}; else names=""; fi
+      render model_size.gp "${prefix}.model_size.png" \
+         "datafile=$(gp_quote "${ladder}"); namefile=$(gp_quote "${names}"); plottitle=$(gp_quote "${title}")"
       ;;
 esac
 exit 0

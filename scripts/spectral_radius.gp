@@ -31,8 +31,10 @@ if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
 }
 
 # A text as a shell single-quoted word (a quote inside becomes '\'').
-shq_(s, i) = (i > strlen(s)) ? "" : (((s[i:i] eq "'") ? "'\\''" : s[i:i]) . shq_(s, i + 1))
-shquote(s) = "'" . shq_(s, 1) . "'"
+# (Halving recursion: its depth is log2 of the length.)
+shq_(s) = (strlen(s) <= 1) ? ((s eq "'") ? "'\\''" : s) \
+   : shq_(s[1 : strlen(s)/2]) . shq_(s[strlen(s)/2 + 1 :])
+shquote(s) = "'" . ((strstrt(s, "'") == 0) ? s : shq_(s)) . "'"
 
 # Method names: the header line '# omega_dt name name ...' (the first comment line that starts
 # with omega_dt), without the '#'.

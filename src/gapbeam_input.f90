@@ -1065,9 +1065,7 @@ contains
       real(dp) :: tolerance_start, rtol_start, omega_dt_min, omega_dt_max
       namelist /study/ series, levels, periods, base_steps, tolerance_start, rtol_start, &
          repeats, omega_dt_min, omega_dt_max, n_omega_dt
-      series = ''
-      series(1:8) = [character(len=32) :: 'newmark_half_step', 'newmark_fixed', 'paper', 'hht', &
-         'generalized_alpha', 'rk4', 'rk45', 'exact']
+      series = ''   ! a shorter list in the deck must not inherit the default's tail
       levels = cfg%levels;  periods = cfg%periods;  base_steps = cfg%base_steps
       repeats = cfg%repeats;  n_omega_dt = cfg%n_omega_dt
       tolerance_start = cfg%tolerance_start;  rtol_start = cfg%rtol_start
@@ -1075,6 +1073,8 @@ contains
       call apply_group(srcs, 'study', 'series levels periods base_steps tolerance_start ' &
          // 'rtol_start repeats omega_dt_min omega_dt_max n_omega_dt', reader, err)
       if (allocated(err)) return
+      if (all(len_trim(series) == 0)) series(1:8) = [character(len=32) :: 'newmark_half_step', &
+         'newmark_fixed', 'paper', 'hht', 'generalized_alpha', 'rk4', 'rk45', 'exact']
       n = 0
       do i = 1, size(series)
          if (len_trim(series(i)) == 0) exit

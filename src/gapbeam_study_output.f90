@@ -221,6 +221,12 @@ contains
       do k = 1, n
          if (cands(k)%status /= 0) then
             write(line, '(i3, 2x, a20, a)') k, cands(k)%name, '  failed: ' // cands(k)%message
+         else if (cands(k)%frequency_error > 1.0e300_dp) then
+            ! fewer modes below the cut-off than the reference: no frequency comparison
+            write(line, '(i3, 2x, a20, i7, a10, 2x, a10, es12.3, es15.3, es12.4, es11.3, l4)') &
+               k, cands(k)%name, cands(k)%n_coordinates, '    n/a  ', &
+               label_text(cands(k)%label), cands(k)%lyapunov, cands(k)%poincare_distance, &
+               cands(k)%peak_force, cands(k)%seconds, cands(k)%acceptable
          else
             write(line, '(i3, 2x, a20, i7, es10.2, 2x, a10, es12.3, es15.3, es12.4, es11.3, l4)') &
                k, cands(k)%name, cands(k)%n_coordinates, cands(k)%frequency_error, &
