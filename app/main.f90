@@ -39,7 +39,8 @@ program main
    if (n_args < 1) then
       write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'
       write(error_unit, '(a)') '       gapbeam merge OUT.h5 SHARD.h5 ...'
-      write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. "&forcing frequency_hz=10.2 /"'
+      write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. ' &
+         // '"&forcing frequency_hz=10.2 /"'
       error stop 2
    end if
    allocate(character(len=4096) :: overrides(0))
@@ -396,7 +397,8 @@ contains
          // ' coordinates'
       write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
          // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
-         // str(prob%f1_open_hz) // ' Hz; highest mode ' // str(prob%omega_max / 6.283185307179586_dp) &
+         // str(prob%f1_open_hz) // ' Hz; highest mode ' &
+         // str(prob%omega_max / 6.283185307179586_dp) &
          // ' Hz'
       do j = 1, prob%n_stops
          write(output_unit, '(a)') 'stop ' // str(j) // ': stiffness ' &

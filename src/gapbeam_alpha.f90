@@ -154,6 +154,5 @@ contains
       end do
       a1 = (u1 - u - h * v) / (be * h**2) - (0.5_dp / be - 1.0_dp) * a
       v1 = v + h * ((1.0_dp - ga) * a + ga * a1)
-      if (.false.) ratio = f(1) + f_prev(1) + dt_prev
    end subroutine alpha_step
 end module gapbeam_alpha

@@ -21,7 +21,7 @@ module gapbeam_assembly
       integer :: n_dof = 0                         !! number of free dofs
       integer :: n_node = 0                        !! number of nodes
       integer :: kd = band_kd                      !! semi-bandwidth
-      integer, allocatable :: dof_of(:, :)         !! (2, n_node) global index of (w, theta), 0 if fixed
+      integer, allocatable :: dof_of(:, :)         !! (2, n_node) index of (w, theta), 0: fixed
       real(dp), allocatable :: k(:, :)             !! dense stiffness [N/m ...]
       real(dp), allocatable :: m(:, :)             !! dense mass [kg ...]
       real(dp), allocatable :: k_band(:, :)        !! upper band storage of k

@@ -64,7 +64,7 @@ contains
 
    !> Value of `parameter` (see calibration_words; `index` picks the spring) giving f1 = target.
    subroutine calibrate_parameter(st, parameter, index, target_hz, value, err)
-      type(structure_t), intent(in) :: st             !! structure; its current value seeds the search
+      type(structure_t), intent(in) :: st             !! structure (current value: the seed)
       character(len=*), intent(in) :: parameter       !! which parameter
       integer, intent(in) :: index                    !! spring index for 'spring'
       real(dp), intent(in) :: target_hz               !! target first frequency [Hz]

@@ -21,7 +21,7 @@ module gapbeam_eigen
       real(dp), allocatable :: omega2(:)           !! eigenvalues omega^2 [rad^2/s^2]
       real(dp), allocatable :: frequency_hz(:)     !! natural frequencies [Hz]
       real(dp), allocatable :: shapes(:, :)        !! (n_dof, n_modes) mass-normalised shapes
-      real(dp), allocatable :: participation(:)    !! phi' M r, base-excitation participation [kg^0.5]
+      real(dp), allocatable :: participation(:)    !! phi' M r, base-excitation factor [kg^0.5]
       real(dp), allocatable :: effective_mass(:)   !! (phi' M r)^2 [kg]
       real(dp) :: total_mass = 0.0_dp              !! r' M r, mass moving with the base [kg]
    end type modes_t

@@ -101,7 +101,6 @@ contains
       if (.not. allocated(self%w)) allocate(self%w(prob%n), self%r(prob%n))
       self%dt = dt
       self%ready = .true.
-      if (.false.) self%dt = cfg%newmark_delta
    end subroutine cd_prepare
 
    subroutine cd_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
@@ -129,7 +128,6 @@ contains
       call dpotrs('U', n, 1, self%fac, n, a1, n, info)
       v1 = self%w + 0.5_dp * h * a1
       self%evaluations = self%evaluations + 1
-      if (.false.) ratio = f(1) + f_prev(1) + dt_prev
    end subroutine cd_step
 
    subroutine rk_prepare(self, prob, cfg, dt, err)
@@ -223,7 +221,6 @@ contains
             end do
          end if
       end associate
-      if (.false.) ratio = ratio + f(1) + f_prev(1) + dt_prev
    contains
       subroutine stage(j, cj, aj)
          integer, intent(in) :: j

@@ -8,7 +8,8 @@
 !> elapsed time. The Poincare distance is the modified Hausdorff distance of Dubuisson and
 !> Jain: the larger of the two mean nearest-neighbour distances (candidate to reference and
 !> back) in the plane (strain, strain rate), each axis scaled by the range of the reference's
-!> root strain (and strain rate) over the recorded motion, i.e. by the size of its orbit. The recommended model is the one with the fewest coordinates (then the least time)
+!> root strain (and strain rate) over the recorded motion, i.e. by the size of its orbit. The
+!> recommended model is the one with the fewest coordinates (then the least time)
 !> whose frequency error, label, Poincare distance and peak force all meet the tolerances.
 module gapbeam_model_size
    use, intrinsic :: iso_fortran_env, only: int64

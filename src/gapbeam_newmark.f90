@@ -20,7 +20,8 @@ module gapbeam_newmark
    use gapbeam_settings, only: solver_settings_t
    implicit none
    private
-   public :: newmark_stepper_t, step_op_t, build_step_op, newmark_predict, condensed_contact, fixed_point_step, &
+   public :: newmark_stepper_t, step_op_t, build_step_op, newmark_predict, condensed_contact, &
+      fixed_point_step, &
       newmark_correct, half_step_ratio, state_load, condensed_step
 
    !> Everything one step size needs, factorized once.
@@ -507,7 +508,8 @@ contains
    !>
    !> At t + dt/2 the state follows from the Newmark formulas over dt/2 with the acceleration
    !> varying linearly in the step, a_m = (a0 + a1)/2:
-   !>    u_m = u0 + h v0 + h^2 ((1/2 - alpha) a0 + alpha a_m),  v_m = v0 + h ((1-delta) a0 + delta a_m)
+   !>    u_m = u0 + h v0 + h^2 ((1/2 - alpha) a0 + alpha a_m),
+   !>    v_m = v0 + h ((1-delta) a0 + delta a_m)
    !> (h = dt/2). The residual R = M a_m + C v_m + K u_m - P(t+h) - F_NL(u_m, v_m) is compared
    !> dof by dof with tol * max(|P - F_NL|, |K u_m|, |C v_m|, |M a_m|), that scale being
    !> floored at floor * (its largest value over the dofs). Returns max |R_j| / threshold_j

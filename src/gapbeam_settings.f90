@@ -33,10 +33,10 @@ module gapbeam_settings
       character(len=16) :: step_control = 'half_step' !! 'fixed' or 'half_step'
       integer  :: steps_per_period = 256              !! largest step = T / steps_per_period
       real(dp) :: half_step_tolerance = 0.01_dp       !! residual / largest force term per dof [-]
-      real(dp) :: residual_floor = 1.0e-3_dp          !! force scale floor, fraction of the largest [-]
+      real(dp) :: residual_floor = 1.0e-3_dp          !! force scale floor / the largest scale [-]
       integer  :: max_halvings = 20                   !! smallest step = largest / 2^max_halvings
       integer  :: grow_after = 4                      !! comfortable steps before doubling [-]
-      real(dp) :: grow_ratio = 0.25_dp                !! 'comfortable': residual ratio below this [-]
+      real(dp) :: grow_ratio = 0.25_dp                !! 'comfortable': ratio below this [-]
       logical  :: locate_events = .true.              !! split steps at contact onset/release
       character(len=16) :: linear_solver = 'auto'     !! 'auto', 'dense' or 'banded'
       integer  :: transient_periods = 200             !! forcing periods discarded [-]

@@ -709,7 +709,8 @@ contains
                else
                   acc_contact(k2) = acc_contact(k2) + 0.5_dp * h
                end if
-               if (fb2 > 0.0_dp .and. .not. was_active(c2)) res%n_impacts(k2) = res%n_impacts(k2) + 1
+               if (fb2 > 0.0_dp .and. .not. was_active(c2)) &
+                  res%n_impacts(k2) = res%n_impacts(k2) + 1
                was_active(c2) = fb2 > 0.0_dp
                res%peak_force(k2) = max(res%peak_force(k2), fb2)
             end do

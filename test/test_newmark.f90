@@ -113,7 +113,6 @@ contains
          e_eps = max(e_eps, abs(res%strain(it) - eps))
       end do
       rel_err = max(e_tip / amp, e_eps / amp_eps)
-      if (.false.) i = info
    end subroutine compare_frf
 
    !> Undamped free vibration: energy to round-off, and the period elongation of the
@@ -179,7 +178,8 @@ contains
       call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 3.7e-3 /'], prob, r1)
       call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 7.4e-3 /'], prob, r2)
       d = max(maxval(abs(r2%strain - 2 * r1%strain)) / maxval(abs(r1%strain)), &
-              maxval(abs(r2%p_strain_rate - 2 * r1%p_strain_rate)) / maxval(abs(r1%p_strain_rate)), &
+              maxval(abs(r2%p_strain_rate - 2 * r1%p_strain_rate)) &
+              / maxval(abs(r1%p_strain_rate)), &
               maxval(abs(r2%stop_force - 2 * r1%stop_force)) / maxval(abs(r1%stop_force)))
       call check_le('zero gap: 2x amplitude gives 2x response (half-step control, events)', &
          d, 1.0e-13_dp)
@@ -343,7 +343,8 @@ contains
          // ' for ' // str(int(rf%steps_accepted)) // ' steps')
       call check_le('condensed and fixed point agree where both converge', d, 1.0e-8_dp)
       k_beam = 3 * 1.9918014e-3_dp / 0.2_dp**3
-      write(stiff, '(a, es12.4, a)') '&stops rule_factor = 0.0, stiffness = ', 1.0e6_dp * k_beam, ' /'
+      write(stiff, '(a, es12.4, a)') '&stops rule_factor = 0.0, stiffness = ', &
+         1.0e6_dp * k_beam, ' /'
       call run(ref, [character(len=200) :: fixed, stiff], prob, rc)
       call run(ref, [character(len=200) :: fixed, stiff, &
          "&solver stop_solution = 'fixed_point' /"], prob, rf)

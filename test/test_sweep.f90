@@ -199,7 +199,8 @@ contains
       character(len=*), parameter :: part = "&job output = 'test_sweep_full' /"
       call job([character(len=200) :: full], 1, 1, 0.0_dp, complete)
       call check('single-process sweep completes', complete .and. &
-                 file_exists('test_sweep_full.h5') .and. .not. file_exists('test_sweep_full.checkpoint'))
+                 file_exists('test_sweep_full.h5') .and. &
+                 .not. file_exists('test_sweep_full.checkpoint'))
       call job([character(len=200) :: part], 1, 3, 0.0_dp, complete)
       call job([character(len=200) :: part], 2, 3, 0.0_dp, complete)
       call job([character(len=200) :: part], 3, 3, 0.0_dp, complete)
@@ -244,7 +245,8 @@ contains
       character(len=*), parameter :: res = "&job output = 'test_sweep_resume' /"
       call job([character(len=200) :: res], 1, 1, 1.0e-9_dp, complete)
       call check('time limit stops the sweep with its checkpoint kept', .not. complete .and. &
-         file_exists('test_sweep_resume.checkpoint') .and. .not. file_exists('test_sweep_resume.h5'))
+         file_exists('test_sweep_resume.checkpoint') .and. &
+         .not. file_exists('test_sweep_resume.h5'))
       ! cut the file inside its last record
       open(newunit=u, file='test_sweep_resume.checkpoint', access='stream', form='unformatted', &
            status='old')
