@@ -449,7 +449,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=16) :: condition
       real(dp) :: k_theta
-      namelist /root/ condition, k_theta
+      namelist / root / condition, k_theta
       condition = cfg%condition;  k_theta = cfg%k_theta
       call apply_group(srcs, 'root', 'condition k_theta', reader, err)
       if (allocated(err)) return
