@@ -10,6 +10,7 @@ program test_integrators
    use gapbeam_transient, only: transient_result_t, run_transient
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_stability, only: spectral_radius, largest_stable_step
+   use gapbeam_test_runs, only: run_deck
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: linear = "&stops rule_factor = 0.0, stiffness = 1.0, " &
@@ -31,18 +32,8 @@ contains
       type(transient_result_t), intent(out) :: res
       logical, intent(out), optional :: ok
       character(len=:), allocatable, intent(out), optional :: message
-      type(deck_t) :: deck
       type(error_t), allocatable :: err
-      real(dp), allocatable :: u0(:), v0(:)
-      character(len=300) :: ov(size(overrides))
-      ov = overrides
-      call read_deck(ref, ov, deck, err)
-      if (.not. allocated(err)) call build_problem(deck%structure, deck%stops, deck%damping, &
-                                                   deck%forcing, prob, err)
-      if (.not. allocated(err)) then
-         call initial_vectors(prob, deck%initial, u0, v0)
-         call run_transient(prob, deck%solver, deck%output, u0, v0, res, err)
-      end if
+      call run_deck(ref, overrides, prob, res, err)
       if (present(ok)) then
          ok = .not. allocated(err)
          if (present(message) .and. allocated(err)) message = err%message

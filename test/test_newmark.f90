@@ -8,6 +8,7 @@ program test_newmark
    use gapbeam_transient, only: transient_result_t, run_transient
    use gapbeam_diagnostics, only: detect_period
    use gapbeam_lapack, only: dgesv
+   use gapbeam_test_runs, only: run_deck
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_bilinear.nml'
@@ -34,18 +35,8 @@ contains
       type(problem_t), intent(out) :: prob
       type(transient_result_t), intent(out) :: res
       logical, intent(out), optional :: ok
-      type(deck_t) :: deck
       type(error_t), allocatable :: err
-      real(dp), allocatable :: u0(:), v0(:)
-      character(len=200) :: ov(size(overrides))
-      ov = overrides
-      call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_problem(deck%structure, deck%stops, deck%damping, &
-                                                   deck%forcing, prob, err)
-      if (.not. allocated(err)) then
-         call initial_vectors(prob, deck%initial, u0, v0)
-         call run_transient(prob, deck%solver, deck%output, u0, v0, res, err)
-      end if
+      call run_deck(path, overrides, prob, res, err)
       if (present(ok)) then
          ok = .not. allocated(err)
          if (allocated(err)) call note('run failed: ' // err%message)

@@ -9,6 +9,7 @@ program test_reduction
    use gapbeam_setup, only: build_model
    use gapbeam_transient, only: transient_result_t, run_transient
    use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_test_runs, only: run_deck
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: short = "&solver step_control = 'fixed', " &
@@ -64,14 +65,8 @@ contains
       character(len=*), intent(in) :: overrides(:)
       type(problem_t), intent(out) :: prob
       type(transient_result_t), intent(out) :: res
-      type(deck_t) :: deck
       type(error_t), allocatable :: err
-      real(dp), allocatable :: u0(:), v0(:)
-      character(len=200) :: ov(size(overrides))
-      ov = overrides
-      call read_deck(ref, ov, deck, err)
-      if (.not. allocated(err)) call build_model(deck, prob, u0, v0, err)
-      if (.not. allocated(err)) call run_transient(prob, deck%solver, deck%output, u0, v0, res, err)
+      call run_deck(ref, overrides, prob, res, err)
       if (allocated(err)) then
          call check('run succeeds', .false., err%message)
          call finish('test_reduction')
