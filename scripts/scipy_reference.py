@@ -16,7 +16,7 @@ Equations (relative coordinates, u = v = 0 at t = 0):
     f_c = max(0, k_c d_c + c_c d_c')  while  d_c = s_c u_dof(c) - g_c > 0,  else 0
 
 (the stop force f_c >= 0 pushes the dof back out of the stop; with f_c entering with the
-other sign the solution does not match gapbeam's at all.)  First-order form
+other sign the stop pulls the dof in and the solution blows up.)  First-order form
 y = [u, v], y' = A y + s(t) b + (contact terms), A = [[0, I], [-M^-1 K, -M^-1 C]],
 b = M^-1 q, with M^-1 precomputed (dense) and a vectorised numpy right-hand side.
 
@@ -118,7 +118,10 @@ class Model:
         self._cfg = {}
 
     def energy_norm(self, u, v):
-        return math.sqrt(max(0.0, float(u @ self.K @ u + v @ self.M @ v)))
+        with np.errstate(all="ignore"):
+            val = float(u @ self.K @ u + v @ self.M @ v)
+        # a diverged state must not score as error 0 (max(0, nan) is 0)
+        return math.sqrt(max(0.0, val)) if math.isfinite(val) else math.nan
 
     # -- plain variant ------------------------------------------------------------------------
     def rhs_plain(self):

@@ -1,8 +1,9 @@
 !> Largest Lyapunov exponent of a forced run (Benettin's method with a reference and a
 !> perturbed trajectory renormalised once per forcing period).
 !>
-!> Both trajectories are advanced one forcing period at a time by the Newmark gap solver with
-!> FIXED steps (T / steps_per_period, events located), so that the two follow the same
+!> Both trajectories are advanced one forcing period at a time with the run's method (the
+!> trapezoidal rule for the explicit ones) and FIXED steps (T / steps_per_period, events
+!> located), or by the exact integrator, so that the two follow the same
 !> discrete map: an adaptive step sequence would differ between them and its local errors
 !> would swamp a small separation. The separation is measured in the energy norm
 !> ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the state, and
@@ -48,6 +49,13 @@ contains
 
       period = 2.0_dp * pi / prob%omega
       one = cfg
+      ! the explicit methods are only conditionally stable at T/steps_per_period: the
+      ! exponent (a property of the model) is then taken with the trapezoidal rule
+      select case (cfg%method)
+      case ('rk4', 'rk45', 'central_difference')
+         one%method = 'newmark';  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
+         one%stop_solution = 'condensed'
+      end select
       one%step_control = 'fixed'
       one%locate_events = .true.
       one%transient_periods = 0
