@@ -9,6 +9,7 @@ program test_exact
    use gapbeam_transient, only: transient_result_t, run_transient
    use gapbeam_eigen, only: modes_t, solve_modes
    use gapbeam_exact, only: run_exact
+   use gapbeam_test_runs, only: run_deck
    implicit none
    !> extended precision for reference sums (double where the compiler has none)
    integer, parameter :: qp = max(selected_real_kind(30), selected_real_kind(15))
@@ -35,6 +36,7 @@ program test_exact
    call newmark_converges_to_exact()
    call filtered_strain()
    call unsupported_models()
+   call fifteen_elements_against_rk4()
    call finish('test_exact')
 
 contains
@@ -653,4 +655,34 @@ contains
          message=msg)
       call check('stop on a massless dof rejected: ' // msg, index(msg, 'massless') > 0)
    end subroutine unsupported_models
+   !> 15 elements (highest modes ~27 000 rad/s, so dgeev's eigenpairs alone are accurate to
+   !> eps ||A|| ~ 1e-5 only): the exact final state against RK4 at T/16384 over 2 periods with
+   !> impacts (RK4 there converges to about 1e-13).
+   subroutine fifteen_elements_against_rk4()
+      type(problem_t) :: pe, pr
+      type(transient_result_t) :: re, rr
+      type(error_t), allocatable :: err
+      real(dp) :: d, nrm
+      character(len=*), parameter :: o15 = '&beam n_elem = 15 / &stops node = 16 / ' &
+         // '&solver transient_periods = 0, record_periods = 2 / ' &
+         // '&diagnostics lyapunov_periods = 0 /'
+      call run_deck('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: o15, &
+         "&solver method = 'exact' /"], pe, re, err)
+      if (.not. allocated(err)) call run_deck('inputs/moon_shaw_10p5hz.nml', &
+         [character(len=200) :: o15, "&solver method = 'rk4', step_control = 'fixed', " &
+         // 'steps_per_period = 16384 /'], pr, rr, err)
+      if (allocated(err)) then
+         call check('15 elements: runs succeed', .false., err%message)
+         return
+      end if
+      nrm = sqrt(dot_product(rr%u, matmul(pr%sys%k, rr%u)) &
+                 + dot_product(rr%v, matmul(pr%sys%m, rr%v)))
+      d = sqrt(dot_product(re%u - rr%u, matmul(pr%sys%k, re%u - rr%u)) &
+               + dot_product(re%v - rr%v, matmul(pr%sys%m, re%v - rr%v))) / nrm
+      call note('15 elements, 2 periods with ' // str(re%n_impacts(1)) // ' impacts: exact ' &
+         // 'against RK4 T/16384, relative energy-norm difference ' // str(d))
+      call check('15 elements: exact integrator within 1e-10 of converged RK4', &
+         d <= 1.0e-10_dp .and. re%n_impacts(1) > 0)
+   end subroutine fifteen_elements_against_rk4
+
 end program test_exact
