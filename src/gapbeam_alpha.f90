@@ -20,6 +20,7 @@ module gapbeam_alpha
    use gapbeam_stepper, only: stepper_t
    use gapbeam_contact, only: solve_scalar_contact
    use gapbeam_linalg, only: dense_matvec
+   use gapbeam_newmark, only: state_load
    implicit none
    private
    public :: alpha_stepper_t, alpha_parameters
@@ -109,8 +110,8 @@ contains
       n = prob%n;  h = self%dt
       am = self%am;  af = self%af;  be = self%beta;  ga = self%gamma
       ok = .true.;  ratio = -1.0_dp
-      s0 = prob%half_amplitude * prob%omega**2 * sin(prob%omega * t0)
-      s1 = prob%half_amplitude * prob%omega**2 * sin(prob%omega * (t0 + h))
+      s0 = state_load(prob, t0)
+      s1 = state_load(prob, t0 + h)
       ! rhs = (1-af) P1 + af P0 - am M a - af C v - af K u
       !       + (1-am) M [u/(be h^2) + v/(be h) + (1/(2be) - 1) a]
       !       + (1-af) C [ga/(be h) u - (1 - ga/be) v - h (1 - ga/(2 be)) a]

@@ -99,7 +99,7 @@ module gapbeam_exact
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_problem, only: problem_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_transient, only: transient_result_t
+   use gapbeam_transient, only: transient_result_t, allocate_result
    use gapbeam_contact, only: law_bilinear, contact_force
    use gapbeam_lapack, only: dgeev, dgesv, dpotrf, dpotrs, zgesv
    use gapbeam_filter, only: lowpass_t, design_lowpass
@@ -288,14 +288,8 @@ contains
 
       n_hist = min(out%history_periods, cfg%record_periods) * spp
       n_poinc = cfg%record_periods
-      allocate(res%time(n_hist), res%strain(n_hist), res%strain_rate(n_hist), &
-               res%tip_displacement(n_hist), res%stop_force(n_hist, ns))
-      allocate(res%p_time(n_poinc), res%p_strain(n_poinc), res%p_strain_rate(n_poinc), &
-               res%p_tip(n_poinc), res%p_tip_velocity(n_poinc))
-      allocate(res%n_impacts(ns), source=0)
-      allocate(res%first_contact_time(ns), source=-1.0_dp)
-      allocate(res%peak_force(ns), acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), &
-               source=0.0_dp)
+      call allocate_result(res, n_hist, n_poinc, ns)
+      allocate(acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), source=0.0_dp)
       ! low-pass filter of the root strain and its rate (as run_transient): uniform samples
       ! from t = 0; the filtered values replace the Poincare strain and fill strain_filtered
       filtering = out%filter_cutoff_hz > 0.0_dp

@@ -15,6 +15,7 @@ module gapbeam_explicit
    use gapbeam_stepper, only: stepper_t
    use gapbeam_contact, only: contact_force
    use gapbeam_linalg, only: dense_matvec
+   use gapbeam_newmark, only: state_load
    implicit none
    private
    public :: central_difference_t, runge_kutta_t
@@ -119,7 +120,7 @@ contains
       ok = .true.;  ratio = -1.0_dp
       u1 = u + h * v + 0.5_dp * h**2 * a
       self%w = v + 0.5_dp * h * a                       ! velocity predictor
-      s1 = prob%half_amplitude * prob%omega**2 * sin(prob%omega * (t0 + h))
+      s1 = state_load(prob, t0 + h)
       call dense_matvec(n, prob%sys%k, u1, a1)
       call dense_matvec(n, prob%c, self%w, self%r)
       self%r = s1 * prob%q - a1 - self%r
@@ -157,7 +158,7 @@ contains
       n = prob%n
       call dense_matvec(n, prob%sys%k, u, acc)
       call dense_matvec(n, prob%c, v, self%r)
-      self%r = prob%half_amplitude * prob%omega**2 * sin(prob%omega * t) * prob%q - acc - self%r
+      self%r = state_load(prob, t) * prob%q - acc - self%r
       call contact_forces(prob, u, v, hold, f, self%r)
       acc = self%r
       call dpotrs('U', n, 1, self%mfac, n, acc, n, info)

@@ -24,7 +24,7 @@ module gapbeam_transient
    use gapbeam_filter, only: lowpass_t, design_lowpass
    implicit none
    private
-   public :: transient_result_t, run_transient, initial_acceleration, dof_label
+   public :: transient_result_t, run_transient, initial_acceleration, dof_label, allocate_result
 
    integer, parameter :: max_sub = 8   ! sub-steps of one step at most (event splits)
    real(dp), parameter :: min_split = 1.0e-3_dp   ! no sub-step shorter than this fraction of a step
@@ -66,6 +66,20 @@ module gapbeam_transient
    end type transient_result_t
 
 contains
+
+   !> Allocate the result arrays: history (n_hist samples), Poincare (n_poinc points) and the
+   !> per-stop statistics (ns stops), zeroed; first contact times -1 (none yet).
+   subroutine allocate_result(res, n_hist, n_poinc, ns)
+      type(transient_result_t), intent(inout) :: res   !! results
+      integer, intent(in) :: n_hist, n_poinc, ns        !! sizes
+      allocate(res%time(n_hist), res%strain(n_hist), res%strain_rate(n_hist), &
+               res%tip_displacement(n_hist), res%stop_force(n_hist, ns))
+      allocate(res%p_time(n_poinc), res%p_strain(n_poinc), res%p_strain_rate(n_poinc), &
+               res%p_tip(n_poinc), res%p_tip_velocity(n_poinc))
+      allocate(res%n_impacts(ns), source=0)
+      allocate(res%first_contact_time(ns), source=-1.0_dp)
+      allocate(res%peak_force(ns), source=0.0_dp)
+   end subroutine allocate_result
 
    !> 'node 5 w' style label of a global dof.
    function dof_label(prob, i) result(s)
@@ -225,14 +239,8 @@ contains
 
       n_hist = min(out%history_periods, cfg%record_periods) * out%samples_per_period
       n_poinc = cfg%record_periods
-      allocate(res%time(n_hist), res%strain(n_hist), res%strain_rate(n_hist), &
-               res%tip_displacement(n_hist), res%stop_force(n_hist, ns))
-      allocate(res%p_time(n_poinc), res%p_strain(n_poinc), res%p_strain_rate(n_poinc), &
-               res%p_tip(n_poinc), res%p_tip_velocity(n_poinc))
-      allocate(res%n_impacts(ns), source=0)
-      allocate(res%first_contact_time(ns), source=-1.0_dp)
-      allocate(res%peak_force(ns), acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), &
-               source=0.0_dp)
+      call allocate_result(res, n_hist, n_poinc, ns)
+      allocate(acc_f2(ns), acc_f(ns), acc_contact(ns), acc_work(ns), source=0.0_dp)
       ih = 1;  ip = 1;  next_sample = -huge(1.0_dp);  all_found = ns == 0
       filtering = out%filter_cutoff_hz > 0.0_dp
       allocate(res%strain_filtered(merge(n_hist, 0, filtering)))
