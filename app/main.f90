@@ -5,33 +5,21 @@ program main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_assembly, only: system_t, assemble
-   use gapbeam_eigen, only: modes_t, solve_modes
-   use gapbeam_calibration, only: calibrate_parameter, first_frequency
-   use gapbeam_problem, only: problem_t, build_problem, resolve_stop_stiffness, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient
-   use gapbeam_damping, only: modal_damping_ratio
-   use gapbeam_model, only: beam_ei, beam_rho_a, beam_mass, structure_t
-   use gapbeam_report, only: write_modes, write_transient, write_calibration
-   use gapbeam_sweep_driver, only: run_sweep_job, sweep_prefix, status_interrupted
+   use gapbeam_deck, only: deck_t
+   use gapbeam_settings, only: batch_options_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
+      run_stability, run_model_size
+   use gapbeam_sweep_job, only: run_sweep_job, sweep_prefix, status_interrupted
    use gapbeam_sweep_output, only: merge_sweep
-   use gapbeam_sweep, only: point_result_t, point_diagnostics
-   use gapbeam_diagnostics, only: label_text
    use gapbeam_blas_threads, only: serial_blas
-   use gapbeam_setup, only: build_model
-   use gapbeam_integrate, only: integrate
-   use gapbeam_studies, only: series_result_t, stable_step_t, work_precision, stability_study
-   use gapbeam_study_output, only: write_work_precision, write_stability, &
-      work_precision_summary, write_model_size
-   use gapbeam_model_size, only: candidate_t, model_size_study
    implicit none
    type(deck_t) :: deck
    type(error_t), allocatable :: err
    character(len=:), allocatable :: path, arg
    character(len=:), allocatable :: overrides(:)
-   integer :: i, n_args, shard_index, shard_count, ios
-   real(dp) :: time_limit
+   type(batch_options_t) :: batch
+   integer :: i, n_args, ios
    logical :: complete
 
    if (serial_blas()) continue     ! results must not depend on BLAS threads
@@ -44,7 +32,6 @@ program main
       error stop 2
    end if
    allocate(character(len=4096) :: overrides(0))
-   shard_index = 1;  shard_count = 1;  time_limit = 0.0_dp
    i = 0
    do while (i < n_args)
       i = i + 1
@@ -61,7 +48,7 @@ program main
          else
             arg = arg(9:)
          end if
-         call parse_shard(arg, shard_index, shard_count)
+         call parse_shard(arg, batch%shard_index, batch%shard_count)
       else if (arg == '--time-limit' .or. index(arg, '--time-limit=') == 1) then
          if (arg == '--time-limit') then
             i = i + 1
@@ -70,8 +57,8 @@ program main
          else
             arg = arg(14:)
          end if
-         read(arg, *, iostat=ios) time_limit
-         if (ios /= 0 .or. .not. (time_limit > 0.0_dp)) call fail_text("--time-limit '" &
+         read(arg, *, iostat=ios) batch%time_limit_s
+         if (ios /= 0 .or. .not. (batch%time_limit_s > 0.0_dp)) call fail_text("--time-limit '" &
             // arg // "': expected a positive number of seconds")
       else
          overrides = [character(len=4096) :: overrides, arg]
@@ -84,10 +71,8 @@ program main
 
    call read_deck(path, overrides, deck, err)
    if (allocated(err)) call fail(err)
-   deck%sweep%shard_index = shard_index
-   deck%sweep%shard_count = shard_count
-   deck%sweep%time_limit_s = time_limit
-   if ((shard_count > 1 .or. time_limit > 0.0_dp) .and. deck%job%analysis /= 'sweep') &
+   if ((batch%shard_count > 1 .or. batch%time_limit_s > 0.0_dp) .and. &
+       deck%job%analysis /= 'sweep') &
       call fail_text(path // ": --shard and --time-limit apply to analysis='sweep' only " &
       // "(this deck runs '" // trim(deck%job%analysis) // "')")
    write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
@@ -106,9 +91,9 @@ program main
    case ('model_size')
       call run_model_size(deck, err)
    case ('sweep')
-      call run_sweep_job(deck, complete, err)
+      call run_sweep_job(deck, batch, complete, err)
       if (allocated(err)) call fail(err)
-      write(output_unit, '(a)') 'output: ' // sweep_prefix(deck)
+      write(output_unit, '(a)') 'output: ' // sweep_prefix(deck, batch)
       if (.not. complete) error stop status_interrupted
       stop
    end select
@@ -186,257 +171,4 @@ contains
       error stop 1
    end subroutine fail
 
-   subroutine describe_structure(st)
-      type(structure_t), intent(in) :: st
-      write(output_unit, '(a)') 'beam: L = ' // str(st%beam%length) // ' m, ' &
-         // str(st%beam%n_elem) // ' elements, EI = ' // str(beam_ei(st%beam)) &
-         // ' N m^2, rho A = ' // str(beam_rho_a(st%beam)) // ' kg/m, mass = ' &
-         // str(beam_mass(st%beam)) // ' kg, ' // trim(st%beam%mass_matrix) // ' mass' &
-         // rotary_text(st)
-      if (st%root%condition == 'spring') then
-         write(output_unit, '(a)') 'root: rotational spring k_theta = ' // str(st%root%k_theta) &
-            // ' N m/rad (kappa = k_theta L / EI = ' &
-            // str(st%root%k_theta * st%beam%length / beam_ei(st%beam)) // ')'
-      else
-         write(output_unit, '(a)') 'root: clamped'
-      end if
-   end subroutine describe_structure
-
-   function rotary_text(st) result(t)
-      type(structure_t), intent(in) :: st
-      character(len=:), allocatable :: t
-      t = ''
-      if (st%beam%mass_matrix == 'lumped') t = ' (rotary inertia: ' &
-         // trim(st%beam%rotary_inertia) // ')'
-   end function rotary_text
-
-   subroutine run_modes(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      type(system_t) :: sys
-      type(modes_t) :: modes
-      real(dp), allocatable :: k_stop(:)
-      real(dp) :: f1_open
-      integer :: j, n_print
-      character(len=120) :: line
-      call describe_structure(dk%structure)
-      call assemble(dk%structure, sys)
-      call solve_modes(sys, modes, e)
-      if (allocated(e)) return
-      n_print = modes%n_modes
-      if (dk%n_print_modes > 0) n_print = min(n_print, dk%n_print_modes)
-      write(output_unit, '(a)') 'dofs: ' // str(sys%n_dof) // ', finite modes: ' &
-         // str(modes%n_modes)
-      write(output_unit, '(a)') ' mode   frequency [Hz]   f/f1      participation [kg^0.5]' &
-         // '   effective mass [%]'
-      do j = 1, n_print
-         write(line, '(i5, f16.4, f10.4, es22.6, f17.3)') j, modes%frequency_hz(j), &
-            modes%frequency_hz(j) / modes%frequency_hz(1), modes%participation(j), &
-            100.0_dp * modes%effective_mass(j) / modes%total_mass
-         write(output_unit, '(a)') trim(line)
-      end do
-      if (dk%damping%model /= 'none') then
-         write(output_unit, '(a)') 'Rayleigh damping: beta = ' // str(dk%damping%mass_coefficient) &
-            // ' 1/s, gamma = ' // str(dk%damping%stiffness_coefficient) // ' s; zeta(f1) = ' &
-            // str(modal_damping_ratio(dk%damping%mass_coefficient, &
-            dk%damping%stiffness_coefficient, modes%frequency_hz(1)))
-      end if
-      call resolve_stop_stiffness(dk%structure, dk%stops, k_stop, f1_open, e)
-      if (allocated(e)) return
-      do j = 1, size(dk%stops)
-         write(output_unit, '(a)') 'stop ' // str(j) // ' at node ' // str(dk%stops(j)%node) &
-            // ': stiffness ' // str(k_stop(j)) // ' N/m' // rule_text(dk%stops(j)%rule_factor)
-      end do
-      call write_modes(dk, sys, modes, k_stop, e)
-   end subroutine run_modes
-
-   function method_text(dk) result(t)
-      type(deck_t), intent(in) :: dk
-      character(len=:), allocatable :: t
-      select case (dk%solver%method)
-      case ('newmark')
-         t = 'newmark (delta ' // str(dk%solver%newmark_delta) // ', alpha ' &
-             // str(dk%solver%newmark_alpha) // '), stop force ' // trim(dk%solver%stop_solution)
-      case ('hht')
-         t = 'hht (alpha ' // str(dk%solver%hht_alpha) // ')'
-      case ('generalized_alpha')
-         t = 'generalized_alpha (rho_inf ' // str(dk%solver%rho_infinity) // ')'
-      case ('rk45')
-         t = 'rk45 (rtol ' // str(dk%solver%rk_rtol) // ', atol ' // str(dk%solver%rk_atol) // ')'
-      case default
-         t = trim(dk%solver%method)
-      end select
-   end function method_text
-
-   function rule_text(factor) result(t)
-      real(dp), intent(in) :: factor
-      character(len=:), allocatable :: t
-      t = ''
-      if (factor > 0.0_dp) t = ' (rule: ' // str(factor) // ' x the lowest spring raising f1 ' &
-         // 'to the target)'
-   end function rule_text
-
-   subroutine run_calibrate(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      real(dp) :: value, f1
-      type(structure_t) :: st
-      character(len=:), allocatable :: units
-      call describe_structure(dk%structure)
-      call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
-                               dk%calibrate%target_f1_hz, value, e)
-      if (allocated(e)) return
-      st = dk%structure
-      select case (dk%calibrate%parameter)
-      case ('root_k_theta')
-         st%root%k_theta = value;  units = 'N m/rad'
-      case ('spring')
-         st%springs(dk%calibrate%index)%stiffness = value;  units = 'N/m or N m/rad'
-      case ('thickness')
-         st%beam%thickness = value;  units = 'm'
-      case ('width')
-         st%beam%width = value;  units = 'm'
-      end select
-      call first_frequency(st, f1, e)
-      if (allocated(e)) return
-      write(output_unit, '(a)') 'calibrated ' // trim(dk%calibrate%parameter) // ' = ' &
-         // str(value) // ' ' // units // ' gives f1 = ' // str(f1) // ' Hz (target ' &
-         // str(dk%calibrate%target_f1_hz) // ' Hz)'
-      call write_calibration(dk, value, units, f1, e)
-   end subroutine run_calibrate
-
-   subroutine run_work_precision(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      type(problem_t) :: prob
-      type(series_result_t), allocatable :: results(:)
-      real(dp), allocatable :: u0(:), v0(:)
-      call describe_structure(dk%structure)
-      call build_model(dk, prob, u0, v0, e)
-      if (allocated(e)) return
-      write(output_unit, '(a)') 'work-precision: ' // str(size(dk%study%series)) // ' series x ' &
-         // str(dk%study%levels) // ' levels, ' // str(dk%study%periods) // ' forcing periods ' &
-         // 'from the initial state; reference: the exact integrator'
-      call work_precision(prob, dk%solver, dk%output, u0, v0, dk%study, results, e)
-      if (allocated(e)) return
-      write(output_unit, '(a)') work_precision_summary(results, 'newmark_half_step')
-      call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                'newmark_half_step', e)
-   end subroutine run_work_precision
-
-   subroutine run_stability(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      type(problem_t) :: prob
-      type(stable_step_t), allocatable :: steps(:)
-      real(dp), allocatable :: omega_dt(:), rho(:, :), u0(:), v0(:)
-      character(len=32), allocatable :: methods(:)
-      integer :: k
-      call describe_structure(dk%structure)
-      call build_model(dk, prob, u0, v0, e)
-      if (allocated(e)) return
-      methods = pack(dk%study%series, dk%study%series /= 'exact')
-      call stability_study(prob, dk%study, methods, omega_dt, rho, steps, e)
-      if (allocated(e)) return
-      do k = 1, size(steps)
-         write(output_unit, '(a)') 'largest stable step, ' // steps(k)%name // ': ' &
-            // str(steps(k)%measured) // ' s measured, ' // str(steps(k)%theory) &
-            // ' s theory (' // str(steps(k)%limit) // '/omega_max), ratio ' &
-            // str(steps(k)%measured / steps(k)%theory)
-      end do
-      call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
-                           rho, steps, prob%omega_max, e)
-   end subroutine run_stability
-
-   subroutine run_model_size(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      type(candidate_t), allocatable :: cands(:)
-      integer :: best, k
-      call describe_structure(dk%structure)
-      write(output_unit, '(a)') 'model size: ' // str(size(dk%model_size%elements)) &
-         // ' meshes and ' // str(2 * size(dk%model_size%modes)) // ' modal models against ' &
-         // 'the ' // str(maxval(dk%model_size%elements)) // '-element model'
-      call model_size_study(dk, dk%model_size, cands, best, e)
-      if (allocated(e)) return
-      do k = 1, size(cands)
-         if (cands(k)%status /= 0) then
-            write(output_unit, '(a)') '  ' // cands(k)%name // ': failed: ' // cands(k)%message
-         else
-            write(output_unit, '(a)') '  ' // cands(k)%name // ': ' &
-               // str(cands(k)%n_coordinates) // ' coordinates, f-error ' &
-               // str(cands(k)%frequency_error) // ', ' // label_text(cands(k)%label) &
-               // ', lambda ' // str(cands(k)%lyapunov) // ' 1/s, Poincare distance ' &
-               // str(cands(k)%poincare_distance) // ', peak force ' &
-               // str(cands(k)%peak_force) // ' N, ' // str(cands(k)%seconds) // ' s' &
-               // trim(merge(' ok', '   ', cands(k)%acceptable))
-         end if
-      end do
-      if (best > 0) then
-         write(output_unit, '(a)') 'recommended: ' // cands(best)%name
-      else
-         write(output_unit, '(a)') 'recommended: none meets every tolerance'
-      end if
-      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e)
-   end subroutine run_model_size
-
-   subroutine run_transient_analysis(dk, e)
-      type(deck_t), intent(in) :: dk
-      type(error_t), allocatable, intent(out) :: e
-      type(problem_t) :: prob
-      type(transient_result_t) :: res
-      type(point_result_t) :: diag
-      real(dp), allocatable :: u0(:), v0(:)
-      integer :: j
-      call describe_structure(dk%structure)
-      call build_model(dk, prob, u0, v0, e)
-      if (allocated(e)) return
-      if (dk%reduction%kind == 'modal') write(output_unit, '(a)') 'model: modal, ' &
-         // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
-         '                    ', dk%reduction%static_correction)) // ': ' // str(prob%n) &
-         // ' coordinates'
-      write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
-         // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
-         // str(prob%f1_open_hz) // ' Hz; highest mode ' &
-         // str(prob%omega_max / 6.283185307179586_dp) &
-         // ' Hz'
-      do j = 1, prob%n_stops
-         write(output_unit, '(a)') 'stop ' // str(j) // ': stiffness ' &
-            // str(prob%stop_stiffness(j)) // ' N/m, gap ' // str(dk%stops(j)%gap) // ' m'
-      end do
-      write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
-         // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
-         // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
-      call integrate(prob, dk%solver, dk%output, u0, v0, res, e)
-      if (allocated(e)) return
-      write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
-         // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &
-         // ' split at contact events; dt from ' // str(res%dt_smallest) // ' to ' &
-         // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations'
-      if (dk%solver%stop_solution == 'fixed_point') write(output_unit, '(a)') &
-         'fixed-point iterations: ' // str(int(res%fp_iterations))
-      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s'
-      do j = 1, prob%n_stops
-         write(output_unit, '(a)') 'stop ' // str(j) // ': ' // str(res%n_impacts(j)) &
-            // ' impacts in ' // str(dk%solver%record_periods) // ' periods, peak force ' &
-            // str(res%peak_force(j)) // ' N, rms ' // str(res%rms_force(j)) // ' N, contact ' &
-            // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
-            // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
-      end do
-      call point_diagnostics(prob, dk%solver, dk%diagnostics, res, diag, e)
-      if (allocated(e)) return
-      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-         // str(diag%period) // ' found up to ' // str(dk%diagnostics%period_max) &
-         // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
-         // str(diag%lyapunov_error) // ' 1/s over ' // str(dk%diagnostics%lyapunov_periods) &
-         // ' periods)'
-      call write_transient(dk, prob, res, diag, e)
-      if (allocated(e)) return
-      if (dk%output%write_text) then
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5, .history.dat, ' &
-            // '.poincare.dat'
-      else
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5'
-      end if
-   end subroutine run_transient_analysis
 end program main

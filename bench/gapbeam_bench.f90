@@ -23,10 +23,15 @@ program gapbeam_bench
       compiler_options
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient, initial_acceleration
-   use gapbeam_contact, only: law_bilinear
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_state, only: state_t
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_model_builder, only: build_full_model, initial_vectors
+   use gapbeam_integrator, only: start_state
+   use gapbeam_transient, only: integrate
    use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
 
@@ -46,7 +51,7 @@ program gapbeam_bench
    integer(int64) :: steps(n_case + 1), rejected(n_case + 1)
    integer :: runs(n_case + 1)
    type(transient_result_t) :: res(n_case)
-   type(problem_t) :: prob_a
+   type(model_t) :: prob_a
    real(dp), allocatable :: uc(:), vc(:), ac(:)
    real(dp) :: diff, t_period
    integer :: i
@@ -184,9 +189,9 @@ contains
       real(dp), intent(out) :: best
       integer, intent(out) :: rep
       type(transient_result_t), intent(out) :: res
-      type(problem_t), intent(out), optional :: prob_out
+      type(model_t), intent(out), optional :: prob_out
       type(deck_t) :: deck
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(error_t), allocatable :: err
       character(len=ov_len), allocatable :: ovs(:)
       real(dp), allocatable :: u0(:), v0(:)
@@ -199,18 +204,18 @@ contains
       end if
       call read_deck(deck_path, ovs, deck, err)
       call die_on(err, 'reading ' // deck_path)
-      call build_problem(deck%structure, deck%stops, deck%damping, deck%forcing, prob, err)
+      call build_full_model(deck%structure, deck%stops, deck%damping, deck%forcing, model, err)
       call die_on(err, 'building the problem')
-      call initial_vectors(prob, deck%initial, u0, v0)
+      call initial_vectors(model, deck%initial, u0, v0)
       best = huge(1.0_dp)
       steps_first = -1
       rep = 0;  total = 0.0_dp
       do while (more_runs(rep, total))
          rep = rep + 1
          call system_clock(c0, crate)
-         call run_transient(prob, deck%solver, deck%output, u0, v0, res, err)
+         call integrate(model, deck%solver, deck%output, u0, v0, res, err)
          call system_clock(c1)
-         call die_on(err, 'run_transient')
+         call die_on(err, 'integrate')
          t = real(c1 - c0, dp) / real(crate, dp)
          best = min(best, t);  total = total + t
          if (rep == 1) steps_first = res%steps_accepted
@@ -219,14 +224,14 @@ contains
             error stop 1
          end if
       end do
-      if (present(prob_out)) prob_out = prob
+      if (present(prob_out)) prob_out = model
    end subroutine time_case
 
    !> Precompute the step operator of the ceiling loop for dt = T/256, Newmark (0.5, 0.25),
    !> run it n_steps from the deck's initial state (at rest) (see more_runs); best wall time,
    !> the number of runs and the final state.
-   subroutine time_ceiling(prob, n_steps, best, rep, u, v, a)
-      type(problem_t), intent(in) :: prob
+   subroutine time_ceiling(model, n_steps, best, rep, u, v, a)
+      type(model_t), intent(in) :: model
       integer(int64), intent(in) :: n_steps
       real(dp), intent(out) :: best
       integer, intent(out) :: rep
@@ -234,17 +239,18 @@ contains
       integer, parameter :: steps_per_period = 256, max_halvings = 20
       real(dp), parameter :: delta = 0.5_dp, alpha = 0.25_dp
       real(dp), allocatable :: kbar(:, :), am(:, :), rhs(:, :), u0(:), v0(:), a0v(:)
+      type(state_t) :: s0
       real(dp) :: period, dt, tick_dt, a0, a1, a2, a3, a4, a5, c0k, c1k, cw, ch, amp_w2, h, &
          total, t
       integer(int64) :: nt, cl0, cl1, crate
       integer :: n, itip, info
-      n = prob%n
-      if (prob%n_contacts /= 1) error stop 'bench: the ceiling needs exactly one contact'
-      if (prob%c_law(1) /= law_bilinear .or. prob%c_c(1) /= 0.0_dp) &
+      n = model%n
+      if (model%n_contacts /= 1) error stop 'bench: the ceiling needs exactly one contact'
+      if (model%c_law(1) /= law_bilinear .or. model%c_c(1) /= 0.0_dp) &
          error stop 'bench: the ceiling needs a bilinear stop without damper'
-      itip = prob%c_dof(1)
+      itip = model%c_dof(1)
       ! time as run_transient counts it: ticks of dt_max / 2^max_halvings
-      period = 2.0_dp * pi / prob%omega
+      period = 2.0_dp * pi / model%omega
       dt = period / real(steps_per_period, dp)
       tick_dt = dt / 2.0_dp**max_halvings
       nt = 2_int64**max_halvings
@@ -256,26 +262,27 @@ contains
       a3 = 0.5_dp / alpha - 1.0_dp
       a4 = delta / alpha - 1.0_dp
       a5 = dt * (0.5_dp * delta / alpha - 1.0_dp)
-      c1k = 1.0_dp + a1 * prob%gamma
-      c0k = a0 + a1 * prob%beta
-      cw = prob%beta - prob%gamma * c0k / c1k
-      ch = prob%gamma / c1k
-      kbar = c1k * prob%sys%k + c0k * prob%sys%m
+      c1k = 1.0_dp + a1 * model%gamma
+      c0k = a0 + a1 * model%beta
+      cw = model%beta - model%gamma * c0k / c1k
+      ch = model%gamma / c1k
+      kbar = c1k * model%sys%k + c0k * model%sys%m
       call dpotrf('U', n, kbar, n, info)
       if (info /= 0) error stop 'bench: Kbar is not positive definite'
       ! gp = Kbar^-1 q, g = Kbar^-1 e_tip, AM = Kbar^-1 M
       allocate(rhs(n, 2))
-      rhs(:, 1) = prob%q
+      rhs(:, 1) = model%q
       rhs(:, 2) = 0.0_dp
       rhs(itip, 2) = 1.0_dp
       call dpotrs('U', n, 2, kbar, n, rhs, n, info)
-      am = prob%sys%m
+      am = model%sys%m
       call dpotrs('U', n, n, kbar, n, am, n, info)
       h = rhs(itip, 2)
-      amp_w2 = prob%half_amplitude * prob%omega**2
+      amp_w2 = model%half_amplitude * model%omega**2
       ! initial state as run_transient sets it (at rest: u = v = 0, a from equilibrium)
-      allocate(u0(n), v0(n), a0v(n), source=0.0_dp)
-      call initial_acceleration(prob, 0.0_dp, u0, v0, a0v)
+      allocate(u0(n), v0(n), source=0.0_dp)
+      call start_state(model, 0.0_dp, u0, v0, s0)
+      a0v = s0%a
       allocate(u(n), v(n), a(n))
       best = huge(1.0_dp)
       rep = 0;  total = 0.0_dp
@@ -283,8 +290,8 @@ contains
          rep = rep + 1
          u = u0;  v = v0;  a = a0v
          call system_clock(cl0, crate)
-         call ceiling_loop(n, n_steps, am, rhs(:, 1), rhs(:, 2), itip, prob%c_sign(1), &
-            prob%c_gap(1), prob%c_k(1), h, a0, a1, a2, a3, a4, a5, cw, ch, amp_w2, prob%omega, &
+         call ceiling_loop(n, n_steps, am, rhs(:, 1), rhs(:, 2), itip, model%c_sign(1), &
+            model%c_gap(1), model%c_k(1), h, a0, a1, a2, a3, a4, a5, cw, ch, amp_w2, model%omega, &
             tick_dt, nt, u, v, a)
          call system_clock(cl1)
          t = real(cl1 - cl0, dp) / real(crate, dp)
@@ -296,8 +303,8 @@ contains
    !> at dof itip. Per step: hm = a0 u + a2 v + a3 a, hc = a1 u + a4 v + a5 a,
    !> y* = AM (hm + cw hc) + ch hc + s(t) gp, d* = s_c y*_tip - gap,
    !> f = max(0, k d* / (1 + k h)), y = y* - g s_c f, v = a1 y - hc, a = a0 y - hm.
-   !> The operations are those of newmark_predict / solve_scalar_contact / newmark_correct, in
-   !> the same order, so the result matches run_transient to round-off.
+   !> The operations are those of gapbeam_newmark:condensed_step (predictor, closed-form stop
+   !> force, correction), in the same order, so the result matches integrate to round-off.
    subroutine ceiling_loop(n, n_steps, am, gp, g, itip, sgn, gap, k, h, a0, a1, a2, a3, a4, a5, &
                            cw, ch, amp_w2, omega, tick_dt, nt, u, v, a)
       integer, intent(in) :: n, itip

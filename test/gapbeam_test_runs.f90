@@ -3,11 +3,12 @@
 module gapbeam_test_runs
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t
-   use gapbeam_setup, only: build_model
-   use gapbeam_transient, only: transient_result_t
-   use gapbeam_integrate, only: integrate
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
    implicit none
    private
    public :: run_deck
@@ -15,10 +16,10 @@ module gapbeam_test_runs
 contains
 
    !> Read `path` with `overrides`, build its model and integrate it; err on any failure.
-   subroutine run_deck(path, overrides, prob, res, err)
+   subroutine run_deck(path, overrides, model, res, err)
       character(len=*), intent(in) :: path              !! deck
       character(len=*), intent(in) :: overrides(:)      !! namelist fragments
-      type(problem_t), intent(out) :: prob              !! the model integrated
+      type(model_t), intent(out) :: model              !! the model integrated
       type(transient_result_t), intent(out) :: res      !! results
       type(error_t), allocatable, intent(out) :: err    !! deck, model or solver failure
       type(deck_t) :: deck
@@ -26,7 +27,7 @@ contains
       character(len=len(overrides)) :: ov(size(overrides))
       ov = overrides
       call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_model(deck, prob, u0, v0, err)
-      if (.not. allocated(err)) call integrate(prob, deck%solver, deck%output, u0, v0, res, err)
+      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      if (.not. allocated(err)) call integrate(model, deck%solver, deck%output, u0, v0, res, err)
    end subroutine run_deck
 end module gapbeam_test_runs

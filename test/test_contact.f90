@@ -11,8 +11,8 @@ program test_contact
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_contact, only: contact_force, solve_scalar_contact, law_bilinear, law_hertz, &
-      law_code
+   use gapbeam_contact_law, only: contact_force, solve_scalar_contact
+   use gapbeam_description, only: law_bilinear, law_hertz, law_code
    implicit none
    real(dp), parameter :: tol = 1.0e-12_dp          ! implicit relation, relative
    real(dp), parameter :: kh_range(6) = [1.0e-6_dp, 1.0e-3_dp, 1.0_dp, 1.0e3_dp, 1.0e6_dp, &

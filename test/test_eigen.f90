@@ -3,9 +3,11 @@ program test_eigen
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_model, only: structure_t, beam_t, root_t, spring_t, dof_w
-   use gapbeam_assembly, only: system_t, assemble
-   use gapbeam_eigen, only: modes_t, solve_modes
+   use gapbeam_description, only: structure_t, beam_t, root_t, spring_t, dof_w
+   use gapbeam_model, only: system_t
+   use gapbeam_assembly, only: assemble
+   use gapbeam_results, only: modes_t
+   use gapbeam_eigen, only: solve_modes
    use gapbeam_calibration, only: calibrate_parameter, calibrate_spring, first_frequency
    implicit none
    real(dp), parameter :: beta_l(4) = [1.87510407_dp, 4.69409113_dp, 7.85475744_dp, &

@@ -4,11 +4,15 @@ program test_exact
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient
-   use gapbeam_eigen, only: modes_t, solve_modes
-   use gapbeam_exact, only: run_exact
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_full_model, initial_vectors
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_results, only: modes_t
+   use gapbeam_eigen, only: solve_modes
+   use gapbeam_exact, only: exact_integrator_t
    use gapbeam_test_runs, only: run_deck
    implicit none
    !> extended precision for reference sums (double where the compiler has none)
@@ -42,10 +46,10 @@ program test_exact
 contains
 
    !> Read a deck with overrides, build it and run the exact integrator (or Newmark).
-   subroutine run(path, overrides, prob, res, newmark, engine, message, u0, v0)
+   subroutine run(path, overrides, model, res, newmark, engine, message, u0, v0)
       character(len=*), intent(in) :: path
       character(len=*), intent(in) :: overrides(:)
-      type(problem_t), intent(out) :: prob
+      type(model_t), intent(out) :: model
       type(transient_result_t), intent(out) :: res
       logical, intent(in), optional :: newmark
       character(len=*), intent(in), optional :: engine
@@ -55,21 +59,23 @@ contains
       type(error_t), allocatable :: err
       real(dp), allocatable :: x0(:), y0(:)
       character(len=300) :: ov(size(overrides))
+      type(exact_integrator_t) :: exact
       logical :: nm
       nm = .false.
       if (present(newmark)) nm = newmark
       ov = overrides
       call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_problem(deck%structure, deck%stops, deck%damping, &
-                                                   deck%forcing, prob, err)
+      if (.not. allocated(err)) call build_full_model(deck%structure, deck%stops, deck%damping, &
+                                                   deck%forcing, model, err)
       if (.not. allocated(err)) then
-         call initial_vectors(prob, deck%initial, x0, y0)
+         call initial_vectors(model, deck%initial, x0, y0)
          if (present(u0)) u0 = x0
          if (present(v0)) v0 = y0
          if (nm) then
-            call run_transient(prob, deck%solver, deck%output, x0, y0, res, err)
+            call integrate(model, deck%solver, deck%output, x0, y0, res, err)
          else
-            call run_exact(prob, deck%solver, deck%output, x0, y0, res, err, engine)
+            if (present(engine)) exact%engine = engine
+            call integrate(model, deck%solver, deck%output, x0, y0, res, err, exact)
          end if
       end if
       if (present(message)) then
@@ -93,14 +99,14 @@ contains
    !> with the modes of solve_modes is an independent exact solution, transient from the
    !> initial state included. History samples compared to 1e-12 of their amplitude.
    subroutine linear_against_modal_superposition()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       real(dp) :: e_tip, e_eps
       real(dp), allocatable :: u0(:), v0(:)
       call run(ref, [character(len=300) :: nostop, ratios, &
          '&solver transient_periods = 0, record_periods = 6 /', &
-         '&output history_periods = 6 /'], prob, res, u0=u0, v0=v0)
-      call modal_error(prob, res, u0, v0, e_tip, e_eps)
+         '&output history_periods = 6 /'], model, res, u0=u0, v0=v0)
+      call modal_error(model, res, u0, v0, e_tip, e_eps)
       call note('no impact, 4 elements, Rayleigh (ratios), from rest, 6 periods: max error / ' &
          // 'amplitude of tip ' // str(e_tip) // ', root strain ' // str(e_eps))
       call check_le('no impact (beam, Rayleigh, from rest): tip against modal superposition', &
@@ -112,24 +118,24 @@ contains
          "&damping model = 'rayleigh', mass_coefficient = 3.0, stiffness_coefficient = 0.0 /", &
          "&initial kind = 'given', node = 5, dof = 'w', displacement = 1.0e-3, " &
          // "velocity = -0.05 /", '&solver transient_periods = 1, record_periods = 4 /', &
-         '&output history_periods = 4 /'], prob, res, u0=u0, v0=v0)
-      call modal_error(prob, res, u0, v0, e_tip, e_eps)
+         '&output history_periods = 4 /'], model, res, u0=u0, v0=v0)
+      call modal_error(model, res, u0, v0, e_tip, e_eps)
       call check_le('no impact (beam, mass-proportional, given state, forced): tip and strain ' &
          // 'against modal superposition', max(e_tip, e_eps), 1.0e-12_dp)
       ! massless rotations (condensed): the single dof of the SDOF deck, forced
       call run(sdof, [character(len=300) :: '&stops gap = 1.0 /', &
          "&damping model = 'rayleigh', mass_coefficient = 2.0, stiffness_coefficient = 1.0e-3 /", &
          '&forcing frequency_hz = 3.0, amplitude_pp = 2.0e-3 /', &
-         '&solver transient_periods = 1, record_periods = 3 /'], prob, res, u0=u0, v0=v0)
-      call modal_error(prob, res, u0, v0, e_tip, e_eps)
+         '&solver transient_periods = 1, record_periods = 3 /'], model, res, u0=u0, v0=v0)
+      call modal_error(model, res, u0, v0, e_tip, e_eps)
       call check_le('no impact (massless rotation condensed, Rayleigh, forced): against modal ' &
          // 'superposition', max(e_tip, e_eps), 1.0e-12_dp)
    end subroutine linear_against_modal_superposition
 
    !> Largest error of the history (tip, strain) against modal superposition, relative to
    !> the largest value of each.
-   subroutine modal_error(prob, res, u0, v0, e_tip, e_eps)
-      type(problem_t), intent(in) :: prob
+   subroutine modal_error(model, res, u0, v0, e_tip, e_eps)
+      type(model_t), intent(in) :: model
       type(transient_result_t), intent(in) :: res
       real(dp), intent(in) :: u0(:), v0(:)
       real(dp), intent(out) :: e_tip, e_eps
@@ -139,7 +145,7 @@ contains
       real(dp) :: w, z, wd, fk, h_re, h_im, a, b, t, qk, om, amp, r1, r2, c1, c2, qp0, vp0, det
       complex(dp) :: hc
       integer :: k, it
-      call solve_modes(prob%sys, modes, err)
+      call solve_modes(model%sys, modes, err)
       if (allocated(err)) then
          call check('solve_modes succeeds', .false., err%message);  return
       end if
@@ -147,21 +153,21 @@ contains
       ! one here, 15 rad of phase in 6 periods): the Rayleigh quotient of its shape, summed in
       ! extended precision, is exact to second order in the shape's error
       do k = 1, modes%n_modes
-         modes%omega2(k) = rayleigh_quotient(prob, modes%shapes(:, k))
+         modes%omega2(k) = rayleigh_quotient(model, modes%shapes(:, k))
       end do
       ! modal coordinates of the initial state (massless entries do not enter: M rows zero)
-      q0 = matmul(transpose(modes%shapes), matmul(prob%sys%m, u0))
-      p0 = matmul(transpose(modes%shapes), matmul(prob%sys%m, v0))
-      om = prob%omega;  amp = prob%half_amplitude * om**2
+      q0 = matmul(transpose(modes%shapes), matmul(model%sys%m, u0))
+      p0 = matmul(transpose(modes%shapes), matmul(model%sys%m, v0))
+      om = model%omega;  amp = model%half_amplitude * om**2
       e_tip = 0.0_dp;  e_eps = 0.0_dp
-      allocate(u(prob%n))
+      allocate(u(model%n))
       do it = 1, size(res%time)
          t = res%time(it)
          u = 0.0_dp
          do k = 1, modes%n_modes
             w = sqrt(modes%omega2(k))
-            z = 0.5_dp * (prob%beta / w + prob%gamma * w)
-            fk = amp * dot_product(modes%shapes(:, k), prob%q)
+            z = 0.5_dp * (model%beta / w + model%gamma * w)
+            fk = amp * dot_product(modes%shapes(:, k), model%q)
             hc = 1.0_dp / cmplx(w**2 - om**2, 2 * z * w * om, dp)
             h_re = real(hc);  h_im = aimag(hc)
             ! particular: F Im(H e^{i om t})
@@ -179,24 +185,24 @@ contains
             end if
             u = u + qk * modes%shapes(:, k)
          end do
-         e_tip = max(e_tip, abs(res%tip_displacement(it) - u(prob%sys%tip_dof)))
-         e_eps = max(e_eps, abs(res%strain(it) - dot_product(prob%sys%strain_row, u)))
+         e_tip = max(e_tip, abs(res%tip_displacement(it) - u(model%sys%tip_dof)))
+         e_eps = max(e_eps, abs(res%strain(it) - dot_product(model%sys%strain_row, u)))
       end do
       e_tip = e_tip / maxval(abs(res%tip_displacement))
       e_eps = e_eps / maxval(abs(res%strain))
    end subroutine modal_error
 
    !> phi'K phi / phi'M phi summed in extended precision.
-   real(dp) function rayleigh_quotient(prob, phi) result(w2)
-      type(problem_t), intent(in) :: prob
+   real(dp) function rayleigh_quotient(model, phi) result(w2)
+      type(model_t), intent(in) :: model
       real(dp), intent(in) :: phi(:)
       real(qp) :: num, den
       integer :: i, j
       num = 0.0_qp;  den = 0.0_qp
-      do j = 1, prob%n
-         do i = 1, prob%n
-            num = num + real(phi(i), qp) * prob%sys%k(i, j) * phi(j)
-            den = den + real(phi(i), qp) * prob%sys%m(i, j) * phi(j)
+      do j = 1, model%n
+         do i = 1, model%n
+            num = num + real(phi(i), qp) * model%sys%k(i, j) * phi(j)
+            den = den + real(phi(i), qp) * model%sys%m(i, j) * phi(j)
          end do
       end do
       w2 = real(num / den, dp)
@@ -242,12 +248,12 @@ contains
 
    !> The SDOF bilinear oscillator released against its stop: first contact, trajectory.
    subroutine sdof_against_piecewise_solution()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       real(dp) :: e, u, v, tc
       integer :: q
       call run(sdof, [character(len=300) :: sdof_time_base(), &
-         '&solver record_periods = 6 /', '&output history_periods = 6 /'], prob, res)
+         '&solver record_periods = 6 /', '&output history_periods = 6 /'], model, res)
       tc = acos(-g1 / abs(u1)) / sqrt(k1 / m1)
       call check_close('SDOF: first contact time equals acos(-g/U)/omega', &
          res%first_contact_time(1), tc, rtol=1.0e-12_dp)
@@ -261,14 +267,14 @@ contains
          e / abs(u1), 1.0e-12_dp)
       call sdof_state(res%t_end, u, v)
       call check_le('SDOF bilinear: final velocity against the exact solution', &
-         abs(res%v(prob%sys%tip_dof) - v) / (abs(u1) * sqrt(k1 / m1)), 1.0e-12_dp)
+         abs(res%v(model%sys%tip_dof) - v) / (abs(u1) * sqrt(k1 / m1)), 1.0e-12_dp)
    end subroutine sdof_against_piecewise_solution
 
    !> Impact statistics of the SDOF against the piecewise solution: contact time from the
    !> switch times, peak force ks d_max, and the integrals of f, f^2, f |d'| (32-point
    !> Gauss-Legendre on each contact phase of the exact solution).
    subroutine sdof_impact_statistics()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       real(dp) :: t_sw(200), t_rec, t_end, len, a, b, xg(32), wg(32), s_f, s_f2, s_w, s_c, u, v, &
          f, t, w1, w2, ue, vc, dmax, ce, tm, pa, pb
@@ -276,7 +282,7 @@ contains
       logical :: closed
       call run(sdof, [character(len=300) :: sdof_time_base(), &
          '&solver transient_periods = 1, record_periods = 9 /', &
-         '&output history_periods = 1 /'], prob, res)
+         '&output history_periods = 1 /'], model, res)
       w1 = sqrt(k1 / m1);  w2 = sqrt((k1 + ks) / m1);  ue = ks * g1 / (k1 + ks)
       t_rec = 2 * pi / w1;  t_end = 10 * t_rec;  len = t_end - t_rec
       call sdof_state(t_end, u, v, n_sw, t_sw)
@@ -364,7 +370,7 @@ contains
    !> conserved across many impacts (beam with rotary inertia; and with massless rotations,
    !> condensed).
    subroutine energy_over_many_impacts()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r1, r2
       real(dp) :: e0, e1, e2
       character(len=300) :: ri
@@ -373,13 +379,13 @@ contains
          ri = '&output history_periods = 1 /'
          if (variant == 2) ri = "&beam rotary_inertia = 'none' /"
          call run(free_beam, [character(len=300) :: ri, &
-            '&solver transient_periods = 0, record_periods = 1 /'], prob, r1)
-         e1 = energy(prob, r1)
+            '&solver transient_periods = 0, record_periods = 1 /'], model, r1)
+         e1 = energy(model, r1)
          call run(free_beam, [character(len=300) :: ri, &
-            '&solver transient_periods = 0, record_periods = 60 /'], prob, r2)
-         e2 = energy(prob, r2)
+            '&solver transient_periods = 0, record_periods = 60 /'], model, r2)
+         e2 = energy(model, r2)
          if (variant == 1) then
-            e0 = 0.5_dp * prob%sys%k(prob%sys%tip_dof, prob%sys%tip_dof) * 2.0e-3_dp**2
+            e0 = 0.5_dp * model%sys%k(model%sys%tip_dof, model%sys%tip_dof) * 2.0e-3_dp**2
             call check_close('energy: initial energy 1/2 k_tip u0^2 after one period', e1, e0, &
                rtol=1.0e-12_dp)
             call check_close('energy conserved over ' // str(int(r2%n_impacts(1))) &
@@ -394,22 +400,22 @@ contains
 
    !> Energy, with the quadratic forms summed in extended precision (u'Ku of a smooth shape
    !> cancels: in double its rounding alone would be ~1e-13 of the energy).
-   real(dp) function energy(prob, r) result(e)
-      type(problem_t), intent(in) :: prob
+   real(dp) function energy(model, r) result(e)
+      type(model_t), intent(in) :: model
       type(transient_result_t), intent(in) :: r
       real(qp) :: s
       real(dp) :: d
       integer :: c, i, j
       s = 0.0_qp
-      do j = 1, prob%n
-         do i = 1, prob%n
-            s = s + 0.5_qp * (real(r%v(i), qp) * prob%sys%m(i, j) * r%v(j) &
-                              + real(r%u(i), qp) * prob%sys%k(i, j) * r%u(j))
+      do j = 1, model%n
+         do i = 1, model%n
+            s = s + 0.5_qp * (real(r%v(i), qp) * model%sys%m(i, j) * r%v(j) &
+                              + real(r%u(i), qp) * model%sys%k(i, j) * r%u(j))
          end do
       end do
-      do c = 1, prob%n_contacts
-         d = prob%c_sign(c) * r%u(prob%c_dof(c)) - prob%c_gap(c)
-         if (d > 0.0_dp) s = s + 0.5_qp * prob%c_k(c) * real(d, qp)**2
+      do c = 1, model%n_contacts
+         d = model%c_sign(c) * r%u(model%c_dof(c)) - model%c_gap(c)
+         if (d > 0.0_dp) s = s + 0.5_qp * model%c_k(c) * real(d, qp)**2
       end do
       e = real(s, dp)
    end function energy
@@ -417,12 +423,12 @@ contains
    !> Zero gap, from rest: the model is positively homogeneous, so doubling the amplitude
    !> doubles the whole response (switch times unchanged).
    subroutine zero_gap_homogeneity()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r1, r2
       real(dp) :: d
       character(len=*), parameter :: short = '&solver transient_periods = 10, record_periods = 10 /'
-      call run(ref, [character(len=300) :: short, '&forcing amplitude_pp = 3.7e-3 /'], prob, r1)
-      call run(ref, [character(len=300) :: short, '&forcing amplitude_pp = 7.4e-3 /'], prob, r2)
+      call run(ref, [character(len=300) :: short, '&forcing amplitude_pp = 3.7e-3 /'], model, r1)
+      call run(ref, [character(len=300) :: short, '&forcing amplitude_pp = 7.4e-3 /'], model, r2)
       d = max(maxval(abs(r2%strain - 2 * r1%strain)) / maxval(abs(r1%strain)), &
               maxval(abs(r2%p_strain_rate - 2 * r1%p_strain_rate)) &
               / maxval(abs(r1%p_strain_rate)), &
@@ -439,26 +445,26 @@ contains
    !> completely different construction) agree: forced SDOF with a contact damper and a
    !> two-element beam with impacts; every result field compared.
    subroutine engines_agree()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: rm, rt
       real(dp) :: d
       call run(sdof, [character(len=300) :: sdof_time_base(), '&stops damping = 0.07 /', &
          "&damping model = 'rayleigh', mass_coefficient = 1.0, stiffness_coefficient = 1.0e-4 /",&
          '&forcing amplitude_pp = 1.0e-3 /', &
-         '&solver transient_periods = 1, record_periods = 5 /'], prob, rm, engine='modal')
+         '&solver transient_periods = 1, record_periods = 5 /'], model, rm, engine='modal')
       call run(sdof, [character(len=300) :: sdof_time_base(), '&stops damping = 0.07 /', &
          "&damping model = 'rayleigh', mass_coefficient = 1.0, stiffness_coefficient = 1.0e-4 /",&
          '&forcing amplitude_pp = 1.0e-3 /', &
-         '&solver transient_periods = 1, record_periods = 5 /'], prob, rt, engine='taylor')
+         '&solver transient_periods = 1, record_periods = 5 /'], model, rt, engine='taylor')
       d = result_difference(rm, rt)
       call note('SDOF with a contact damper, forced: closed form vs Taylor fallback, largest ' &
          // 'relative difference of all fields ' // str(d) // '; ' // str(int(rm%events)) &
          // ' switches')
       call check_le('contact damper: closed form and Taylor fallback agree', d, 1.0e-11_dp)
       call run(ref, [character(len=300) :: '&beam n_elem = 2 / &stops node = 3 /', &
-         '&solver transient_periods = 0, record_periods = 2 /'], prob, rm, engine='modal')
+         '&solver transient_periods = 0, record_periods = 2 /'], model, rm, engine='modal')
       call run(ref, [character(len=300) :: '&beam n_elem = 2 / &stops node = 3 /', &
-         '&solver transient_periods = 0, record_periods = 2 /'], prob, rt, engine='taylor')
+         '&solver transient_periods = 0, record_periods = 2 /'], model, rt, engine='taylor')
       d = result_difference(rm, rt)
       call note('2-element beam, 10.5 Hz, 2 periods from rest: closed form vs Taylor ' &
          // 'fallback, largest relative difference ' // str(d))
@@ -493,7 +499,7 @@ contains
    !> the integrator falls back to the Taylor expansion and still matches (u0 + (v0 + w u0) t)
    !> e^{-w t}; the forced closed form loses digits.
    subroutine critically_damped_fallback()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: ra, rm
       real(dp) :: w, e_auto, e_modal, t, u
       integer :: q
@@ -503,10 +509,10 @@ contains
          ', stiffness_coefficient = 0.0 /'
       call run(sdof, [character(len=300) :: sdof_time_base(), crit, '&stops gap = 1.0 /', &
          "&initial kind = 'given', node = 2, dof = 'w', displacement = -1.0e-3, " &
-         // "velocity = 0.2 /", '&solver record_periods = 2 /'], prob, ra)
+         // "velocity = 0.2 /", '&solver record_periods = 2 /'], model, ra)
       call run(sdof, [character(len=300) :: sdof_time_base(), crit, '&stops gap = 1.0 /', &
          "&initial kind = 'given', node = 2, dof = 'w', displacement = -1.0e-3, " &
-         // "velocity = 0.2 /", '&solver record_periods = 2 /'], prob, rm, engine='modal')
+         // "velocity = 0.2 /", '&solver record_periods = 2 /'], model, rm, engine='modal')
       e_auto = 0.0_dp;  e_modal = 0.0_dp
       do q = 1, size(ra%time)
          t = ra%time(q)
@@ -523,10 +529,10 @@ contains
       ! with the stop: contact configurations are not critical, switches mix both engines
       call run(sdof, [character(len=300) :: sdof_time_base(), crit, &
          "&initial kind = 'given', node = 2, dof = 'w', displacement = -1.0e-3, " &
-         // "velocity = 0.3 /", '&solver record_periods = 2 /'], prob, ra)
+         // "velocity = 0.3 /", '&solver record_periods = 2 /'], model, ra)
       call run(sdof, [character(len=300) :: sdof_time_base(), crit, &
          "&initial kind = 'given', node = 2, dof = 'w', displacement = -1.0e-3, " &
-         // "velocity = 0.3 /", '&solver record_periods = 2 /'], prob, rm, engine='taylor')
+         // "velocity = 0.3 /", '&solver record_periods = 2 /'], model, rm, engine='taylor')
       call check('critically damped with impacts: there are impacts', ra%events >= 2)
       call check_le('critically damped with impacts: default and all-Taylor agree', &
          result_difference(ra, rm), 1.0e-11_dp)
@@ -535,14 +541,14 @@ contains
    !> A two-sided symmetric stop under symmetric forcing: eps(t + T/2) = -eps(t) on the
    !> attractor, to the decay of the transient.
    subroutine symmetric_two_sided_stop()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r
       real(dp) :: asym
       integer :: half
       call run(ref, [character(len=300) :: "&stops side = 'both', gap = 5.0e-4 /", &
          '&forcing frequency_hz = 3.0, amplitude_pp = 2.0e-3 /', &
          '&solver transient_periods = 300, record_periods = 20 /', &
-         '&output samples_per_period = 64, history_periods = 4 /'], prob, r)
+         '&output samples_per_period = 64, history_periods = 4 /'], model, r)
       half = 32
       asym = maxval(abs(r%strain(half + 1:) + r%strain(:size(r%strain) - half))) &
              / maxval(abs(r%strain))
@@ -557,7 +563,7 @@ contains
    !> Newmark (trapezoidal, fixed steps, events located) against the exact integrator:
    !> second order without impacts (checked); the orders across impacts are reported.
    subroutine newmark_converges_to_exact()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: rx, rn
       real(dp) :: e(3), order
       integer :: i
@@ -567,10 +573,10 @@ contains
          // 'steps_per_period = '
       ! no impact
       ov = fixed // '256 /'
-      call run(ref, [character(len=300) :: nostop, ratios, ov], prob, rx)
+      call run(ref, [character(len=300) :: nostop, ratios, ov], model, rx)
       do i = 1, 3
          ov = fixed // str(128 * 2**i) // ' /'
-         call run(ref, [character(len=300) :: nostop, ratios, ov], prob, rn, newmark=.true.)
+         call run(ref, [character(len=300) :: nostop, ratios, ov], model, rn, newmark=.true.)
          e(i) = maxval(abs(rn%u - rx%u)) / maxval(abs(rx%u))
       end do
       order = log(e(2) / e(3)) / log(2.0_dp)
@@ -581,10 +587,10 @@ contains
          order, 2.0_dp, atol=0.1_dp)
       ! the 10.5 Hz deck: one impact per period, from rest
       ov = fixed // '256 /'
-      call run(ref, [ov], prob, rx)
+      call run(ref, [ov], model, rx)
       do i = 1, 3
          ov = fixed // str(256 * 2**i) // ' /'
-         call run(ref, [ov], prob, rn, newmark=.true.)
+         call run(ref, [ov], model, rn, newmark=.true.)
          e(i) = maxval(abs(rn%u - rx%u)) / maxval(abs(rx%u))
       end do
       order = log(e(2) / e(3)) / log(2.0_dp)
@@ -596,11 +602,11 @@ contains
          e(2) < e(1))
       ! SDOF with a contact damper (the force jumps at impact)
       call run(sdof, [character(len=300) :: sdof_time_base(), '&stops damping = 0.07 /'], &
-         prob, rx)
+         model, rx)
       do i = 1, 3
          ov = '&solver steps_per_period = ' // str(64 * 2**i) // ' /'
          call run(sdof, [character(len=300) :: sdof_time_base(), '&stops damping = 0.07 /', ov], &
-            prob, rn, newmark=.true.)
+            model, rn, newmark=.true.)
          e(i) = maxval(abs(rn%tip_displacement - rx%tip_displacement)) / abs(u1)
       end do
       order = log(e(2) / e(3)) / log(2.0_dp)
@@ -615,16 +621,16 @@ contains
    !> run_transient does: it agrees with a fine fixed-step Newmark run, and replaces the
    !> Poincare strain (the raw tip samples stay).
    subroutine filtered_strain()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: rx, rn, rr
       real(dp) :: d_hist, d_poinc
       character(len=*), parameter :: horizon = "&solver step_control = 'fixed', " &
          // 'steps_per_period = 4096, transient_periods = 5, record_periods = 5 /'
       character(len=*), parameter :: filt = '&output filter_cutoff_hz = 40.0, filter_order = 4, ' &
          // 'filter_samples_per_period = 256, history_periods = 5 /'
-      call run(ref, [character(len=300) :: horizon, filt], prob, rx)
-      call run(ref, [character(len=300) :: horizon, filt], prob, rn, newmark=.true.)
-      call run(ref, [character(len=300) :: horizon, '&output history_periods = 5 /'], prob, rr)
+      call run(ref, [character(len=300) :: horizon, filt], model, rx)
+      call run(ref, [character(len=300) :: horizon, filt], model, rn, newmark=.true.)
+      call run(ref, [character(len=300) :: horizon, '&output history_periods = 5 /'], model, rr)
       d_hist = rel(rx%strain_filtered, rn%strain_filtered)
       d_poinc = max(rel(rx%p_strain, rn%p_strain), rel(rx%p_strain_rate, rn%p_strain_rate))
       call note('filtered strain, exact vs Newmark T/4096: history ' // str(d_hist) &
@@ -643,15 +649,15 @@ contains
 
    !> Models outside the method are rejected with a clear message.
    subroutine unsupported_models()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r
       character(len=:), allocatable :: msg
       call run(sdof, [character(len=300) :: "&stops law = 'hertz', stiffness = 1.0e6 /"], &
-         prob, r, message=msg)
+         model, r, message=msg)
       call check('Hertz stop rejected, naming the method and the law: ' // msg, &
          index(msg, 'exact') > 0 .and. index(msg, 'Hertz') > 0 .and. &
          index(msg, 'piecewise') > 0)
-      call run(sdof, [character(len=300) :: "&stops dof = 'theta', gap = 0.01 /"], prob, r, &
+      call run(sdof, [character(len=300) :: "&stops dof = 'theta', gap = 0.01 /"], model, r, &
          message=msg)
       call check('stop on a massless dof rejected: ' // msg, index(msg, 'massless') > 0)
    end subroutine unsupported_models
@@ -659,7 +665,7 @@ contains
    !> eps ||A|| ~ 1e-5 only): the exact final state against RK4 at T/16384 over 2 periods with
    !> impacts (RK4 there converges to about 1e-13).
    subroutine fifteen_elements_against_rk4()
-      type(problem_t) :: pe, pr
+      type(model_t) :: pe, pr
       type(transient_result_t) :: re, rr
       type(error_t), allocatable :: err
       real(dp) :: d, nrm

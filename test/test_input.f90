@@ -8,15 +8,17 @@ program test_input
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, finish, note
-   use gapbeam_input, only: deck_t, job_t, calibrate_t, read_deck, analysis_words
-   use gapbeam_model, only: beam_t, root_t, dof_w, dof_theta
-   use gapbeam_contact, only: stop_side_words, stop_law_words
-   use gapbeam_damping, only: damping_t, rayleigh_from_ratios, damping_words
-   use gapbeam_excitation, only: forcing_t
+   use gapbeam_deck, only: deck_t
+   use gapbeam_settings, only: job_t, calibrate_t, analysis_words
+   use gapbeam_input, only: read_deck
+   use gapbeam_description, only: beam_t, root_t, dof_w, dof_theta
+   use gapbeam_description, only: stop_side_words, stop_law_words
+   use gapbeam_description, only: damping_t, rayleigh_from_ratios, damping_words
+   use gapbeam_description, only: forcing_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t, stop_solution_words, &
       initial_state_words
-   use gapbeam_beam_element, only: rotary_inertia_words
-   use gapbeam_calibration, only: calibration_words
+   use gapbeam_description, only: rotary_inertia_words
+   use gapbeam_settings, only: calibration_words
    implicit none
    character(len=*), parameter :: full = 'test/decks/input_full.nml'
    character(len=*), parameter :: minimal = 'test/decks/input_minimal.nml'

@@ -5,9 +5,12 @@ program test_integrators
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_full_model, initial_vectors
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_stability, only: spectral_radius, largest_stable_step
    use gapbeam_test_runs, only: run_deck
@@ -26,14 +29,14 @@ program test_integrators
 
 contains
 
-   subroutine run(overrides, prob, res, ok, message)
+   subroutine run(overrides, model, res, ok, message)
       character(len=*), intent(in) :: overrides(:)
-      type(problem_t), intent(out) :: prob
+      type(model_t), intent(out) :: model
       type(transient_result_t), intent(out) :: res
       logical, intent(out), optional :: ok
       character(len=:), allocatable, intent(out), optional :: message
       type(error_t), allocatable :: err
-      call run_deck(ref, overrides, prob, res, err)
+      call run_deck(ref, overrides, model, res, err)
       if (present(ok)) then
          ok = .not. allocated(err)
          if (present(message) .and. allocated(err)) message = err%message
@@ -51,7 +54,7 @@ contains
 
    !> Each method at N and 2N steps per period against a fine trapezoidal reference.
    subroutine orders_on_a_linear_case()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r_ref, r1, r2
       real(dp) :: e1, e2, order, e_tol(2)
       integer :: k
@@ -65,13 +68,13 @@ contains
       ! reference: RK4 at T/8192 (the trapezoidal rule at such steps is limited by round-off in
       ! a = (u1 - u0)/(alpha dt^2) - ..., about 1e-6 relative)
       call run([character(len=300) :: linear, short, "&solver method = 'rk4', step_control = " &
-         // "'fixed', steps_per_period = 8192, locate_events = .false. /"], prob, r_ref)
+         // "'fixed', steps_per_period = 8192, locate_events = .false. /"], model, r_ref)
       do k = 1, size(methods)
          m = '&solver ' // trim(methods(k)) // ", step_control = 'fixed', locate_events = " &
             // '.false., steps_per_period = '
-         call run([character(len=300) :: linear, short, trim(m) // str(n1(k)) // ' /'], prob, r1)
+         call run([character(len=300) :: linear, short, trim(m) // str(n1(k)) // ' /'], model, r1)
          call run([character(len=300) :: linear, short, trim(m) // str(2 * n1(k)) // ' /'], &
-                  prob, r2)
+                  model, r2)
          e1 = state_error(r1, r_ref);  e2 = state_error(r2, r_ref)
          order = log(e1 / e2) / log(2.0_dp)
          call note(trim(methods(k)) // ': error ' // str(e1) // ' (T/' // str(n1(k)) // '), ' &
@@ -83,7 +86,7 @@ contains
       do k = 1, 2
          m = "&solver method = 'rk45', step_control = 'embedded', locate_events = .false., " &
             // 'steps_per_period = 64, rk_rtol = ' // str(10.0_dp**(-4 - 3 * k)) // ' /'
-         call run([character(len=300) :: linear, short, m], prob, r1)
+         call run([character(len=300) :: linear, short, m], model, r1)
          e_tol(k) = state_error(r1, r_ref)
          call note('rk45 with rtol ' // str(10.0_dp**(-4 - 3 * k)) // ': error ' // str(e_tol(k)) &
             // ' after 2 periods, ' // str(int(r1%steps_accepted)) // ' steps')
@@ -124,7 +127,7 @@ contains
 
    !> Largest stable fixed step by bisection with real runs, against theory from omega_max.
    subroutine stable_steps()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       type(solver_settings_t) :: cfg
       type(error_t), allocatable :: err
@@ -137,7 +140,7 @@ contains
       do ne = 1, 2
          call run([character(len=300) :: linear, short, '&beam n_elem = ' &
             // str(merge(4, 15, ne == 1)) // ' / &stops node = ' // str(merge(5, 16, ne == 1)) &
-            // ' /'], prob, res)
+            // ' /'], model, res)
          do k = 1, 4
             cfg = solver_settings_t()
             select case (k)
@@ -146,8 +149,8 @@ contains
             case (3);  cfg%method = 'newmark';  cfg%newmark_alpha = 1.0_dp / 12.0_dp
             case (4);  cfg%method = 'rk4'
             end select
-            theory = limit(k) / prob%omega_max
-            call largest_stable_step(prob, cfg, 0.5_dp * theory, 3000, 1.0e-4_dp, dt, err)
+            theory = limit(k) / model%omega_max
+            call largest_stable_step(model, cfg, 0.5_dp * theory, 3000, 1.0e-4_dp, dt, err)
             if (allocated(err)) then
                call check(trim(names(k)) // ' stable step found', .false., err%message)
                cycle
@@ -163,14 +166,14 @@ contains
 
    !> Beyond the limit a real run stops with a message naming the method, time and step.
    subroutine divergence_is_reported()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       logical :: ok
       character(len=:), allocatable :: msg
       call run([character(len=300) :: linear, "&damping model = 'none' /", &
          "&solver method = 'central_difference', " &
          // "step_control = 'fixed', steps_per_period = 90, transient_periods = 0, " &
-         // 'record_periods = 20 /'], prob, res, ok, msg)
+         // 'record_periods = 20 /'], model, res, ok, msg)
       call check('central difference beyond its limit: the run stops with an error', .not. ok)
       if (.not. ok) then
          call note('message: ' // msg)

@@ -3,9 +3,12 @@ program test_newmark
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_full_model, initial_vectors
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
    use gapbeam_diagnostics, only: detect_period
    use gapbeam_lapack, only: dgesv
    use gapbeam_test_runs, only: run_deck
@@ -29,14 +32,14 @@ program test_newmark
 contains
 
    !> Run a deck with overrides; stops the test on a deck or solver error.
-   subroutine run(path, overrides, prob, res, ok)
+   subroutine run(path, overrides, model, res, ok)
       character(len=*), intent(in) :: path
       character(len=*), intent(in) :: overrides(:)
-      type(problem_t), intent(out) :: prob
+      type(model_t), intent(out) :: model
       type(transient_result_t), intent(out) :: res
       logical, intent(out), optional :: ok
       type(error_t), allocatable :: err
-      call run_deck(path, overrides, prob, res, err)
+      call run_deck(path, overrides, model, res, err)
       if (present(ok)) then
          ok = .not. allocated(err)
          if (allocated(err)) call note('run failed: ' // err%message)
@@ -48,7 +51,7 @@ contains
 
    !> Steady state of the linear structure against (K - W^2 M + i W C) Y = F.
    subroutine linear_frequency_response()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       real(dp) :: err256, err512, amp, order
       character(len=*), parameter :: lin = "&damping model = 'ratios', frequency1_hz = 4.3, " &
@@ -56,13 +59,13 @@ contains
       character(len=*), parameter :: horizon = "&solver step_control = 'fixed', " &
          // "transient_periods = 400, record_periods = 2 /"
       call run(ref, [character(len=200) :: nostop, lin, horizon, &
-               '&solver steps_per_period = 256 /'], prob, res)
-      call compare_frf(prob, res, err256, amp)
+               '&solver steps_per_period = 256 /'], model, res)
+      call compare_frf(model, res, err256, amp)
       call check_le('linear: tip and root strain against the exact frequency response ' &
          // '(T/256, relative to the amplitude)', err256, 1.0e-3_dp)
       call run(ref, [character(len=200) :: nostop, lin, horizon, &
-               '&solver steps_per_period = 512 /'], prob, res)
-      call compare_frf(prob, res, err512, amp)
+               '&solver steps_per_period = 512 /'], model, res)
+      call compare_frf(model, res, err512, amp)
       order = log(err256 / err512) / log(2.0_dp)
       call note('linear steady state: error ' // str(err256) // ' (T/256), ' // str(err512) &
          // ' (T/512): observed order ' // str(order))
@@ -70,36 +73,36 @@ contains
          atol=0.15_dp)
    end subroutine linear_frequency_response
 
-   subroutine compare_frf(prob, res, rel_err, amp)
-      type(problem_t), intent(in) :: prob
+   subroutine compare_frf(model, res, rel_err, amp)
+      type(model_t), intent(in) :: model
       type(transient_result_t), intent(in) :: res
       real(dp), intent(out) :: rel_err, amp
       real(dp), allocatable :: a(:, :), b(:), yr(:), yi(:)
       integer, allocatable :: ipiv(:)
       integer :: n, info, i, it
       real(dp) :: w, t, tip, eps, amp_eps, e_tip, e_eps
-      n = prob%n;  w = prob%omega
+      n = model%n;  w = model%omega
       allocate(a(2 * n, 2 * n), b(2 * n), ipiv(2 * n))
       ! P = s(t) q with s = (A/2) W^2 sin(W t): u = Yr sin + Yi cos, (K - W^2 M) Y + i W C Y = F
-      a(1:n, 1:n) = prob%sys%k - w**2 * prob%sys%m
+      a(1:n, 1:n) = model%sys%k - w**2 * model%sys%m
       a(n + 1:, n + 1:) = a(1:n, 1:n)
-      a(1:n, n + 1:) = -w * prob%c
-      a(n + 1:, 1:n) = w * prob%c
+      a(1:n, n + 1:) = -w * model%c
+      a(n + 1:, 1:n) = w * model%c
       b = 0.0_dp
-      b(1:n) = prob%half_amplitude * w**2 * prob%q
+      b(1:n) = model%half_amplitude * w**2 * model%q
       call dgesv(2 * n, 1, a, 2 * n, ipiv, b, 2 * n, info)
       ! with u = Re(Y e^{iWt})-style split: F sin(Wt) = Im(F e^{iWt}); Y = Yr + i Yi solves
       ! (K - W^2 M + i W C) Y = F, u = Im(Y e^{iWt}) = Yr sin(Wt) + Yi cos(Wt)
       yr = b(1:n);  yi = b(n + 1:)
-      amp = sqrt(yr(prob%sys%tip_dof)**2 + yi(prob%sys%tip_dof)**2)
-      amp_eps = sqrt(dot_product(prob%sys%strain_row, yr)**2 &
-                     + dot_product(prob%sys%strain_row, yi)**2)
+      amp = sqrt(yr(model%sys%tip_dof)**2 + yi(model%sys%tip_dof)**2)
+      amp_eps = sqrt(dot_product(model%sys%strain_row, yr)**2 &
+                     + dot_product(model%sys%strain_row, yi)**2)
       e_tip = 0.0_dp;  e_eps = 0.0_dp
       do it = 1, size(res%time)
          t = res%time(it)
-         tip = yr(prob%sys%tip_dof) * sin(w * t) + yi(prob%sys%tip_dof) * cos(w * t)
-         eps = dot_product(prob%sys%strain_row, yr) * sin(w * t) &
-               + dot_product(prob%sys%strain_row, yi) * cos(w * t)
+         tip = yr(model%sys%tip_dof) * sin(w * t) + yi(model%sys%tip_dof) * cos(w * t)
+         eps = dot_product(model%sys%strain_row, yr) * sin(w * t) &
+               + dot_product(model%sys%strain_row, yi) * cos(w * t)
          e_tip = max(e_tip, abs(res%tip_displacement(it) - tip))
          e_eps = max(e_eps, abs(res%strain(it) - eps))
       end do
@@ -109,7 +112,7 @@ contains
    !> Undamped free vibration: energy to round-off, and the period elongation of the
    !> trapezoidal rule, omega_h dt = 2 atan(omega dt / 2).
    subroutine energy_and_period()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       real(dp) :: e0, e1, w, theta, u_exact, k, m, fn
       real(dp), allocatable :: u0(:), a0(:)
@@ -119,12 +122,12 @@ contains
          '&forcing amplitude_pp = 0.0, frequency_hz = 4.3 /', &
          "&initial kind = 'given', node = 5, dof = 'w', displacement = 1.0e-3 /", &
          "&solver step_control = 'fixed', steps_per_period = 64, transient_periods = 0, " &
-         // "record_periods = 50 /"], prob, res)
-      allocate(u0(prob%n), source=0.0_dp)
-      u0(prob%sys%tip_dof) = 1.0e-3_dp
-      e0 = 0.5_dp * dot_product(u0, matmul(prob%sys%k, u0))
-      e1 = 0.5_dp * dot_product(res%v, matmul(prob%sys%m, res%v)) &
-           + 0.5_dp * dot_product(res%u, matmul(prob%sys%k, res%u))
+         // "record_periods = 50 /"], model, res)
+      allocate(u0(model%n), source=0.0_dp)
+      u0(model%sys%tip_dof) = 1.0e-3_dp
+      e0 = 0.5_dp * dot_product(u0, matmul(model%sys%k, u0))
+      e1 = 0.5_dp * dot_product(res%v, matmul(model%sys%m, res%v)) &
+           + 0.5_dp * dot_product(res%u, matmul(model%sys%k, res%u))
       call check_close('undamped free vibration: energy conserved by the trapezoidal rule ' &
          // '(3200 steps)', e1, e0, rtol=1.0e-12_dp)
       ! single dof: u_n = u0 cos(n omega_h dt)
@@ -133,7 +136,7 @@ contains
       fn = sqrt(k / m) / (2 * pi)
       write(ov, '(a, es24.16, a)') '&forcing frequency_hz = ', fn, ' /'
       call run(sdof, [character(len=200) :: ov, '&stops gap = 1.0 /', &
-         "&solver steps_per_period = 16, record_periods = 10 /"], prob, res)
+         "&solver steps_per_period = 16, record_periods = 10 /"], model, res)
       w = 2 * pi * fn
       theta = 2 * atan(w * (1.0_dp / fn / 16) / 2)
       n_steps = 160
@@ -141,19 +144,19 @@ contains
       call note('trapezoidal period elongation at omega dt = 2 pi/16: T_h/T = ' &
          // str(w / fn / 16 / theta) // ' (formula omega dt / (2 atan(omega dt / 2)))')
       call check_close('free vibration after 160 steps equals u0 cos(n omega_h dt)', &
-         res%u(prob%sys%tip_dof), u_exact, rtol=1.0e-9_dp)
+         res%u(model%sys%tip_dof), u_exact, rtol=1.0e-9_dp)
       allocate(a0(1))
    end subroutine energy_and_period
 
    !> A stop that is never reached gives exactly the linear result.
    subroutine stop_never_reached()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res_lin, res_gap
       character(len=*), parameter :: short = '&solver transient_periods = 5, record_periods = 5 /'
       call run(ref, [character(len=200) :: short, "&stops rule_factor = 0.0, stiffness = 1.0e3, " &
-         // "gap = 10.0 /"], prob, res_gap)
+         // "gap = 10.0 /"], model, res_gap)
       call run(ref, [character(len=200) :: short, "&stops rule_factor = 0.0, stiffness = 1.0e-3, " &
-         // "gap = 20.0 /"], prob, res_lin)
+         // "gap = 20.0 /"], model, res_lin)
       call check('stop never reached: history identical to the linear run', &
          all(res_gap%strain == res_lin%strain) .and. &
          all(res_gap%tip_displacement == res_lin%tip_displacement) .and. &
@@ -162,12 +165,12 @@ contains
 
    !> Zero gap, bilinear stop: doubling the amplitude doubles the whole response.
    subroutine zero_gap_scaling()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r1, r2
       real(dp) :: d
       character(len=*), parameter :: short = '&solver transient_periods = 10, record_periods = 10 /'
-      call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 3.7e-3 /'], prob, r1)
-      call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 7.4e-3 /'], prob, r2)
+      call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 3.7e-3 /'], model, r1)
+      call run(ref, [character(len=200) :: short, '&forcing amplitude_pp = 7.4e-3 /'], model, r2)
       d = max(maxval(abs(r2%strain - 2 * r1%strain)) / maxval(abs(r1%strain)), &
               maxval(abs(r2%p_strain_rate - 2 * r1%p_strain_rate)) &
               / maxval(abs(r1%p_strain_rate)), &
@@ -180,7 +183,7 @@ contains
 
    !> Single-dof bilinear oscillator against its exact piecewise solution.
    subroutine sdof_against_exact()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res, res_ref
       real(dp) :: k, m, ks, g, u0, fn, w1, tc, e(3, 2), order_ev, order_no
       integer :: i, j
@@ -196,7 +199,7 @@ contains
          do i = 1, 3
             ovs3(1) = ov;  ovs3(2) = ev(j)
             ovs3(3) = '&solver steps_per_period = ' // str(128 * 2**(i - 1)) // ' /'
-            call run(sdof, ovs3, prob, res)
+            call run(sdof, ovs3, model, res)
             e(i, j) = sdof_error(res, k, m, ks, g, u0)
          end do
       end do
@@ -215,13 +218,13 @@ contains
       ! a contact damper makes the force jump at impact: measure the order with and without
       ! event location against a fine reference (T/32768 with events)
       call run(sdof, [character(len=200) :: ov, '&stops damping = 0.07 /', &
-         '&solver steps_per_period = 32768 /'], prob, res_ref)
+         '&solver steps_per_period = 32768 /'], model, res_ref)
       do j = 1, 2
          do i = 1, 3
             ovs3(1) = ov;  ovs3(2) = ev(j)
             ovs3(3) = '&stops damping = 0.07 / &solver steps_per_period = ' &
                // str(128 * 2**(i - 1)) // ' /'
-            call run(sdof, ovs3, prob, res)
+            call run(sdof, ovs3, model, res)
             e(i, j) = maxval(abs(res%tip_displacement - res_ref%tip_displacement)) / abs(u0)
          end do
       end do
@@ -237,13 +240,13 @@ contains
          e(3, 1) < 0.5_dp * e(3, 2))
       ! the 4-element beam: the stop force is continuous too, but impacts excite the high modes
       call run(ref, [character(len=200) :: "&solver step_control = 'fixed', " &
-         // 'steps_per_period = 65536, transient_periods = 0, record_periods = 2 /'], prob, res_ref)
+         // 'steps_per_period = 65536, transient_periods = 0, record_periods = 2 /'], model, res_ref)
       do j = 1, 2
          do i = 1, 3
             ovs(1) = ev(j)
             ovs(2) = "&solver step_control = 'fixed', transient_periods = 0, " &
                // 'record_periods = 2, steps_per_period = ' // str(256 * 2**(i - 1)) // ' /'
-            call run(ref, ovs, prob, res)
+            call run(ref, ovs, model, res)
             e(i, j) = maxval(abs(res%u - res_ref%u)) / maxval(abs(res_ref%u))
          end do
       end do
@@ -256,7 +259,7 @@ contains
       call check_close('beam with impacts: event location gives second order', order_ev, &
          2.0_dp, atol=0.3_dp)
       ! contact onset of the free vibration released against the stop
-      call run(sdof, [character(len=200) :: ov, '&solver steps_per_period = 4096 /'], prob, res)
+      call run(sdof, [character(len=200) :: ov, '&solver steps_per_period = 4096 /'], model, res)
       tc = acos(-g / abs(u0)) / w1
       call check_close('SDOF: first contact time against acos(-g/U)/omega', &
          res%first_contact_time(1), tc, rtol=1.0e-6_dp)
@@ -319,7 +322,7 @@ contains
    !> The condensed solution and the paper's fixed point agree; a very stiff stop needs step
    !> cuts with the fixed point and none with the condensed solution.
    subroutine condensed_and_fixed_point()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: rc, rf
       real(dp) :: d, k_beam
       character(len=200) :: stiff
@@ -327,9 +330,9 @@ contains
          // "transient_periods = 0, record_periods = 5 /"
       ! the same steps for both (no event location: a split decided on the last digits of
       ! the state could differ between the two and move the trajectory by the step's error)
-      call run(ref, [character(len=200) :: fixed, '&solver locate_events = .false. /'], prob, rc)
+      call run(ref, [character(len=200) :: fixed, '&solver locate_events = .false. /'], model, rc)
       call run(ref, [character(len=200) :: fixed, '&solver locate_events = .false. /', &
-         "&solver stop_solution = 'fixed_point', fp_tolerance = 1.0e-13 /"], prob, rf)
+         "&solver stop_solution = 'fixed_point', fp_tolerance = 1.0e-13 /"], model, rf)
       d = maxval(abs(rc%strain - rf%strain)) / maxval(abs(rc%strain))
       call note('condensed vs fixed point (tolerance 1e-13): max strain difference ' // str(d) &
          // ' of the amplitude; fixed-point iterations ' // str(int(rf%fp_iterations)) &
@@ -338,9 +341,9 @@ contains
       k_beam = 3 * 1.9918014e-3_dp / 0.2_dp**3
       write(stiff, '(a, es12.4, a)') '&stops rule_factor = 0.0, stiffness = ', &
          1.0e6_dp * k_beam, ' /'
-      call run(ref, [character(len=200) :: fixed, stiff], prob, rc)
+      call run(ref, [character(len=200) :: fixed, stiff], model, rc)
       call run(ref, [character(len=200) :: fixed, stiff, &
-         "&solver stop_solution = 'fixed_point' /"], prob, rf)
+         "&solver stop_solution = 'fixed_point' /"], model, rf)
       call note('stop 1e6 x the beam tip stiffness, fixed T/256: condensed ' &
          // str(int(rc%steps_rejected)) // ' rejected steps; fixed point ' &
          // str(int(rf%steps_rejected)) // ' step cuts, ' // str(int(rf%steps_accepted)) &
@@ -352,20 +355,20 @@ contains
 
    !> Half-step control reaches the error of a fixed-step run with fewer steps.
    subroutine half_step_efficiency()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r_ref, r_h, r_f
       real(dp) :: e_h, e_f
       integer :: n, steps_f
       character(len=*), parameter :: short = '&solver transient_periods = 0, record_periods = 4 /'
       call run(ref, [character(len=200) :: short, "&solver step_control = 'fixed', " &
-         // 'steps_per_period = 65536 /'], prob, r_ref)
-      call run(ref, [character(len=200) :: short, '&solver locate_events = .false. /'], prob, r_h)
+         // 'steps_per_period = 65536 /'], model, r_ref)
+      call run(ref, [character(len=200) :: short, '&solver locate_events = .false. /'], model, r_h)
       e_h = state_error(r_h, r_ref)
       steps_f = -1
       n = 256
       do while (n <= 65536)
          call run(ref, [character(len=200) :: short, "&solver step_control = 'fixed', " &
-            // 'locate_events = .false., steps_per_period = ' // str(n) // ' /'], prob, r_f)
+            // 'locate_events = .false., steps_per_period = ' // str(n) // ' /'], model, r_f)
          e_f = state_error(r_f, r_ref)
          if (e_f <= e_h) then
             steps_f = int(r_f%steps_accepted);  exit
@@ -388,16 +391,16 @@ contains
    !> The 10.5 Hz deck's default settings settle on the same attractor as a 16x finer fixed
    !> step (a fixed T/200 without event location settles on a spurious period 3).
    subroutine attractor_against_finer_step()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r_def, r_fine, r_coarse
       integer :: p_def, p_fine, p_coarse
       character(len=*), parameter :: horizon = '&solver transient_periods = 300, ' &
          // 'record_periods = 200 /'
-      call run(ref, [character(len=200) :: horizon], prob, r_def)
+      call run(ref, [character(len=200) :: horizon], model, r_def)
       call run(ref, [character(len=200) :: horizon, "&solver step_control = 'fixed', " &
-         // 'steps_per_period = 4096 /'], prob, r_fine)
+         // 'steps_per_period = 4096 /'], model, r_fine)
       call run(ref, [character(len=200) :: horizon, "&solver step_control = 'fixed', " &
-         // 'steps_per_period = 200, locate_events = .false. /'], prob, r_coarse)
+         // 'steps_per_period = 200, locate_events = .false. /'], model, r_coarse)
       p_def = period_of(r_def);  p_fine = period_of(r_fine);  p_coarse = period_of(r_coarse)
       call note('10.5 Hz attractor period: default settings ' // str(p_def) &
          // ', fixed T/4096 ' // str(p_fine) // ', fixed T/200 without events ' // str(p_coarse))
@@ -407,14 +410,14 @@ contains
 
    !> A two-sided symmetric stop under symmetric forcing: u(t + T/2) = -u(t) on the orbit.
    subroutine symmetric_two_sided_stop()
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: r
       integer :: half
       real(dp) :: asym
       call run(ref, [character(len=200) :: "&stops side = 'both', gap = 5.0e-4 /", &
          '&forcing frequency_hz = 3.0, amplitude_pp = 2.0e-3 /', &
          '&solver transient_periods = 300, record_periods = 20 /', &
-         '&output samples_per_period = 64, history_periods = 4 /'], prob, r)
+         '&output samples_per_period = 64, history_periods = 4 /'], model, r)
       half = 32
       asym = maxval(abs(r%strain(half + 1:) + r%strain(:size(r%strain) - half))) &
              / maxval(abs(r%strain))

@@ -4,17 +4,19 @@ program test_reduction
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t
-   use gapbeam_setup, only: build_model
-   use gapbeam_transient, only: transient_result_t, run_transient
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
    use gapbeam_lapack, only: dpotrf, dpotrs
    use gapbeam_test_runs, only: run_deck
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: short = "&solver step_control = 'fixed', " &
       // 'transient_periods = 0, record_periods = 5 /'
-   type(problem_t) :: pf, pr
+   type(model_t) :: pf, pr
    type(transient_result_t) :: rf, rr, r2, r2s
    real(dp) :: d, u_full, u_red, e_with, e_without
    integer :: n_all
@@ -61,12 +63,12 @@ program test_reduction
 
 contains
 
-   subroutine run(overrides, prob, res)
+   subroutine run(overrides, model, res)
       character(len=*), intent(in) :: overrides(:)
-      type(problem_t), intent(out) :: prob
+      type(model_t), intent(out) :: model
       type(transient_result_t), intent(out) :: res
       type(error_t), allocatable :: err
-      call run_deck(ref, overrides, prob, res, err)
+      call run_deck(ref, overrides, model, res, err)
       if (allocated(err)) then
          call check('run succeeds', .false., err%message)
          call finish('test_reduction')
@@ -75,7 +77,7 @@ contains
 
    !> Displacement of dof i under a unit force at dof i: (K^-1)_ii.
    real(dp) function static_response(p, i)
-      type(problem_t), intent(in) :: p
+      type(model_t), intent(in) :: p
       integer, intent(in) :: i
       real(dp), allocatable :: k(:, :), b(:)
       integer :: info

@@ -5,11 +5,16 @@ program test_sweep
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_input, only: deck_t, read_deck
-   use gapbeam_problem, only: problem_t, build_problem, initial_vectors
-   use gapbeam_transient, only: transient_result_t, run_transient
-   use gapbeam_sweep, only: point_result_t, run_point, run_items, n_items, n_points
-   use gapbeam_sweep_driver, only: run_sweep_job
+   use gapbeam_deck, only: deck_t
+   use gapbeam_settings, only: batch_options_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_full_model, initial_vectors
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_results, only: point_result_t
+   use gapbeam_sweep, only: run_point, run_items, n_items, n_points
+   use gapbeam_sweep_job, only: run_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
    use gapbeam_diagnostics, only: detect_period
    use gapbeam_files, only: remove_file, file_exists
@@ -30,16 +35,16 @@ program test_sweep
 
 contains
 
-   subroutine load(path, overrides, deck, prob)
+   subroutine load(path, overrides, deck, model)
       character(len=*), intent(in) :: path, overrides(:)
       type(deck_t), intent(out) :: deck
-      type(problem_t), intent(out) :: prob
+      type(model_t), intent(out) :: model
       type(error_t), allocatable :: err
       character(len=200) :: ov(size(overrides))
       ov = overrides
       call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_problem(deck%structure, deck%stops, deck%damping, &
-                                                   deck%forcing, prob, err)
+      if (.not. allocated(err)) call build_full_model(deck%structure, deck%stops, deck%damping, &
+                                                   deck%forcing, model, err)
       if (allocated(err)) then
          call check('load ' // path, .false., err%message)
          call finish('test_sweep')
@@ -49,7 +54,7 @@ contains
    !> Mass-proportional damping decays every mode at beta/2: lambda = -zeta omega = -beta/2.
    subroutine lyapunov_of_linear_oscillator()
       type(deck_t) :: deck
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(point_result_t) :: pr
       real(dp), allocatable :: u0(:), v0(:)
       real(dp), parameter :: beta = 0.8_dp
@@ -57,9 +62,9 @@ contains
          "&damping model = 'rayleigh', mass_coefficient = 0.8 /", &
          '&forcing frequency_hz = 7.1, amplitude_pp = 1.0e-3 /', &
          '&solver transient_periods = 200, record_periods = 100 /', &
-         '&diagnostics lyapunov_periods = 200 /'], deck, prob)
-      call initial_vectors(prob, deck%initial, u0, v0)
-      call run_point(prob, deck%solver, deck%output, deck%diagnostics, 7.1_dp, 1.0e-3_dp, &
+         '&diagnostics lyapunov_periods = 200 /'], deck, model)
+      call initial_vectors(model, deck%initial, u0, v0)
+      call run_point(model, deck%solver, deck%output, deck%diagnostics, 7.1_dp, 1.0e-3_dp, &
                      u0, v0, pr)
       call check('linear oscillator run succeeds', pr%status == 0)
       call check_close('Lyapunov exponent of a damped linear oscillator = -zeta omega', &
@@ -69,13 +74,13 @@ contains
 
    subroutine periodic_point_has_negative_exponent()
       type(deck_t) :: deck
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(point_result_t) :: pr
       real(dp), allocatable :: u0(:), v0(:)
       call load('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: &
-         '&solver transient_periods = 300, record_periods = 100 /'], deck, prob)
-      call initial_vectors(prob, deck%initial, u0, v0)
-      call run_point(prob, deck%solver, deck%output, deck%diagnostics, 10.5_dp, 3.7e-3_dp, &
+         '&solver transient_periods = 300, record_periods = 100 /'], deck, model)
+      call initial_vectors(model, deck%initial, u0, v0)
+      call run_point(model, deck%solver, deck%output, deck%diagnostics, 10.5_dp, 3.7e-3_dp, &
                      u0, v0, pr)
       call note('10.5 Hz / 3.7 mm: period ' // str(pr%period) // ', lambda = ' &
          // str(pr%lyapunov) // ' +- ' // str(pr%lyapunov_error) // ' 1/s')
@@ -112,7 +117,7 @@ contains
    !> Bitwise identical results with 1 and 2 threads, in both modes.
    subroutine thread_count_independence()
       type(deck_t) :: deck
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(point_result_t), allocatable :: r1(:), r2(:)
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k, mode
@@ -120,14 +125,14 @@ contains
       do mode = 1, 2
          ov = "&sweep mode = 'independent' /"
          if (mode == 2) ov = "&sweep mode = 'continuation' /"
-         call load(small, [ov], deck, prob)
-         call initial_vectors(prob, deck%initial, u0, v0)
+         call load(small, [ov], deck, model)
+         call initial_vectors(model, deck%initial, u0, v0)
          allocate(r1(n_points(deck%sweep)), r2(n_points(deck%sweep)))
          !$ call omp_set_num_threads(1)
-         call run_items(prob, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+         call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
                         [(k, k = 1, n_items(deck%sweep))], u0, v0, r1)
          !$ call omp_set_num_threads(2)
-         call run_items(prob, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+         call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
                         [(k, k = 1, n_items(deck%sweep))], u0, v0, r2)
          call check(trim(ov) // ': 1 and 2 threads give bitwise identical points', &
             all([(same(r1(k), r2(k)), k = 1, size(r1))]))
@@ -156,9 +161,8 @@ contains
       ov = overrides
       call read_deck(small, ov, deck, err)
       if (.not. allocated(err)) then
-         deck%sweep%shard_index = shard;  deck%sweep%shard_count = n_shards
-         deck%sweep%time_limit_s = limit
-         call run_sweep_job(deck, complete, err)
+         call run_sweep_job(deck, batch_options_t(shard_index=shard, shard_count=n_shards, &
+                                                  time_limit_s=limit), complete, err)
       end if
       if (allocated(err)) then
          call check('sweep job runs', .false., err%message)
@@ -261,7 +265,7 @@ contains
       ! a different deck is refused, not mixed
       call read_deck(small, [character(len=200) :: res, '&forcing amplitude_pp = 3.0e-3 /'], &
                      deck, err)
-      call run_sweep_job(deck, complete, err)
+      call run_sweep_job(deck, batch_options_t(), complete, err)
       call check('a different deck against the checkpoint is refused', allocated(err))
       if (allocated(err)) call note('message: ' // err%message)
       call job([character(len=200) :: res], 1, 1, 0.0_dp, complete)
@@ -276,15 +280,15 @@ contains
    !> Zero gap, bilinear stop: the point at 2A is exactly twice the point at A.
    subroutine zero_gap_scaling()
       type(deck_t) :: deck
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(point_result_t), allocatable :: r(:)
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k, nf
       logical :: ok
-      call load(small, [character(len=200) :: "&sweep mode = 'independent' /"], deck, prob)
-      call initial_vectors(prob, deck%initial, u0, v0)
+      call load(small, [character(len=200) :: "&sweep mode = 'independent' /"], deck, model)
+      call initial_vectors(model, deck%initial, u0, v0)
       allocate(r(n_points(deck%sweep)))
-      call run_items(prob, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+      call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
                      [(k, k = 1, n_items(deck%sweep))], u0, v0, r)
       nf = size(deck%sweep%frequency_hz)
       ok = .true.

@@ -1,12 +1,10 @@
 !> Diagnostics of a forced run: period detection from the Poincare points.
 module gapbeam_diagnostics
    use gapbeam_kinds, only: dp
+   use gapbeam_results, only: label_chaotic, label_undecided
    implicit none
    private
-   public :: detect_period, classify, label_text, label_chaotic, label_undecided
-
-   integer, parameter :: label_chaotic = -1     !! label code of a chaotic response
-   integer, parameter :: label_undecided = 0    !! neither periodic nor provably chaotic
+   public :: detect_period, classify
 
 contains
 
@@ -27,20 +25,6 @@ contains
       end if
    end function classify
 
-   !> Text of a label code: 'period_3', 'chaotic', 'undecided'.
-   pure function label_text(code) result(t)
-      integer, intent(in) :: code    !! label code
-      character(len=:), allocatable :: t
-      character(len=12) :: buf
-      if (code == label_chaotic) then
-         t = 'chaotic'
-      else if (code == label_undecided) then
-         t = 'undecided'
-      else
-         write(buf, '(i0)') code
-         t = 'period_' // trim(buf)
-      end if
-   end function label_text
 
    !> Smallest period p <= p_max (in forcing periods) of a Poincare sequence, 0 if none.
    !>

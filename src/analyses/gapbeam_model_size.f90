@@ -15,41 +15,17 @@ module gapbeam_model_size
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_input, only: deck_t
-   use gapbeam_setup, only: build_model
-   use gapbeam_problem, only: problem_t
-   use gapbeam_eigen, only: modes_t, solve_modes
-   use gapbeam_transient, only: transient_result_t
-   use gapbeam_integrate, only: integrate
-   use gapbeam_sweep, only: point_result_t, point_diagnostics
+   use gapbeam_deck, only: deck_t
+   use gapbeam_model, only: model_t
    use gapbeam_settings, only: model_size_settings_t
+   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, candidate_t
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_eigen, only: solve_modes
+   use gapbeam_transient, only: integrate
+   use gapbeam_sweep, only: point_diagnostics
    implicit none
    private
-   public :: candidate_t, model_size_study, poincare_distance
-
-
-
-   !> One model of the ladder and how it did.
-   type :: candidate_t
-      character(len=:), allocatable :: name          !! e.g. '4 elements', '3 modes + static'
-      integer :: n_elem = 0                          !! elements of its mesh
-      integer :: n_modes = 0                         !! 0: full model; else modes kept
-      logical :: static_correction = .false.         !! modal: residual flexibility added
-      integer :: n_coordinates = 0                   !! size of the integrated model
-      integer :: n_compared = 0                      !! frequencies below the cut-off compared
-      real(dp) :: frequency_error = 0.0_dp           !! largest relative error below cut-off
-      integer :: period = 0                          !! detected period
-      integer :: label = 0                           !! label code
-      real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
-      real(dp) :: poincare_distance = 0.0_dp         !! to the finest model's set [-]
-      real(dp) :: peak_force = 0.0_dp                !! stop 1 [N]
-      real(dp) :: strain_range = 0.0_dp              !! root strain range over the record [-]
-      real(dp) :: strain_rate_range = 0.0_dp         !! root strain rate range [1/s]
-      real(dp) :: seconds = 0.0_dp                   !! elapsed time of the run [s]
-      logical :: acceptable = .false.                !! meets every tolerance
-      integer :: status = 0                          !! 0 done, 1 failed
-      character(len=:), allocatable :: message       !! failure
-   end type candidate_t
+   public :: model_size_study, poincare_distance
 
 contains
 
@@ -207,15 +183,15 @@ contains
       type(candidate_t), intent(inout) :: cand
       type(error_t), allocatable, intent(out) :: err
       real(dp), intent(in), optional :: cutoff_hz
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       type(modes_t) :: modes
       real(dp), allocatable :: u0(:), v0(:)
       integer(int64) :: c0, c1, rate
       integer :: j, m
-      call build_model(d, prob, u0, v0, err);  if (allocated(err)) return
-      cand%n_coordinates = prob%n
-      call solve_modes(prob%sys, modes, err);  if (allocated(err)) return
+      call build_model(d, model, u0, v0, err);  if (allocated(err)) return
+      cand%n_coordinates = model%n
+      call solve_modes(model%sys, modes, err);  if (allocated(err)) return
       if (.not. present(cutoff_hz)) then
          ref_modes = modes
       else
@@ -230,14 +206,14 @@ contains
          cand%n_compared = m
       end if
       call system_clock(c0, rate)
-      call integrate(prob, d%solver, d%output, u0, v0, res, err)
+      call integrate(model, d%solver, d%output, u0, v0, res, err)
       call system_clock(c1)
       if (allocated(err)) return
       cand%seconds = real(c1 - c0, dp) / real(rate, dp)
       cand%strain_range = res%strain_max - res%strain_min
       cand%strain_rate_range = res%strain_rate_max - res%strain_rate_min
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
-      call point_diagnostics(prob, d%solver, d%diagnostics, res, pr, err)
+      call point_diagnostics(model, d%solver, d%diagnostics, res, pr, err)
       if (allocated(err)) return
       cand%period = pr%period;  cand%label = pr%label;  cand%lyapunov = pr%lyapunov
       cand%peak_force = 0.0_dp

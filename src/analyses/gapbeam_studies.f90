@@ -13,54 +13,15 @@ module gapbeam_studies
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_problem, only: problem_t
-   use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_transient, only: transient_result_t
-   use gapbeam_integrate, only: integrate
+   use gapbeam_model, only: model_t, energy_norm
+   use gapbeam_settings, only: solver_settings_t, output_settings_t, study_settings_t
+   use gapbeam_results, only: transient_result_t, series_result_t, stable_step_t
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_transient, only: integrate
    use gapbeam_stability, only: spectral_radius, largest_stable_step
-   use gapbeam_contact, only: law_bilinear
    implicit none
    private
-   public :: study_settings_t, series_result_t, work_precision, stability_study, &
-      stable_step_t, series_words, cpu_to_reach
-
-   character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
-      // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
-      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
-
-   !> &study: what to compare.
-   type :: study_settings_t
-      character(len=32), allocatable :: series(:)   !! series words
-      integer :: levels = 8                         !! settings per series [-]
-      integer :: periods = 10                       !! horizon from rest [forcing periods]
-      integer :: base_steps = 64                    !! coarsest fixed steps per period [-]
-      real(dp) :: tolerance_start = 0.1_dp          !! loosest half-step tolerance [-]
-      real(dp) :: rtol_start = 1.0e-2_dp            !! loosest rk45 rtol [-]
-      integer :: repeats = 3                        !! timing repeats of short runs [-]
-      real(dp) :: omega_dt_min = 1.0e-2_dp          !! stability chart range [-]
-      real(dp) :: omega_dt_max = 1.0e3_dp           !! [-]
-      integer :: n_omega_dt = 101                   !! points of the chart [-]
-   end type study_settings_t
-
-   !> One series of the work-precision study.
-   type :: series_result_t
-      character(len=:), allocatable :: name          !! series word
-      character(len=:), allocatable :: parameter_name  !! what varies
-      real(dp), allocatable :: parameter(:)          !! its values
-      real(dp), allocatable :: seconds(:)            !! elapsed time of a run [s]
-      real(dp), allocatable :: error(:)              !! final-state error [-]
-      real(dp), allocatable :: poincare_error(:)     !! Poincare points error [-]
-      real(dp), allocatable :: steps(:)              !! steps accepted [-]
-      integer, allocatable :: status(:)              !! 0 done, 1 failed (e.g. unstable)
-   end type series_result_t
-
-   !> Measured and theoretical largest stable step of a method.
-   type :: stable_step_t
-      character(len=:), allocatable :: name          !! method
-      real(dp) :: measured = 0.0_dp                  !! by bisection [s]
-      real(dp) :: theory = 0.0_dp                    !! limit / omega_max [s]
-      real(dp) :: limit = 0.0_dp                     !! omega_max dt at the limit [-]
-   end type stable_step_t
+   public :: work_precision, stability_study
 
 contains
 
@@ -113,8 +74,8 @@ contains
    end function series_setting
 
    !> The work-precision study of the deck's case.
-   subroutine work_precision(prob, base, out, u0, v0, st, results, err)
-      type(problem_t), intent(in) :: prob              !! model
+   subroutine work_precision(model, base, out, u0, v0, st, results, err)
+      type(model_t), intent(in) :: model              !! model
       type(solver_settings_t), intent(in) :: base      !! deck's solver settings
       type(output_settings_t), intent(in) :: out       !! recording (Poincare phase)
       real(dp), intent(in) :: u0(:), v0(:)             !! initial state
@@ -128,7 +89,7 @@ contains
       real(dp) :: param, t, norm_ref, srange
       character(len=:), allocatable :: pname
       integer :: s, k, nl
-      if (any(prob%c_law /= law_bilinear)) then
+      if (any(model%c_law /= law_bilinear)) then
          call fatal_error(err, "work_precision: the reference is the exact integrator, which " &
             // "needs bilinear stops (law = 'bilinear'); this model has a Hertz stop")
          return
@@ -136,9 +97,9 @@ contains
       o = out;  o%history_periods = 0
       cfg = base;  cfg%method = 'exact'
       cfg%transient_periods = 0;  cfg%record_periods = st%periods
-      call integrate(prob, cfg, o, u0, v0, ref, err)
+      call integrate(model, cfg, o, u0, v0, ref, err)
       if (allocated(err)) return
-      norm_ref = energy_norm(prob, ref%u, ref%v)
+      norm_ref = energy_norm(model, ref%u, ref%v)
       srange = max(ref%strain_max - ref%strain_min, tiny(1.0_dp))
       allocate(results(size(st%series)))
       do s = 1, size(st%series)
@@ -156,7 +117,7 @@ contains
             results(s)%parameter_name = pname
             cfg%transient_periods = 0;  cfg%record_periods = st%periods
             results(s)%parameter(k) = param
-            call timed_run(prob, cfg, o, u0, v0, st%repeats, res, t, e)
+            call timed_run(model, cfg, o, u0, v0, st%repeats, res, t, e)
             results(s)%seconds(k) = t
             if (allocated(e)) then
                results(s)%status(k) = 1
@@ -167,15 +128,15 @@ contains
             end if
             results(s)%status(k) = 0
             results(s)%steps(k) = real(res%steps_accepted, dp)
-            results(s)%error(k) = energy_norm(prob, res%u - ref%u, res%v - ref%v) / norm_ref
+            results(s)%error(k) = energy_norm(model, res%u - ref%u, res%v - ref%v) / norm_ref
             results(s)%poincare_error(k) = maxval(abs(res%p_strain - ref%p_strain)) / srange
          end do
       end do
    end subroutine work_precision
 
    !> Run and time (best of `repeats` when the run is shorter than 0.2 s).
-   subroutine timed_run(prob, cfg, out, u0, v0, repeats, res, seconds, err)
-      type(problem_t), intent(in) :: prob
+   subroutine timed_run(model, cfg, out, u0, v0, repeats, res, seconds, err)
+      type(model_t), intent(in) :: model
       type(solver_settings_t), intent(in) :: cfg
       type(output_settings_t), intent(in) :: out
       real(dp), intent(in) :: u0(:), v0(:)
@@ -189,7 +150,7 @@ contains
       seconds = huge(1.0_dp)
       do r = 1, max(1, repeats)
          call system_clock(c0, rate)
-         call integrate(prob, cfg, out, u0, v0, res, err)
+         call integrate(model, cfg, out, u0, v0, res, err)
          call system_clock(c1)
          t = real(c1 - c0, dp) / real(rate, dp)
          seconds = min(seconds, t)
@@ -197,35 +158,10 @@ contains
       end do
    end subroutine timed_run
 
-   !> Elapsed time for a series to reach an error level (log-log interpolation between the
-   !> runs that bracket it); a negative number when the series never reaches it.
-   pure real(dp) function cpu_to_reach(sr, level) result(t)
-      type(series_result_t), intent(in) :: sr      !! series
-      real(dp), intent(in) :: level                !! error level [-]
-      integer :: k
-      real(dp) :: w
-      t = -1.0_dp
-      do k = 1, size(sr%error)
-         if (sr%status(k) /= 0) cycle
-         if (sr%error(k) <= level) then
-            if (k > 1) then
-               if (sr%status(k - 1) == 0 .and. sr%error(k - 1) > level .and. &
-                   sr%error(k) > 0.0_dp) then
-                  w = log(level / sr%error(k - 1)) / log(sr%error(k) / sr%error(k - 1))
-                  t = exp(log(sr%seconds(k - 1)) + w * (log(sr%seconds(k)) &
-                      - log(sr%seconds(k - 1))))
-                  return
-               end if
-            end if
-            t = sr%seconds(k)
-            return
-         end if
-      end do
-   end function cpu_to_reach
 
    !> Spectral radius against omega dt for each method, and the largest stable fixed steps.
-   subroutine stability_study(prob, st, methods, omega_dt, rho, steps, err)
-      type(problem_t), intent(in) :: prob                  !! model for the stable steps
+   subroutine stability_study(model, st, methods, omega_dt, rho, steps, err)
+      type(model_t), intent(in) :: model                  !! model for the stable steps
       type(study_settings_t), intent(in) :: st             !! chart range
       character(len=*), intent(in) :: methods(:)           !! series words (no 'exact')
       real(dp), allocatable, intent(out) :: omega_dt(:)    !! chart abscissae [-]
@@ -265,17 +201,10 @@ contains
          known = series_setting(trim(conditional(ns)), 1, one, base, cfg, param, pname)
          steps(ns)%name = trim(conditional(ns))
          steps(ns)%limit = limits(ns)
-         steps(ns)%theory = limits(ns) / prob%omega_max
-         call largest_stable_step(prob, cfg, 0.5_dp * steps(ns)%theory, 3000, 1.0e-4_dp, &
+         steps(ns)%theory = limits(ns) / model%omega_max
+         call largest_stable_step(model, cfg, 0.5_dp * steps(ns)%theory, 3000, 1.0e-4_dp, &
                                   steps(ns)%measured, err)
          if (allocated(err)) return
       end do
    end subroutine stability_study
-
-   real(dp) function energy_norm(prob, u, v)
-      type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: u(:), v(:)
-      energy_norm = sqrt(max(0.0_dp, dot_product(u, matmul(prob%sys%k, u)) &
-                         + dot_product(v, matmul(prob%sys%m, v))))
-   end function energy_norm
 end module gapbeam_studies

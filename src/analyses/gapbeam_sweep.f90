@@ -10,60 +10,19 @@
 !> shards round robin (item k belongs to shard mod(k-1, N) + 1).
 module gapbeam_sweep
    use, intrinsic :: iso_fortran_env, only: int64
-   use gapbeam_kinds, only: dp
+   use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
-   use gapbeam_problem, only: problem_t
-   use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
-   use gapbeam_transient, only: transient_result_t
-   use gapbeam_integrate, only: integrate
-   use gapbeam_lyapunov, only: lyapunov_t, largest_lyapunov
+   use gapbeam_model, only: model_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t, &
+      sweep_settings_t
+   use gapbeam_results, only: transient_result_t, point_result_t, lyapunov_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_lyapunov, only: largest_lyapunov
    use gapbeam_diagnostics, only: detect_period, classify
    implicit none
    private
-   public :: sweep_settings_t, point_result_t, sweep_mode_words, sweep_direction_words, &
-      sweep_axis_words, n_points, n_items, item_points, point_forcing, run_point, run_items, &
-      point_diagnostics, pack_point, unpack_point
-
-   character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
-   character(len=*), parameter :: sweep_direction_words = "'up', 'down'"
-   character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
-
-   !> What to sweep and how.
-   type :: sweep_settings_t
-      character(len=16) :: mode = 'independent'      !! 'independent' or 'continuation'
-      character(len=16) :: direction = 'up'          !! continuation: 'up' or 'down'
-      character(len=16) :: axis = 'frequency'        !! continuation lines run along this axis
-      real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz]
-      real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m]
-      logical :: progress = .true.                   !! progress on standard error
-      integer :: chunk = 0                           !! work items between checkpoints (0: auto)
-      logical :: checkpoint = .true.                 !! write finished points as they come
-      real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none (command line)
-      integer :: shard_index = 1                     !! this process's shard (command line)
-      integer :: shard_count = 1                     !! number of shards (command line)
-   end type sweep_settings_t
-
-   !> Everything one point produces.
-   type :: point_result_t
-      integer :: status = 0                          !! 0 done, 1 failed
-      character(len=:), allocatable :: message       !! failure message
-      integer :: period = 0                          !! detected period (0: none)
-      integer :: label = 0                           !! classify() code
-      real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
-      real(dp) :: lyapunov_error = 0.0_dp            !! its standard error [1/s]
-      real(dp), allocatable :: lyapunov_running(:)   !! running estimate [1/s]
-      integer, allocatable :: n_impacts(:)           !! per stop [-]
-      real(dp), allocatable :: peak_force(:)         !! per stop [N]
-      real(dp), allocatable :: rms_force(:)          !! per stop [N]
-      real(dp), allocatable :: contact_fraction(:)   !! per stop [-]
-      real(dp), allocatable :: impulse_per_period(:) !! per stop [N s]
-      real(dp), allocatable :: work_rate(:)          !! per stop [W]
-      real(dp), allocatable :: p_strain(:)           !! Poincare root strain [-]
-      real(dp), allocatable :: p_strain_rate(:)      !! Poincare root strain rate [1/s]
-      real(dp), allocatable :: u_end(:), v_end(:)    !! final state at a period boundary
-      integer(int64) :: steps = 0                    !! Newmark steps of the point
-      real(dp) :: seconds = 0.0_dp                   !! elapsed time of the point [s]
-   end type point_result_t
+   public :: n_points, n_items, item_points, point_forcing, run_point, run_items, &
+      point_diagnostics
 
 contains
 
@@ -116,8 +75,8 @@ contains
    end subroutine point_forcing
 
    !> Period, Lyapunov exponent and label of a finished transient run.
-   subroutine point_diagnostics(prob, cfg, diag, res, pr, err)
-      type(problem_t), intent(in) :: prob                !! model at this forcing
+   subroutine point_diagnostics(model, cfg, diag, res, pr, err)
+      type(model_t), intent(in) :: model                !! model at this forcing
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
       type(transient_result_t), intent(in) :: res        !! the run
@@ -131,7 +90,7 @@ contains
                                 diag%period_tolerance, diag%period_points, sx, sy)
       pr%u_end = res%u;  pr%v_end = res%v
       if (diag%lyapunov_periods > 0) then
-         call largest_lyapunov(prob, cfg, res%u, res%v, diag%lyapunov_periods, &
+         call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
             diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
          if (allocated(err)) return
          pr%lyapunov = lyap%exponent
@@ -145,32 +104,32 @@ contains
 
    !> Run one point from (u0, v0): transient, record, diagnostics.
    subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr)
-      type(problem_t), intent(in) :: base                !! model (forcing replaced)
+      type(model_t), intent(in) :: base                !! model (forcing replaced)
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(output_settings_t), intent(in) :: out         !! recording settings
       type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
       real(dp), intent(in) :: f_hz, a_pp                 !! forcing [Hz], [m]
       real(dp), intent(in) :: u0(:), v0(:)               !! initial state
       type(point_result_t), intent(out) :: pr            !! result
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(transient_result_t) :: res
       type(output_settings_t) :: o
       type(error_t), allocatable :: err
       integer(int64) :: c0, c1, rate
       call system_clock(c0, rate)
-      prob = base
-      prob%omega = 2.0_dp * acos(-1.0_dp) * f_hz
-      prob%half_amplitude = 0.5_dp * a_pp
+      model = base
+      model%omega = 2.0_dp * pi * f_hz
+      model%half_amplitude = 0.5_dp * a_pp
       o = out
       o%history_periods = 0
-      call integrate(prob, cfg, o, u0, v0, res, err)
+      call integrate(model, cfg, o, u0, v0, res, err)
       if (.not. allocated(err)) then
          pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
          pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
          pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
          pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
          pr%steps = res%steps_accepted
-         call point_diagnostics(prob, cfg, diag, res, pr, err)
+         call point_diagnostics(model, cfg, diag, res, pr, err)
       end if
       if (allocated(err)) then
          pr%status = 1
@@ -203,7 +162,7 @@ contains
    !> time); results(p) is written only by the thread that runs point p. No I/O in here.
    !> In continuation mode `u_start`, `v_start` (n, n_items) hold each line's starting state.
    subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results)
-      type(problem_t), intent(in) :: base                !! model
+      type(model_t), intent(in) :: base                !! model
       type(sweep_settings_t), intent(in) :: sw           !! sweep
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(output_settings_t), intent(in) :: out         !! recording settings
@@ -232,50 +191,4 @@ contains
       end do
       !$omp end parallel do
    end subroutine run_items
-
-   !> A point's results as one real array (for checkpoints); integers are stored exactly.
-   pure function pack_point(pr) result(x)
-      type(point_result_t), intent(in) :: pr   !! a finished point
-      real(dp), allocatable :: x(:)
-      x = [real(pr%status, dp), real(pr%period, dp), real(pr%label, dp), pr%lyapunov, &
-           pr%lyapunov_error, real(pr%steps, dp), pr%seconds, &
-           real(size(pr%lyapunov_running), dp), pr%lyapunov_running, &
-           real(size(pr%n_impacts), dp), real(pr%n_impacts, dp), pr%peak_force, pr%rms_force, &
-           pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
-           real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
-           real(size(pr%u_end), dp), pr%u_end, pr%v_end]
-   end function pack_point
-
-   !> Inverse of pack_point; ok is false when x is not a well-formed record.
-   pure subroutine unpack_point(x, pr, ok)
-      real(dp), intent(in) :: x(:)                !! packed record
-      type(point_result_t), intent(out) :: pr     !! the point
-      logical, intent(out) :: ok                  !! record well formed
-      integer :: k, m, ns, nr, n
-      ok = .false.
-      if (size(x) < 9) return
-      pr%status = nint(x(1));  pr%period = nint(x(2));  pr%label = nint(x(3))
-      pr%lyapunov = x(4);  pr%lyapunov_error = x(5);  pr%steps = nint(x(6), int64)
-      pr%seconds = x(7)
-      k = 8
-      m = nint(x(k));  if (m < 0 .or. k + m > size(x)) return
-      pr%lyapunov_running = x(k + 1:k + m);  k = k + m + 1
-      if (k > size(x)) return
-      ns = nint(x(k));  if (ns < 0 .or. k + 6 * ns > size(x)) return
-      pr%n_impacts = nint(x(k + 1:k + ns));  k = k + ns
-      pr%peak_force = x(k + 1:k + ns);  k = k + ns
-      pr%rms_force = x(k + 1:k + ns);  k = k + ns
-      pr%contact_fraction = x(k + 1:k + ns);  k = k + ns
-      pr%impulse_per_period = x(k + 1:k + ns);  k = k + ns
-      pr%work_rate = x(k + 1:k + ns);  k = k + ns + 1
-      if (k > size(x)) return
-      nr = nint(x(k));  if (nr < 0 .or. k + 2 * nr > size(x)) return
-      pr%p_strain = x(k + 1:k + nr);  k = k + nr
-      pr%p_strain_rate = x(k + 1:k + nr);  k = k + nr + 1
-      if (k > size(x)) return
-      n = nint(x(k));  if (n < 0 .or. k + 2 * n /= size(x)) return
-      pr%u_end = x(k + 1:k + n);  k = k + n
-      pr%v_end = x(k + 1:k + n)
-      ok = .true.
-   end subroutine unpack_point
 end module gapbeam_sweep

@@ -1,9 +1,10 @@
-!> Small dense and banded kernels used on the time-stepping hot path (no allocation).
+!> Small dense and banded kernels used on the time-stepping hot path (no allocation), and the
+!> conversion of a dense symmetric matrix to LAPACK upper band storage ab(kd+1+i-j, j) = A(i, j).
 module gapbeam_linalg
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: dense_matvec, band_matvec
+   public :: dense_matvec, band_matvec, band_solve, dense_to_band
 
 contains
 
@@ -39,4 +40,43 @@ contains
          end do
       end do
    end subroutine band_matvec
+
+   !> Copy the upper band of a dense symmetric matrix to LAPACK band storage.
+   pure subroutine dense_to_band(a, kd, ab)
+      real(dp), intent(in) :: a(:, :)                    !! dense symmetric matrix
+      integer, intent(in) :: kd                          !! semi-bandwidth
+      real(dp), allocatable, intent(out) :: ab(:, :)     !! (kd+1, n) upper band storage
+      integer :: i, j, n
+      n = size(a, 2)
+      allocate(ab(kd + 1, n), source=0.0_dp)
+      do j = 1, n
+         do i = max(1, j - kd), j
+            ab(kd + 1 + i - j, j) = a(i, j)
+         end do
+      end do
+   end subroutine dense_to_band
+
+   !> Banded Cholesky solve written out (LAPACK's dpbtrs is not pure).
+   pure subroutine band_solve(n, kd, fab, b)
+      integer, intent(in) :: n, kd
+      real(dp), intent(in) :: fab(kd + 1, n)   ! upper factor U, A = U'U
+      real(dp), intent(inout) :: b(n)
+      integer :: i, j
+      real(dp) :: s
+      ! U' z = b
+      do j = 1, n
+         s = b(j)
+         do i = max(1, j - kd), j - 1
+            s = s - fab(kd + 1 + i - j, j) * b(i)
+         end do
+         b(j) = s / fab(kd + 1, j)
+      end do
+      ! U x = z
+      do j = n, 1, -1
+         b(j) = b(j) / fab(kd + 1, j)
+         do i = max(1, j - kd), j - 1
+            b(i) = b(i) - fab(kd + 1 + i - j, j) * b(j)
+         end do
+      end do
+   end subroutine band_solve
 end module gapbeam_linalg

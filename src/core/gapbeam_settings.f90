@@ -1,14 +1,17 @@
-!> How to solve a transient run and what to record: the settings a deck gives to the solver.
+!> How to solve and what to record: every settings type a deck (or the command line) gives to
+!> an analysis, with the words each choice accepts.
 !>
-!> Defaults live here only; the deck reader starts from them.
+!> Defaults live here only; the deck reader starts from them. Nothing numerical here.
 module gapbeam_settings
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: solver_settings_t, output_settings_t, initial_state_t, diagnostics_settings_t, &
-      reduction_settings_t, model_size_settings_t
+   public :: job_t, calibrate_t, solver_settings_t, output_settings_t, initial_state_t, &
+      diagnostics_settings_t, reduction_settings_t, model_size_settings_t, sweep_settings_t, &
+      study_settings_t, batch_options_t
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
-   public :: initial_state_words
+   public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
+      sweep_direction_words, sweep_axis_words, series_words
 
    character(len=*), parameter :: method_words = "'newmark', 'hht', 'generalized_alpha', " &
       // "'central_difference', 'rk4', 'rk45', 'exact'"
@@ -16,6 +19,30 @@ module gapbeam_settings
    character(len=*), parameter :: step_control_words = "'fixed', 'half_step', 'embedded'"
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
+   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
+      // "'sweep', 'work_precision', 'stability', 'model_size'"
+   character(len=*), parameter :: calibration_words = &
+      "'root_k_theta', 'spring', 'thickness', 'width'"
+   character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
+   character(len=*), parameter :: sweep_direction_words = "'up', 'down'"
+   character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
+   character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
+      // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
+      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
+
+   !> &job: what to run and where the results go.
+   type :: job_t
+      character(len=32)  :: analysis = 'modes'   !! analysis word
+      character(len=256) :: title = ''           !! title for plots and files
+      character(len=256) :: output = ''          !! output path prefix ('' -> results/<deck stem>)
+   end type job_t
+
+   !> &calibrate: which parameter to fit to a target first frequency.
+   type :: calibrate_t
+      character(len=16) :: parameter = 'root_k_theta'   !! see calibration_words
+      integer  :: index = 1                             !! spring index for 'spring'
+      real(dp) :: target_f1_hz = 0.0_dp                 !! target first frequency [Hz]
+   end type calibrate_t
 
    !> Time integration settings.
    type :: solver_settings_t
@@ -89,4 +116,37 @@ module gapbeam_settings
       real(dp) :: poincare_tolerance = 0.05_dp      !! largest Poincare distance [-]
       real(dp) :: force_tolerance = 0.10_dp         !! largest relative peak-force error [-]
    end type model_size_settings_t
+
+   !> &sweep: what to sweep and how.
+   type :: sweep_settings_t
+      character(len=16) :: mode = 'independent'      !! 'independent' or 'continuation'
+      character(len=16) :: direction = 'up'          !! continuation: 'up' or 'down'
+      character(len=16) :: axis = 'frequency'        !! continuation lines run along this axis
+      real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz]
+      real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m]
+      logical :: progress = .true.                   !! progress on standard error
+      integer :: chunk = 0                           !! work items between checkpoints (0: auto)
+      logical :: checkpoint = .true.                 !! write finished points as they come
+   end type sweep_settings_t
+
+   !> &study: what the work-precision and stability studies compare.
+   type :: study_settings_t
+      character(len=32), allocatable :: series(:)   !! series words
+      integer :: levels = 8                         !! settings per series [-]
+      integer :: periods = 10                       !! horizon from rest [forcing periods]
+      integer :: base_steps = 64                    !! coarsest fixed steps per period [-]
+      real(dp) :: tolerance_start = 0.1_dp          !! loosest half-step tolerance [-]
+      real(dp) :: rtol_start = 1.0e-2_dp            !! loosest rk45 rtol [-]
+      integer :: repeats = 3                        !! timing repeats of short runs [-]
+      real(dp) :: omega_dt_min = 1.0e-2_dp          !! stability chart range [-]
+      real(dp) :: omega_dt_max = 1.0e3_dp           !! [-]
+      integer :: n_omega_dt = 101                   !! points of the chart [-]
+   end type study_settings_t
+
+   !> Batch options from the command line (not the deck): a job array's shard and a time limit.
+   type :: batch_options_t
+      integer :: shard_index = 1                     !! this process's shard (--shard I/N)
+      integer :: shard_count = 1                     !! number of shards
+      real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none
+   end type batch_options_t
 end module gapbeam_settings

@@ -15,12 +15,12 @@ module gapbeam_alpha
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs
-   use gapbeam_problem, only: problem_t
+   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
-   use gapbeam_stepper, only: stepper_t
-   use gapbeam_contact, only: solve_scalar_contact
+   use gapbeam_integrator, only: stepper_t
+   use gapbeam_contact_law, only: solve_contacts
    use gapbeam_linalg, only: dense_matvec
-   use gapbeam_newmark, only: state_load
    implicit none
    private
    public :: alpha_stepper_t, alpha_parameters
@@ -58,9 +58,9 @@ contains
       end if
    end subroutine alpha_parameters
 
-   subroutine alpha_prepare(self, prob, cfg, dt, err)
+   subroutine alpha_prepare(self, model, cfg, dt, err)
       class(alpha_stepper_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
+      type(model_t), intent(in) :: model
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
@@ -68,10 +68,10 @@ contains
       real(dp), allocatable :: kbar(:, :)
       call alpha_parameters(cfg%method, cfg%hht_alpha, cfg%rho_infinity, self%am, self%af, &
                             self%beta, self%gamma)
-      n = prob%n;  ns = prob%n_slots
-      kbar = (1.0_dp - self%am) / (self%beta * dt**2) * prob%sys%m &
-             + (1.0_dp - self%af) * self%gamma / (self%beta * dt) * prob%c &
-             + (1.0_dp - self%af) * prob%sys%k
+      n = model%n;  ns = model%n_slots
+      kbar = (1.0_dp - self%am) / (self%beta * dt**2) * model%sys%m &
+             + (1.0_dp - self%af) * self%gamma / (self%beta * dt) * model%c &
+             + (1.0_dp - self%af) * model%sys%k
       call dpotrf('U', n, kbar, n, info)
       if (info /= 0) then
          call fatal_error(err, "method '" // trim(cfg%method) // "': effective stiffness not " &
@@ -82,78 +82,68 @@ contains
       if (allocated(self%g)) deallocate(self%g)
       allocate(self%g(n, ns), source=0.0_dp)
       do j = 1, ns
-         self%g(prob%slot_dof(j), j) = 1.0_dp
+         self%g(model%slot_dof(j), j) = 1.0_dp
       end do
       if (ns > 0) call dpotrs('U', n, ns, self%fac, n, self%g, n, info)
       if (allocated(self%h)) deallocate(self%h)
       allocate(self%h(ns, ns))
       do j = 1, ns
-         self%h(j, :) = self%g(prob%slot_dof(j), :)
+         self%h(j, :) = self%g(model%slot_dof(j), :)
       end do
       if (.not. allocated(self%rhs)) allocate(self%rhs(n), self%t1(n), self%t2(n))
       self%dt = dt
       self%ready = .true.
    end subroutine alpha_prepare
 
-   subroutine alpha_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
-                         open_contact)
-      class(alpha_stepper_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, dt_prev
-      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
-      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
-      logical, intent(out) :: ok
-      real(dp), intent(out) :: ratio
-      integer, intent(in) :: open_contact
-      real(dp) :: h, am, af, be, ga, s0, s1, ka, ds, vs, shift, fold, change, fmax
-      integer :: n, info, c, o, i, si, sweeps
-      n = prob%n;  h = self%dt
+   !> One step (see stepper_t%step).
+   subroutine alpha_step(self, model, s0, s1, ok, ratio, open_contact)
+      class(alpha_stepper_t), intent(inout) :: self   !! stepper
+      type(model_t), intent(in) :: model              !! model
+      type(state_t), intent(in) :: s0                 !! start
+      type(state_t), intent(inout) :: s1              !! end
+      logical, intent(out) :: ok                      !! always true
+      real(dp), intent(out) :: ratio                  !! no embedded estimate: -1
+      integer, intent(in) :: open_contact             !! contact held open (0: none)
+      real(dp) :: h, am, af, be, ga, p0, p1, ka
+      real(dp) :: dstar(model%n_contacts), vstar(model%n_contacts)
+      integer :: n, info, c, i
+      n = model%n;  h = self%dt
       am = self%am;  af = self%af;  be = self%beta;  ga = self%gamma
       ok = .true.;  ratio = -1.0_dp
-      s0 = state_load(prob, t0)
-      s1 = state_load(prob, t0 + h)
-      ! rhs = (1-af) P1 + af P0 - am M a - af C v - af K u
-      !       + (1-am) M [u/(be h^2) + v/(be h) + (1/(2be) - 1) a]
-      !       + (1-af) C [ga/(be h) u - (1 - ga/be) v - h (1 - ga/(2 be)) a]
-      self%t1 = -am * a + (1.0_dp - am) * (u / (be * h**2) + v / (be * h) &
-                + (0.5_dp / be - 1.0_dp) * a)
-      call dense_matvec(n, prob%sys%m, self%t1, self%rhs)
-      self%t1 = -af * v + (1.0_dp - af) * (ga / (be * h) * u - (1.0_dp - ga / be) * v &
-                - h * (1.0_dp - 0.5_dp * ga / be) * a)
-      call dense_matvec(n, prob%c, self%t1, self%t2)
+      p0 = load_factor(model, s0%t)
+      p1 = load_factor(model, s0%t + h)
+      s1%t = s0%t + h
+      ! rhs = (1-af) P1 + af P0 - am M s0%a - af C s0%v - af K s0%u
+      !       + (1-am) M [s0%u/(be h^2) + s0%v/(be h) + (1/(2be) - 1) s0%a]
+      !       + (1-af) C [ga/(be h) s0%u - (1 - ga/be) s0%v - h (1 - ga/(2 be)) s0%a]
+      self%t1 = -am * s0%a + (1.0_dp - am) * (s0%u / (be * h**2) + s0%v / (be * h) &
+                + (0.5_dp / be - 1.0_dp) * s0%a)
+      call dense_matvec(n, model%sys%m, self%t1, self%rhs)
+      self%t1 = -af * s0%v + (1.0_dp - af) * (ga / (be * h) * s0%u - (1.0_dp - ga / be) * s0%v &
+                - h * (1.0_dp - 0.5_dp * ga / be) * s0%a)
+      call dense_matvec(n, model%c, self%t1, self%t2)
       self%rhs = self%rhs + self%t2
-      call dense_matvec(n, prob%sys%k, u, self%t2)
-      self%rhs = self%rhs - af * self%t2 + ((1.0_dp - af) * s1 + af * s0) * prob%q
-      u1 = self%rhs
-      call dpotrs('U', n, 1, self%fac, n, u1, n, info)
-      ! contact forces at n+1-af from the condensed system (u1 = u1* - G s f)
+      call dense_matvec(n, model%sys%k, s0%u, self%t2)
+      self%rhs = self%rhs - af * self%t2 + ((1.0_dp - af) * p1 + af * p0) * model%q
+      s1%u = self%rhs
+      call dpotrs('U', n, 1, self%fac, n, s1%u, n, info)
+      ! contact forces at n+1-af from the condensed system (u1 = u1* - G s f): penetration
+      ! and rate at n+1-af with zero contact forces, then the exact solve
       ka = ga / (be * h)
-      f1 = 0.0_dp
-      do sweeps = 1, merge(1, 1000, prob%n_contacts == 1)
-         change = 0.0_dp;  fmax = 0.0_dp
-         do c = 1, prob%n_contacts
-            i = prob%c_dof(c);  si = prob%c_slot(c)
-            shift = 0.0_dp
-            do o = 1, prob%n_contacts
-               if (o /= c) shift = shift + self%h(si, prob%c_slot(o)) * prob%c_sign(o) * f1(o)
-            end do
-            ! penetration and rate at n+1-af with this contact's force removed
-            ds = prob%c_sign(c) * ((1.0_dp - af) * (u1(i) - shift) + af * u(i)) - prob%c_gap(c)
-            vs = prob%c_sign(c) * ((1.0_dp - af) * (ka * (u1(i) - shift - u(i)) &
-                 + (1.0_dp - ga / be) * v(i) + h * (1.0_dp - 0.5_dp * ga / be) * a(i)) &
-                 + af * v(i))
-            fold = f1(c)
-            f1(c) = solve_scalar_contact(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
-                       ds, vs, (1.0_dp - af) * self%h(si, si), ka)
-            if (c == open_contact) f1(c) = 0.0_dp
-            change = max(change, abs(f1(c) - fold));  fmax = max(fmax, f1(c))
-         end do
-         if (change <= 1.0e-14_dp * fmax .or. fmax == 0.0_dp) exit
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         dstar(c) = model%c_sign(c) * ((1.0_dp - af) * s1%u(i) + af * s0%u(i)) - model%c_gap(c)
+         vstar(c) = model%c_sign(c) * ((1.0_dp - af) * (ka * (s1%u(i) - s0%u(i)) &
+              + (1.0_dp - ga / be) * s0%v(i) + h * (1.0_dp - 0.5_dp * ga / be) * s0%a(i)) &
+              + af * s0%v(i))
       end do
-      do c = 1, prob%n_contacts
-         if (f1(c) /= 0.0_dp) u1 = u1 - self%g(:, prob%c_slot(c)) * (prob%c_sign(c) * f1(c))
+      s1%f = 0.0_dp
+      call solve_contacts(model, self%h, 1.0_dp - af, ka, dstar, vstar, s1%f, open_contact)
+      do c = 1, model%n_contacts
+         if (s1%f(c) /= 0.0_dp) s1%u = s1%u - self%g(:, model%c_slot(c)) &
+                                       * (model%c_sign(c) * s1%f(c))
       end do
-      a1 = (u1 - u - h * v) / (be * h**2) - (0.5_dp / be - 1.0_dp) * a
-      v1 = v + h * ((1.0_dp - ga) * a + ga * a1)
+      s1%a = (s1%u - s0%u - h * s0%v) / (be * h**2) - (0.5_dp / be - 1.0_dp) * s0%a
+      s1%v = s0%v + h * ((1.0_dp - ga) * s0%a + ga * s1%a)
    end subroutine alpha_step
 end module gapbeam_alpha

@@ -10,12 +10,12 @@ module gapbeam_explicit
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs
-   use gapbeam_problem, only: problem_t
+   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
-   use gapbeam_stepper, only: stepper_t
-   use gapbeam_contact, only: contact_force
+   use gapbeam_integrator, only: stepper_t
+   use gapbeam_contact_law, only: contact_force
    use gapbeam_linalg, only: dense_matvec
-   use gapbeam_newmark, only: state_load
    implicit none
    private
    public :: central_difference_t, runge_kutta_t
@@ -75,142 +75,144 @@ contains
    end subroutine factor_spd
 
    !> Contact forces from the laws at (u, v); `hold` > 0 is held open.
-   pure subroutine contact_forces(prob, u, v, hold, f, r)
-      type(problem_t), intent(in) :: prob
+   pure subroutine contact_forces(model, u, v, hold, f, r)
+      type(model_t), intent(in) :: model
       real(dp), intent(in) :: u(:), v(:)
       integer, intent(in) :: hold
       real(dp), intent(out) :: f(:)
       real(dp), intent(inout) :: r(:)      !! force vector: r = r + sum (-s_c f_c) e_c
       integer :: c, i
-      do c = 1, prob%n_contacts
-         i = prob%c_dof(c)
-         f(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
-            prob%c_sign(c) * u(i) - prob%c_gap(c), prob%c_sign(c) * v(i))
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         f(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), &
+            model%c_sign(c) * u(i) - model%c_gap(c), model%c_sign(c) * v(i))
          if (c == hold) f(c) = 0.0_dp
-         r(i) = r(i) - prob%c_sign(c) * f(c)
+         r(i) = r(i) - model%c_sign(c) * f(c)
       end do
    end subroutine contact_forces
 
-   subroutine cd_prepare(self, prob, cfg, dt, err)
+   subroutine cd_prepare(self, model, cfg, dt, err)
       class(central_difference_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
+      type(model_t), intent(in) :: model
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
-      call factor_spd('central_difference', prob%sys%m + 0.5_dp * dt * prob%c, self%fac, err)
+      call factor_spd('central_difference', model%sys%m + 0.5_dp * dt * model%c, self%fac, err)
       if (allocated(err)) return
-      if (.not. allocated(self%w)) allocate(self%w(prob%n), self%r(prob%n))
+      if (.not. allocated(self%w)) allocate(self%w(model%n), self%r(model%n))
       self%dt = dt
       self%ready = .true.
    end subroutine cd_prepare
 
-   subroutine cd_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
-                      open_contact)
-      class(central_difference_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, dt_prev
-      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
-      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
-      logical, intent(out) :: ok
-      real(dp), intent(out) :: ratio
-      integer, intent(in) :: open_contact
-      real(dp) :: h, s1
+   !> One step (see stepper_t%step).
+   subroutine cd_step(self, model, s0, s1, ok, ratio, open_contact)
+      class(central_difference_t), intent(inout) :: self  !! stepper
+      type(model_t), intent(in) :: model                  !! model
+      type(state_t), intent(in) :: s0                     !! start
+      type(state_t), intent(inout) :: s1                  !! end
+      logical, intent(out) :: ok                          !! always true
+      real(dp), intent(out) :: ratio                      !! no embedded estimate: -1
+      integer, intent(in) :: open_contact                 !! contact held open (0: none)
+      real(dp) :: h, p1
       integer :: n, info
-      n = prob%n;  h = self%dt
+      n = model%n;  h = self%dt
       ok = .true.;  ratio = -1.0_dp
-      u1 = u + h * v + 0.5_dp * h**2 * a
-      self%w = v + 0.5_dp * h * a                       ! velocity predictor
-      s1 = state_load(prob, t0 + h)
-      call dense_matvec(n, prob%sys%k, u1, a1)
-      call dense_matvec(n, prob%c, self%w, self%r)
-      self%r = s1 * prob%q - a1 - self%r
-      call contact_forces(prob, u1, self%w, open_contact, f1, self%r)
-      a1 = self%r
-      call dpotrs('U', n, 1, self%fac, n, a1, n, info)
-      v1 = self%w + 0.5_dp * h * a1
+      s1%t = s0%t + h
+      s1%u = s0%u + h * s0%v + 0.5_dp * h**2 * s0%a
+      self%w = s0%v + 0.5_dp * h * s0%a                 ! velocity predictor
+      p1 = load_factor(model, s0%t + h)
+      call dense_matvec(n, model%sys%k, s1%u, s1%a)
+      call dense_matvec(n, model%c, self%w, self%r)
+      self%r = p1 * model%q - s1%a - self%r
+      call contact_forces(model, s1%u, self%w, open_contact, s1%f, self%r)
+      s1%a = self%r
+      call dpotrs('U', n, 1, self%fac, n, s1%a, n, info)
+      s1%v = self%w + 0.5_dp * h * s1%a
       self%evaluations = self%evaluations + 1
    end subroutine cd_step
 
-   subroutine rk_prepare(self, prob, cfg, dt, err)
+   subroutine rk_prepare(self, model, cfg, dt, err)
       class(runge_kutta_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
+      type(model_t), intent(in) :: model
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
       self%embedded = cfg%method == 'rk45'
       self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
-      call factor_spd(trim(cfg%method), prob%sys%m, self%mfac, err)
+      call factor_spd(trim(cfg%method), model%sys%m, self%mfac, err)
       if (allocated(err)) return
-      if (.not. allocated(self%ku)) allocate(self%ku(prob%n, 7), self%kv(prob%n, 7), &
-         self%ut(prob%n), self%vt(prob%n), self%r(prob%n))
+      if (.not. allocated(self%ku)) allocate(self%ku(model%n, 7), self%kv(model%n, 7), &
+         self%ut(model%n), self%vt(model%n), self%r(model%n))
       self%dt = dt
       self%ready = .true.
    end subroutine rk_prepare
 
    !> Acceleration M^-1 (s(t) q - C v - K u - F(u, v)).
-   subroutine rk_accel(self, prob, t, u, v, hold, acc, f)
+   subroutine rk_accel(self, model, t, u, v, hold, acc, f)
       class(runge_kutta_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
+      type(model_t), intent(in) :: model
       real(dp), intent(in) :: t, u(:), v(:)
       integer, intent(in) :: hold
       real(dp), intent(out) :: acc(:), f(:)
       integer :: n, info
-      n = prob%n
-      call dense_matvec(n, prob%sys%k, u, acc)
-      call dense_matvec(n, prob%c, v, self%r)
-      self%r = state_load(prob, t) * prob%q - acc - self%r
-      call contact_forces(prob, u, v, hold, f, self%r)
+      n = model%n
+      call dense_matvec(n, model%sys%k, u, acc)
+      call dense_matvec(n, model%c, v, self%r)
+      self%r = load_factor(model, t) * model%q - acc - self%r
+      call contact_forces(model, u, v, hold, f, self%r)
       acc = self%r
       call dpotrs('U', n, 1, self%mfac, n, acc, n, info)
       self%evaluations = self%evaluations + 1
    end subroutine rk_accel
 
-   subroutine rk_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, f1, ok, ratio, &
-                      open_contact)
-      class(runge_kutta_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, dt_prev
-      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
-      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
-      logical, intent(out) :: ok
-      real(dp), intent(out) :: ratio
-      integer, intent(in) :: open_contact
-      real(dp) :: h, eu, ev, sc
+   !> One step (see stepper_t%step): classical RK4, or Dormand-Prince 5(4) with the embedded
+   !> error estimate (FSAL: the acceleration at the end is the next step's first stage).
+   subroutine rk_step(self, model, s0, s1, ok, ratio, open_contact)
+      class(runge_kutta_t), intent(inout) :: self        !! stepper
+      type(model_t), intent(in) :: model                 !! model
+      type(state_t), intent(in) :: s0                    !! start
+      type(state_t), intent(inout) :: s1                 !! end
+      logical, intent(out) :: ok                         !! always true
+      real(dp), intent(out) :: ratio                     !! rk45: error / tolerance; rk4: -1
+      integer, intent(in) :: open_contact                !! contact held open (0: none)
+      real(dp) :: h, eu, ev, sc, t0
       integer :: i
-      h = self%dt;  ok = .true.;  ratio = -1.0_dp
-      associate (ku => self%ku, kv => self%kv, ut => self%ut, vt => self%vt)
+      h = self%dt;  ok = .true.;  ratio = -1.0_dp;  t0 = s0%t
+      s1%t = s0%t + h
+      associate (ku => self%ku, kv => self%kv, ut => self%ut, vt => self%vt, u => s0%u, &
+                 v => s0%v, a => s0%a, u1 => s1%u, v1 => s1%v, a1 => s1%a, f1 => s1%f)
          if (.not. self%embedded) then
-            ku(:, 1) = v;  call rk_accel(self, prob, t0, u, v, open_contact, kv(:, 1), f1)
+            ku(:, 1) = v;  call rk_accel(self, model, t0, u, v, open_contact, kv(:, 1), f1)
             ut = u + 0.5_dp * h * ku(:, 1);  vt = v + 0.5_dp * h * kv(:, 1)
-            ku(:, 2) = vt;  call rk_accel(self, prob, t0 + 0.5_dp * h, ut, vt, open_contact, &
+            ku(:, 2) = vt;  call rk_accel(self, model, t0 + 0.5_dp * h, ut, vt, open_contact, &
                                           kv(:, 2), f1)
             ut = u + 0.5_dp * h * ku(:, 2);  vt = v + 0.5_dp * h * kv(:, 2)
-            ku(:, 3) = vt;  call rk_accel(self, prob, t0 + 0.5_dp * h, ut, vt, open_contact, &
+            ku(:, 3) = vt;  call rk_accel(self, model, t0 + 0.5_dp * h, ut, vt, open_contact, &
                                           kv(:, 3), f1)
             ut = u + h * ku(:, 3);  vt = v + h * kv(:, 3)
-            ku(:, 4) = vt;  call rk_accel(self, prob, t0 + h, ut, vt, open_contact, kv(:, 4), f1)
+            ku(:, 4) = vt;  call rk_accel(self, model, t0 + h, ut, vt, open_contact, kv(:, 4), f1)
             u1 = u + h / 6 * (ku(:, 1) + 2 * ku(:, 2) + 2 * ku(:, 3) + ku(:, 4))
             v1 = v + h / 6 * (kv(:, 1) + 2 * kv(:, 2) + 2 * kv(:, 3) + kv(:, 4))
             ! acceleration and forces at the end (the next step's first stage)
-            call rk_accel(self, prob, t0 + h, u1, v1, 0, a1, f1)
+            call rk_accel(self, model, t0 + h, u1, v1, 0, a1, f1)
             self%evaluations = self%evaluations - 1   ! reused as the next first stage
          else
             ku(:, 1) = v;  kv(:, 1) = a
-            if (open_contact > 0) call rk_accel(self, prob, t0, u, v, open_contact, kv(:, 1), f1)
-            call stage(2, c2, [a21])
-            call stage(3, c3, [a31, a32])
-            call stage(4, c4, [a41, a42, a43])
-            call stage(5, c5, [a51, a52, a53, a54])
-            call stage(6, 1.0_dp, [a61, a62, a63, a64, a65])
+            if (open_contact > 0) call rk_accel(self, model, t0, u, v, open_contact, kv(:, 1), f1)
+            call rk_stage(self, model, s0, h, open_contact, 2, c2, [a21], f1)
+            call rk_stage(self, model, s0, h, open_contact, 3, c3, [a31, a32], f1)
+            call rk_stage(self, model, s0, h, open_contact, 4, c4, [a41, a42, a43], f1)
+            call rk_stage(self, model, s0, h, open_contact, 5, c5, [a51, a52, a53, a54], f1)
+            call rk_stage(self, model, s0, h, open_contact, 6, 1.0_dp, [a61, a62, a63, a64, a65], f1)
             u1 = u + h * (b1 * ku(:, 1) + b3 * ku(:, 3) + b4 * ku(:, 4) + b5 * ku(:, 5) &
                  + b6 * ku(:, 6))
             v1 = v + h * (b1 * kv(:, 1) + b3 * kv(:, 3) + b4 * kv(:, 4) + b5 * kv(:, 5) &
                  + b6 * kv(:, 6))
             ku(:, 7) = v1
-            call rk_accel(self, prob, t0 + h, u1, v1, 0, kv(:, 7), f1)   ! FSAL: next a
+            call rk_accel(self, model, t0 + h, u1, v1, 0, kv(:, 7), f1)   ! FSAL: next a
             a1 = kv(:, 7)
             ratio = 0.0_dp
-            do i = 1, prob%n
+            do i = 1, model%n
                eu = h * (e1 * ku(i, 1) + e3 * ku(i, 3) + e4 * ku(i, 4) + e5 * ku(i, 5) &
                     + e6 * ku(i, 6) + e7 * ku(i, 7))
                ev = h * (e1 * kv(i, 1) + e3 * kv(i, 3) + e4 * kv(i, 4) + e5 * kv(i, 5) &
@@ -222,19 +224,26 @@ contains
             end do
          end if
       end associate
-   contains
-      subroutine stage(j, cj, aj)
-         integer, intent(in) :: j
-         real(dp), intent(in) :: cj, aj(:)
-         integer :: m
-         self%ut = u;  self%vt = v
-         do m = 1, j - 1
-            self%ut = self%ut + h * aj(m) * self%ku(:, m)
-            self%vt = self%vt + h * aj(m) * self%kv(:, m)
-         end do
-         self%ku(:, j) = self%vt
-         call rk_accel(self, prob, t0 + cj * h, self%ut, self%vt, open_contact, &
-                       self%kv(:, j), f1)
-      end subroutine stage
    end subroutine rk_step
+
+   !> Stage j of an explicit Runge-Kutta step: state s0 + h sum_m aj(m) k_m at t0 + cj h,
+   !> slopes into column j of ku, kv.
+   subroutine rk_stage(self, model, s0, h, open_contact, j, cj, aj, f)
+      class(runge_kutta_t), intent(inout) :: self   !! stepper (slopes and workspaces)
+      type(model_t), intent(in) :: model            !! model
+      type(state_t), intent(in) :: s0               !! state at the start of the step
+      real(dp), intent(in) :: h                     !! step [s]
+      integer, intent(in) :: open_contact           !! contact held open (0: none)
+      integer, intent(in) :: j                      !! stage
+      real(dp), intent(in) :: cj, aj(:)             !! its node and coefficients
+      real(dp), intent(out) :: f(:)                 !! contact forces of the stage [N]
+      integer :: m
+      self%ut = s0%u;  self%vt = s0%v
+      do m = 1, j - 1
+         self%ut = self%ut + h * aj(m) * self%ku(:, m)
+         self%vt = self%vt + h * aj(m) * self%kv(:, m)
+      end do
+      self%ku(:, j) = self%vt
+      call rk_accel(self, model, s0%t + cj * h, self%ut, self%vt, open_contact, self%kv(:, j), f)
+   end subroutine rk_stage
 end module gapbeam_explicit

@@ -12,25 +12,30 @@ module gapbeam_newmark
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs, dpbtrf, dpbtrs
-   use gapbeam_linalg, only: dense_matvec, band_matvec
-   use gapbeam_assembly, only: dense_to_band
-   use gapbeam_problem, only: problem_t
-   use gapbeam_contact, only: contact_force, solve_scalar_contact
-   use gapbeam_stepper, only: stepper_t
+   use gapbeam_linalg, only: dense_matvec, band_matvec, band_solve, dense_to_band
+   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_state, only: state_t
+   use gapbeam_contact_law, only: contact_force, solve_scalar_contact, solve_contacts
+   use gapbeam_integrator, only: stepper_t
    use gapbeam_settings, only: solver_settings_t
    implicit none
    private
-   public :: newmark_stepper_t, step_op_t, build_step_op, newmark_predict, condensed_contact, &
-      fixed_point_step, &
-      newmark_correct, half_step_ratio, state_load, condensed_step
+   public :: newmark_stepper_t, step_op_t, newmark_constants_t, build_step_op, newmark_predict, &
+      use_dense, condensed_contact, fixed_point_step, half_step_ratio, condensed_step
+
+   !> The constants of one Newmark step size.
+   type :: newmark_constants_t
+      real(dp) :: a0 = 0.0_dp, a1 = 0.0_dp, a2 = 0.0_dp   !! 1/(alpha dt^2), delta/(alpha dt),
+      real(dp) :: a3 = 0.0_dp, a4 = 0.0_dp, a5 = 0.0_dp   !! 1/(alpha dt), ... (Bathe's notation)
+      real(dp) :: cw = 0.0_dp, ch = 0.0_dp                !! y* = A_M (hM + cw hC) + ch hC + s gp
+   end type newmark_constants_t
 
    !> Everything one step size needs, factorized once.
    type :: step_op_t
       logical :: ready = .false.                 !! built
       logical :: dense = .true.                  !! dense (small) or banded path
       real(dp) :: dt = 0.0_dp                    !! step size [s]
-      real(dp) :: a0, a1, a2, a3, a4, a5         !! Newmark constants
-      real(dp) :: cw, ch                         !! y* = A_M (hM + cw hC) + ch hC + s gp
+      type(newmark_constants_t) :: c             !! step constants
       real(dp), allocatable :: am(:, :)          !! dense: Kbar^-1 M
       real(dp), allocatable :: fac(:, :)         !! dense Cholesky factor of Kbar (upper)
       real(dp), allocatable :: fab(:, :)         !! banded Cholesky factor of Kbar (upper)
@@ -54,61 +59,67 @@ module gapbeam_newmark
 contains
 
    !> Factorize Kbar for dt (dense below 61 dofs unless the deck says otherwise).
-   subroutine newmark_prepare(self, prob, cfg, dt, err)
+   subroutine newmark_prepare(self, model, cfg, dt, err)
       class(newmark_stepper_t), intent(inout) :: self  !! stepper
-      type(problem_t), intent(in) :: prob              !! model
+      type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! settings
       real(dp), intent(in) :: dt                       !! step [s]
       type(error_t), allocatable, intent(out) :: err   !! factorization failure
-      logical :: dense
-      select case (cfg%linear_solver)
-      case ('dense');  dense = .true.
-      case ('banded'); dense = .false.
-      case default;    dense = prob%n <= 60
-      end select
-      call build_step_op(prob, cfg%newmark_delta, cfg%newmark_alpha, dt, dense, self%op, err)
+      call build_step_op(model, cfg%newmark_delta, cfg%newmark_alpha, dt, &
+                         use_dense(model, cfg%linear_solver), self%op, err)
       if (allocated(err)) return
       self%dt = dt
       self%fixed_point = cfg%stop_solution == 'fixed_point'
       self%fp_tolerance = cfg%fp_tolerance
       self%fp_max_iterations = cfg%fp_max_iterations
-      if (.not. allocated(self%hm)) allocate(self%hm(prob%n), self%hc(prob%n), &
-                                             self%rhs(prob%n), self%y(prob%n))
+      if (.not. allocated(self%hm)) allocate(self%hm(model%n), self%hc(model%n), &
+                                             self%rhs(model%n), self%y(model%n))
       self%ready = .true.
    end subroutine newmark_prepare
 
+   !> Dense storage for the linear solves? The deck's linear_solver, or 'auto': dense up to 60
+   !> dofs (below that the dense product with Kbar^-1 M beats a banded solve).
+   pure logical function use_dense(model, linear_solver)
+      type(model_t), intent(in) :: model               !! model
+      character(len=*), intent(in) :: linear_solver    !! 'auto', 'dense' or 'banded'
+      select case (linear_solver)
+      case ('dense');  use_dense = .true.
+      case ('banded'); use_dense = .false.
+      case default;    use_dense = model%n <= 60
+      end select
+   end function use_dense
+
    !> One Newmark step (see stepper_t%step).
-   subroutine newmark_stepper_step(self, prob, t0, u, v, a, f, f_prev, dt_prev, u1, v1, a1, &
-                                   f1, ok, ratio, open_contact)
-      class(newmark_stepper_t), intent(inout) :: self
-      type(problem_t), intent(in) :: prob
-      real(dp), intent(in) :: t0, dt_prev
-      real(dp), intent(in), contiguous :: u(:), v(:), a(:), f(:), f_prev(:)
-      real(dp), intent(out), contiguous :: u1(:), v1(:), a1(:), f1(:)
-      logical, intent(out) :: ok
-      real(dp), intent(out) :: ratio
-      integer, intent(in) :: open_contact
-      real(dp) :: s1
+   subroutine newmark_stepper_step(self, model, s0, s1, ok, ratio, open_contact)
+      class(newmark_stepper_t), intent(inout) :: self  !! stepper
+      type(model_t), intent(in) :: model               !! model
+      type(state_t), intent(in) :: s0                  !! start
+      type(state_t), intent(inout) :: s1               !! end
+      logical, intent(out) :: ok                       !! converged
+      real(dp), intent(out) :: ratio                   !! no embedded estimate: -1
+      integer, intent(in) :: open_contact              !! contact held open (0: none)
+      real(dp) :: load
       integer :: it
-      s1 = state_load(prob, t0 + self%dt)
+      load = load_factor(model, s0%t + self%dt)
+      s1%t = s0%t + self%dt
       ratio = -1.0_dp
       ok = .true.
-      if (self%fixed_point .and. prob%n_contacts > 0) then
+      if (self%fixed_point .and. model%n_contacts > 0) then
          ! first guess: linear extrapolation of the last two steps (paper 4.1)
-         f1 = max(0.0_dp, f + (f - f_prev) * self%dt / dt_prev)
-         call fixed_point_step(prob, self%op, s1, u, v, a, self%fp_tolerance, &
-            self%fp_max_iterations, f1, u1, v1, a1, it, ok, self%hm, self%hc, self%rhs, self%y, &
-            open_contact)
+         s1%f = max(0.0_dp, s0%f + (s0%f - s0%f_prev) * self%dt / s0%dt_prev)
+         call fixed_point_step(model, self%op, load, s0%u, s0%v, s0%a, self%fp_tolerance, &
+            self%fp_max_iterations, s1%f, s1%u, s1%v, s1%a, it, ok, self%hm, self%hc, &
+            self%rhs, self%y, open_contact)
          self%iterations = self%iterations + it
       else
-         call condensed_step(prob, self%op, s1, u, v, a, f, u1, v1, a1, f1, self%hm, self%hc, &
-                             open_contact)
+         call condensed_step(model, self%op, load, s0%u, s0%v, s0%a, s0%f, s1%u, s1%v, s1%a, &
+                             s1%f, self%hm, self%hc, open_contact)
       end if
    end subroutine newmark_stepper_step
 
    !> Factorize Kbar for a step size and precompute the predictor and contact influences.
-   subroutine build_step_op(prob, delta, alpha, dt, dense, op, err)
-      type(problem_t), intent(in) :: prob             !! model
+   subroutine build_step_op(model, delta, alpha, dt, dense, op, err)
+      type(model_t), intent(in) :: model             !! model
       real(dp), intent(in) :: delta                   !! Newmark delta [-]
       real(dp), intent(in) :: alpha                   !! Newmark alpha [-]
       real(dp), intent(in) :: dt                      !! step [s]
@@ -119,25 +130,25 @@ contains
       real(dp) :: c0, c1
       real(dp), allocatable :: kbar(:, :), rhs(:, :)
 
-      n = prob%n;  ns = prob%n_slots;  kd = prob%sys%kd
+      n = model%n;  ns = model%n_slots;  kd = model%sys%kd
       op%dense = dense
       op%dt = dt
-      op%a0 = 1.0_dp / (alpha * dt**2)
-      op%a1 = delta / (alpha * dt)
-      op%a2 = 1.0_dp / (alpha * dt)
-      op%a3 = 0.5_dp / alpha - 1.0_dp
-      op%a4 = delta / alpha - 1.0_dp
-      op%a5 = dt * (0.5_dp * delta / alpha - 1.0_dp)
-      c1 = 1.0_dp + op%a1 * prob%gamma
-      c0 = op%a0 + op%a1 * prob%beta
-      op%cw = prob%beta - prob%gamma * c0 / c1
-      op%ch = prob%gamma / c1
-      kbar = c1 * prob%sys%k + c0 * prob%sys%m
+      op%c%a0 = 1.0_dp / (alpha * dt**2)
+      op%c%a1 = delta / (alpha * dt)
+      op%c%a2 = 1.0_dp / (alpha * dt)
+      op%c%a3 = 0.5_dp / alpha - 1.0_dp
+      op%c%a4 = delta / alpha - 1.0_dp
+      op%c%a5 = dt * (0.5_dp * delta / alpha - 1.0_dp)
+      c1 = 1.0_dp + op%c%a1 * model%gamma
+      c0 = op%c%a0 + op%c%a1 * model%beta
+      op%c%cw = model%beta - model%gamma * c0 / c1
+      op%c%ch = model%gamma / c1
+      kbar = c1 * model%sys%k + c0 * model%sys%m
       allocate(rhs(n, 1 + ns))
-      rhs(:, 1) = prob%q
+      rhs(:, 1) = model%q
       rhs(:, 2:) = 0.0_dp
       do j = 1, ns
-         rhs(prob%slot_dof(j), 1 + j) = 1.0_dp
+         rhs(model%slot_dof(j), 1 + j) = 1.0_dp
       end do
       if (dense) then
          call dpotrf('U', n, kbar, n, info)
@@ -148,7 +159,7 @@ contains
          end if
          op%fac = kbar
          call dpotrs('U', n, 1 + ns, op%fac, n, rhs, n, info)
-         op%am = prob%sys%m
+         op%am = model%sys%m
          call dpotrs('U', n, n, op%fac, n, op%am, n, info)
          if (allocated(op%fab)) deallocate(op%fab)
       else
@@ -168,22 +179,15 @@ contains
       if (allocated(op%h)) deallocate(op%h)
       allocate(op%h(ns, ns))
       do j = 1, ns
-         op%h(j, :) = op%g(prob%slot_dof(j), :)
+         op%h(j, :) = op%g(model%slot_dof(j), :)
       end do
       op%ready = .true.
    end subroutine build_step_op
 
-   !> Load factor s(t) with P(t) = s(t) q: s = (A_pp/2) Omega^2 sin(Omega t) [m/s^2].
-   pure real(dp) function state_load(prob, t)
-      type(problem_t), intent(in) :: prob   !! model
-      real(dp), intent(in) :: t             !! time [s]
-      state_load = prob%half_amplitude * prob%omega**2 * sin(prob%omega * t)
-   end function state_load
-
    !> Contact-free predictor y* = Kbar^-1 Pbar at the end of the step; hm, hc are kept for
    !> the correction.
-   pure subroutine newmark_predict(prob, op, s1, u, v, a, hm, hc, ystar, work)
-      type(problem_t), intent(in) :: prob     !! model
+   pure subroutine newmark_predict(model, op, s1, u, v, a, hm, hc, ystar, work)
+      type(model_t), intent(in) :: model     !! model
       type(step_op_t), intent(in) :: op       !! step operator
       real(dp), intent(in) :: s1              !! load factor at the end of the step
       real(dp), intent(in) :: u(:), v(:), a(:) !! state at the start
@@ -191,140 +195,114 @@ contains
       real(dp), intent(out) :: ystar(:)       !! predictor [m]
       real(dp), intent(inout) :: work(:)      !! workspace (n)
       integer :: n
-      n = prob%n
-      hm = op%a0 * u + op%a2 * v + op%a3 * a
-      hc = op%a1 * u + op%a4 * v + op%a5 * a
-      work = hm + op%cw * hc
+      n = model%n
+      hm = op%c%a0 * u + op%c%a2 * v + op%c%a3 * a
+      hc = op%c%a1 * u + op%c%a4 * v + op%c%a5 * a
+      work = hm + op%c%cw * hc
       if (op%dense) then
          call dense_matvec(n, op%am, work, ystar)
       else
-         if (prob%sys%m_diagonal) then
-            ystar = prob%sys%m_band(prob%sys%kd + 1, :) * work
+         if (model%sys%m_diagonal) then
+            ystar = model%sys%m_band(model%sys%kd + 1, :) * work
          else
-            call band_matvec(n, prob%sys%kd, prob%sys%m_band, work, ystar)
+            call band_matvec(n, model%sys%kd, model%sys%m_band, work, ystar)
          end if
-         call band_solve(n, prob%sys%kd, op%fab, ystar)
+         call band_solve(n, model%sys%kd, op%fab, ystar)
       end if
-      ystar = ystar + op%ch * hc + s1 * op%gp
+      ystar = ystar + op%c%ch * hc + s1 * op%gp
    end subroutine newmark_predict
 
-   !> Banded Cholesky solve written out (LAPACK's dpbtrs is not pure).
-   pure subroutine band_solve(n, kd, fab, b)
-      integer, intent(in) :: n, kd
-      real(dp), intent(in) :: fab(kd + 1, n)   ! upper factor U, A = U'U
-      real(dp), intent(inout) :: b(n)
-      integer :: i, j
-      real(dp) :: s
-      ! U' z = b
-      do j = 1, n
-         s = b(j)
-         do i = max(1, j - kd), j - 1
-            s = s - fab(kd + 1 + i - j, j) * b(i)
-         end do
-         b(j) = s / fab(kd + 1, j)
-      end do
-      ! U x = z
-      do j = n, 1, -1
-         b(j) = b(j) / fab(kd + 1, j)
-         do i = max(1, j - kd), j - 1
-            b(i) = b(i) - fab(kd + 1 + i - j, j) * b(j)
-         end do
-      end do
-   end subroutine band_solve
 
-   !> One whole condensed step (predictor, exact contact forces, correction) fused for speed:
-   !> the hot path of every transient run. Same arithmetic as newmark_predict +
-   !> condensed_contact + newmark_correct, with explicit-shape arrays and no temporaries.
-   pure subroutine condensed_step(prob, op, s1, u, v, a, f, u1, v1, a1, f1, hm, hc, open_contact)
-      type(problem_t), intent(in) :: prob              !! model
+
+   !> One whole condensed step (predictor, exact contact forces, correction y = y* - G F) fused
+   !> for speed: the hot path of every transient run. Same arithmetic as newmark_predict +
+   !> condensed_contact + the correction, with explicit-shape arrays and no temporaries.
+   pure subroutine condensed_step(model, op, s1, u, v, a, f, u1, v1, a1, f1, hm, hc, open_contact)
+      type(model_t), intent(in) :: model              !! model
       type(step_op_t), intent(in) :: op                !! step operator (dense or banded)
       real(dp), intent(in) :: s1                       !! load factor at the end of the step
-      real(dp), intent(in) :: u(prob%n), v(prob%n), a(prob%n)    !! state at the start
-      real(dp), intent(in) :: f(prob%n_contacts)       !! contact forces at the start [N]
-      real(dp), intent(out) :: u1(prob%n), v1(prob%n), a1(prob%n) !! state at the end
-      real(dp), intent(out) :: f1(prob%n_contacts)     !! contact forces at the end [N]
-      real(dp), intent(out) :: hm(prob%n), hc(prob%n)  !! workspaces
-      integer, intent(in), optional :: open_contact    !! contact held open (a located onset
-                                                       !! ends this sub-step: left limit)
-      integer :: n, i, j, c, sweeps
+      real(dp), intent(in) :: u(model%n), v(model%n), a(model%n)    !! state at the start
+      real(dp), intent(in) :: f(model%n_contacts)       !! contact forces at the start [N]
+      real(dp), intent(out) :: u1(model%n), v1(model%n), a1(model%n) !! state at the end
+      real(dp), intent(out) :: f1(model%n_contacts)     !! contact forces at the end [N]
+      real(dp), intent(out) :: hm(model%n), hc(model%n)  !! workspaces
+      integer, intent(in) :: open_contact              !! contact held open, 0: none (a located
+                                                       !! onset ends this sub-step: left limit)
+      integer :: n, i, j, c
       real(dp) :: xj, ds, vs, fc
       logical :: hold
-      n = prob%n
-      hold = .false.
-      if (present(open_contact)) hold = open_contact > 0
-      if (op%dense .and. prob%n_contacts == 1 .and. .not. hold) then
-         call dense_single_contact_step(n, op%am, op%gp, op%g(:, 1), op%h(1, 1), op%a0, op%a1, &
-            op%a2, op%a3, op%a4, op%a5, op%cw, op%ch, s1, prob%c_dof(1), prob%c_sign(1), &
-            prob%c_gap(1), prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), u, v, a, &
-            u1, v1, a1, f1(1), hm, hc)
+      n = model%n
+      hold = open_contact > 0
+      if (op%dense .and. model%n_contacts == 1 .and. .not. hold) then
+         call dense_single_contact_step(n, op%am, op%gp, op%g(:, 1), op%h(1, 1), op%c, s1, &
+            model, u, v, a, u1, v1, a1, f1(1), hm, hc)
          return
       end if
       if (op%dense) then
          do i = 1, n
-            hm(i) = op%a0 * u(i) + op%a2 * v(i) + op%a3 * a(i)
-            hc(i) = op%a1 * u(i) + op%a4 * v(i) + op%a5 * a(i)
-            u1(i) = op%ch * hc(i) + s1 * op%gp(i)
+            hm(i) = op%c%a0 * u(i) + op%c%a2 * v(i) + op%c%a3 * a(i)
+            hc(i) = op%c%a1 * u(i) + op%c%a4 * v(i) + op%c%a5 * a(i)
+            u1(i) = op%c%ch * hc(i) + s1 * op%gp(i)
          end do
          do j = 1, n
-            xj = hm(j) + op%cw * hc(j)
+            xj = hm(j) + op%c%cw * hc(j)
             do i = 1, n
                u1(i) = u1(i) + op%am(i, j) * xj
             end do
          end do
       else
-         call newmark_predict(prob, op, s1, u, v, a, hm, hc, u1, a1)
+         call newmark_predict(model, op, s1, u, v, a, hm, hc, u1, a1)
       end if
-      if (prob%n_contacts == 1) then
-         i = prob%c_dof(1)
-         ds = prob%c_sign(1) * u1(i) - prob%c_gap(1)
+      if (model%n_contacts == 1) then
+         i = model%c_dof(1)
+         ds = model%c_sign(1) * u1(i) - model%c_gap(1)
          if (hold) ds = 0.0_dp
          if (ds > 0.0_dp) then
-            vs = prob%c_sign(1) * (op%a1 * u1(i) - hc(i))
-            fc = solve_scalar_contact(prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), &
-                                      ds, vs, op%h(1, 1), op%a1)
+            vs = model%c_sign(1) * (op%c%a1 * u1(i) - hc(i))
+            fc = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), model%c_p(1), &
+                                      ds, vs, op%h(1, 1), op%c%a1)
          else
             fc = 0.0_dp
          end if
          f1(1) = fc
          if (fc /= 0.0_dp) then
-            xj = prob%c_sign(1) * fc
+            xj = model%c_sign(1) * fc
             do i = 1, n
                u1(i) = u1(i) - op%g(i, 1) * xj
             end do
          end if
-      else if (prob%n_contacts > 1) then
+      else if (model%n_contacts > 1) then
          f1 = f
-         call condensed_contact(prob, op, u, v, a, u1, f1, sweeps)
-         if (hold) f1(open_contact) = 0.0_dp   ! approximate when contacts are coupled
-         do c = 1, prob%n_contacts
-            if (f1(c) /= 0.0_dp) u1 = u1 - op%g(:, prob%c_slot(c)) * (prob%c_sign(c) * f1(c))
+         call condensed_contact(model, op, u, v, a, u1, f1, open_contact)
+         do c = 1, model%n_contacts
+            if (f1(c) /= 0.0_dp) u1 = u1 - op%g(:, model%c_slot(c)) * (model%c_sign(c) * f1(c))
          end do
       end if
       do i = 1, n
-         v1(i) = op%a1 * u1(i) - hc(i)
-         a1(i) = op%a0 * u1(i) - hm(i)
+         v1(i) = op%c%a1 * u1(i) - hc(i)
+         a1(i) = op%c%a0 * u1(i) - hm(i)
       end do
    end subroutine condensed_step
 
-   !> Kernel of condensed_step for a dense operator and one contact: all data as
-   !> explicit-shape arguments so that the compiler keeps it in registers and vectorises.
-   pure subroutine dense_single_contact_step(n, am, gp, g, h, a0, a1, a2, a3, a4, a5, cw, ch, &
-         s1, dof, sgn, gap, law, k, c, p, u, v, a, u1, v1, acc1, f1, hm, hc)
+   !> Kernel of condensed_step for a dense operator and one contact: the arrays as
+   !> explicit-shape arguments so that the compiler keeps them in registers and vectorises.
+   pure subroutine dense_single_contact_step(n, am, gp, g, h, k, s1, model, u, v, a, u1, v1, &
+                                             acc1, f1, hm, hc)
       integer, intent(in) :: n                        !! dofs
       real(dp), intent(in) :: am(n, n), gp(n), g(n)   !! Kbar^-1 M, Kbar^-1 q, Kbar^-1 e
       real(dp), intent(in) :: h                       !! e' Kbar^-1 e
-      real(dp), intent(in) :: a0, a1, a2, a3, a4, a5, cw, ch   !! step constants
+      type(newmark_constants_t), intent(in) :: k      !! step constants
       real(dp), intent(in) :: s1                      !! load factor at the end
-      integer, intent(in) :: dof                      !! contact dof
-      real(dp), intent(in) :: sgn, gap                !! contact direction and gap
-      integer, intent(in) :: law                      !! contact law
-      real(dp), intent(in) :: k, c, p                 !! law parameters
+      type(model_t), intent(in) :: model              !! model (contact 1)
       real(dp), intent(in) :: u(n), v(n), a(n)        !! state at the start
       real(dp), intent(out) :: u1(n), v1(n), acc1(n)  !! state at the end
       real(dp), intent(out) :: f1                     !! contact force at the end [N]
       real(dp), intent(out) :: hm(n), hc(n)           !! workspaces
-      integer :: i, j
-      real(dp) :: xj, ds, vs
+      integer :: i, j, dof
+      real(dp) :: xj, ds, vs, a0, a1, a2, a3, a4, a5, cw, ch, sgn
+      a0 = k%a0;  a1 = k%a1;  a2 = k%a2;  a3 = k%a3;  a4 = k%a4;  a5 = k%a5
+      cw = k%cw;  ch = k%ch
+      dof = model%c_dof(1);  sgn = model%c_sign(1)
       do i = 1, n
          hm(i) = a0 * u(i) + a2 * v(i) + a3 * a(i)
          hc(i) = a1 * u(i) + a4 * v(i) + a5 * a(i)
@@ -336,11 +314,12 @@ contains
             u1(i) = u1(i) + am(i, j) * xj
          end do
       end do
-      ds = sgn * u1(dof) - gap
+      ds = sgn * u1(dof) - model%c_gap(1)
       f1 = 0.0_dp
       if (ds > 0.0_dp) then
          vs = sgn * (a1 * u1(dof) - hc(dof))
-         f1 = solve_scalar_contact(law, k, c, p, ds, vs, h, a1)
+         f1 = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), model%c_p(1), &
+                                   ds, vs, h, a1)
          xj = sgn * f1
          do i = 1, n
             u1(i) = u1(i) - g(i) * xj
@@ -352,78 +331,32 @@ contains
       end do
    end subroutine dense_single_contact_step
 
-   !> Exact contact forces of the step from the predictor (the condensed method).
-   !>
-   !> One contact: closed form (bilinear) or safeguarded Newton (Hertz) in
-   !> `solve_scalar_contact`. Several: projected (non-linear) Gauss-Seidel over the contacts
-   !> with that exact scalar solve, which converges because the problem is the minimisation
-   !> of a strictly convex function of the forces (H is positive definite).
-   pure subroutine condensed_contact(prob, op, u, v, a, ystar, f, sweeps)
-      type(problem_t), intent(in) :: prob      !! model
+   !> Exact contact forces of the step from the predictor (the condensed method): closed form
+   !> (bilinear) or safeguarded Newton (Hertz) for one contact, Gauss-Seidel over several
+   !> (gapbeam_contact_law:solve_contacts). Contact `hold` is held open (0: none).
+   pure subroutine condensed_contact(model, op, u, v, a, ystar, f, hold)
+      type(model_t), intent(in) :: model      !! model
       type(step_op_t), intent(in) :: op        !! step operator
       real(dp), intent(in) :: u(:), v(:), a(:) !! state at the start
       real(dp), intent(in) :: ystar(:)         !! predictor
       real(dp), intent(inout) :: f(:)          !! contact force magnitudes (in: guess) [N]
-      integer, intent(out) :: sweeps           !! Gauss-Seidel sweeps used
-      integer :: c, o, i, si, so, nc
-      real(dp) :: ds, vs, hcc, fold, change, fmax, shift
-      nc = prob%n_contacts
-      if (nc == 1) then
-         i = prob%c_dof(1)
-         ds = prob%c_sign(1) * ystar(i) - prob%c_gap(1)
-         vs = prob%c_sign(1) * (op%a1 * (ystar(i) - u(i)) - op%a4 * v(i) - op%a5 * a(i))
-         f(1) = solve_scalar_contact(prob%c_law(1), prob%c_k(1), prob%c_c(1), prob%c_p(1), &
-                                     ds, vs, op%h(1, 1), op%a1)
-         sweeps = 1
-         return
-      end if
-      do sweeps = 1, 1000
-         change = 0.0_dp;  fmax = 0.0_dp
-         do c = 1, nc
-            i = prob%c_dof(c);  si = prob%c_slot(c)
-            ! displacement shift of dof i from the other contacts' forces
-            shift = 0.0_dp
-            do o = 1, nc
-               if (o == c) cycle
-               so = prob%c_slot(o)
-               shift = shift + op%h(si, so) * prob%c_sign(o) * f(o)
-            end do
-            ds = prob%c_sign(c) * (ystar(i) - shift) - prob%c_gap(c)
-            vs = prob%c_sign(c) * (op%a1 * (ystar(i) - shift - u(i)) - op%a4 * v(i) &
-                 - op%a5 * a(i))
-            hcc = op%h(si, si)
-            fold = f(c)
-            f(c) = solve_scalar_contact(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), &
-                                        ds, vs, hcc, op%a1)
-            change = max(change, abs(f(c) - fold))
-            fmax = max(fmax, f(c))
-         end do
-         if (change <= 1.0e-14_dp * fmax .or. fmax == 0.0_dp) exit
+      integer, intent(in) :: hold              !! contact held open (0: none)
+      integer :: c, i
+      real(dp) :: dstar(model%n_contacts), vstar(model%n_contacts)
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         dstar(c) = model%c_sign(c) * ystar(i) - model%c_gap(c)
+         vstar(c) = model%c_sign(c) * (op%c%a1 * (ystar(i) - u(i)) - op%c%a4 * v(i) &
+                    - op%c%a5 * a(i))
       end do
+      call solve_contacts(model, op%h, 1.0_dp, op%c%a1, dstar, vstar, f, hold)
    end subroutine condensed_contact
-
-   !> Correct the predictor with the contact forces: y = y* - G F, then v, a at the end.
-   pure subroutine newmark_correct(prob, op, ystar, hm, hc, f, u1, v1, a1)
-      type(problem_t), intent(in) :: prob     !! model
-      type(step_op_t), intent(in) :: op       !! step operator
-      real(dp), intent(in) :: ystar(:)        !! predictor
-      real(dp), intent(in) :: hm(:), hc(:)    !! from newmark_predict
-      real(dp), intent(in) :: f(:)            !! contact force magnitudes [N]
-      real(dp), intent(out) :: u1(:), v1(:), a1(:) !! state at the end
-      integer :: c
-      u1 = ystar
-      do c = 1, prob%n_contacts
-         if (f(c) /= 0.0_dp) u1 = u1 - op%g(:, prob%c_slot(c)) * (prob%c_sign(c) * f(c))
-      end do
-      v1 = op%a1 * u1 - hc
-      a1 = op%a0 * u1 - hm
-   end subroutine newmark_correct
 
    !> The paper's fixed point on F_NL: y = Kbar^-1 (Pbar - E F) solved in full each iteration,
    !> F from the stop law at y, until max|dF| <= tol max|F|. Starts from `f` (extrapolated).
-   subroutine fixed_point_step(prob, op, s1, u, v, a, tol, max_iter, f, u1, v1, a1, &
+   subroutine fixed_point_step(model, op, s1, u, v, a, tol, max_iter, f, u1, v1, a1, &
                                iterations, converged, hm, hc, rhs, y, open_contact)
-      type(problem_t), intent(in) :: prob     !! model
+      type(model_t), intent(in) :: model     !! model
       type(step_op_t), intent(in) :: op       !! step operator
       real(dp), intent(in) :: s1              !! load factor at the end of the step
       real(dp), intent(in) :: u(:), v(:), a(:) !! state at the start
@@ -437,36 +370,36 @@ contains
       integer, intent(in), optional :: open_contact   !! contact held open (see condensed_step)
       integer :: n, c, i, info, it, held
       real(dp) :: pbar(size(u)), tmp(size(u)), fnew(size(f)), d, ddot, change, fmax
-      n = prob%n
-      hm = op%a0 * u + op%a2 * v + op%a3 * a
-      hc = op%a1 * u + op%a4 * v + op%a5 * a
+      n = model%n
+      hm = op%c%a0 * u + op%c%a2 * v + op%c%a3 * a
+      hc = op%c%a1 * u + op%c%a4 * v + op%c%a5 * a
       ! Pbar = M (hm + beta hc) + gamma K hc + s q
-      tmp = hm + prob%beta * hc
-      call dense_or_band(prob%sys%m, prob%sys%m_band, tmp, pbar)
-      call dense_or_band(prob%sys%k, prob%sys%k_band, hc, rhs)
-      pbar = pbar + prob%gamma * rhs + s1 * prob%q
+      tmp = hm + model%beta * hc
+      call dense_or_band(model%sys%m, model%sys%m_band, tmp, pbar)
+      call dense_or_band(model%sys%k, model%sys%k_band, hc, rhs)
+      pbar = pbar + model%gamma * rhs + s1 * model%q
       held = 0
       if (present(open_contact)) held = open_contact
       if (held > 0) f(held) = 0.0_dp
       converged = .false.
       do it = 1, max_iter
          rhs = pbar
-         do c = 1, prob%n_contacts
-            i = prob%c_dof(c)
-            rhs(i) = rhs(i) - prob%c_sign(c) * f(c)
+         do c = 1, model%n_contacts
+            i = model%c_dof(c)
+            rhs(i) = rhs(i) - model%c_sign(c) * f(c)
          end do
          y = rhs
          if (op%dense) then
             call dpotrs('U', n, 1, op%fac, n, y, n, info)
          else
-            call dpbtrs('U', n, prob%sys%kd, 1, op%fab, prob%sys%kd + 1, y, n, info)
+            call dpbtrs('U', n, model%sys%kd, 1, op%fab, model%sys%kd + 1, y, n, info)
          end if
          change = 0.0_dp;  fmax = 0.0_dp
-         do c = 1, prob%n_contacts
-            i = prob%c_dof(c)
-            d = prob%c_sign(c) * y(i) - prob%c_gap(c)
-            ddot = prob%c_sign(c) * (op%a1 * y(i) - hc(i))
-            fnew(c) = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), d, ddot)
+         do c = 1, model%n_contacts
+            i = model%c_dof(c)
+            d = model%c_sign(c) * y(i) - model%c_gap(c)
+            ddot = model%c_sign(c) * (op%c%a1 * y(i) - hc(i))
+            fnew(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), d, ddot)
             if (c == held) fnew(c) = 0.0_dp
             change = max(change, abs(fnew(c) - f(c)))
             fmax = max(fmax, fnew(c))
@@ -480,18 +413,18 @@ contains
       end do
       ! the displacements belong to the last solve; recompute them for the final forces
       rhs = pbar
-      do c = 1, prob%n_contacts
-         i = prob%c_dof(c)
-         rhs(i) = rhs(i) - prob%c_sign(c) * f(c)
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         rhs(i) = rhs(i) - model%c_sign(c) * f(c)
       end do
       u1 = rhs
       if (op%dense) then
          call dpotrs('U', n, 1, op%fac, n, u1, n, info)
       else
-         call dpbtrs('U', n, prob%sys%kd, 1, op%fab, prob%sys%kd + 1, u1, n, info)
+         call dpbtrs('U', n, model%sys%kd, 1, op%fab, model%sys%kd + 1, u1, n, info)
       end if
-      v1 = op%a1 * u1 - hc
-      a1 = op%a0 * u1 - hm
+      v1 = op%c%a1 * u1 - hc
+      a1 = op%c%a0 * u1 - hm
    contains
       subroutine dense_or_band(ad, ab, x, yy)
          real(dp), intent(in) :: ad(:, :), ab(:, :), x(:)
@@ -499,7 +432,7 @@ contains
          if (op%dense) then
             call dense_matvec(n, ad, x, yy)
          else
-            call band_matvec(n, prob%sys%kd, ab, x, yy)
+            call band_matvec(n, model%sys%kd, ab, x, yy)
          end if
       end subroutine dense_or_band
    end subroutine fixed_point_step
@@ -514,9 +447,10 @@ contains
    !> dof by dof with tol * max(|P - F_NL|, |K u_m|, |C v_m|, |M a_m|), that scale being
    !> floored at floor * (its largest value over the dofs). Returns max |R_j| / threshold_j
    !> (> 1: reject the step) and the dof where it occurs.
-   subroutine half_step_ratio(prob, delta, alpha, tol, floor, t0, dt, u0, v0, a0, a1, &
+   subroutine half_step_ratio(model, dense, delta, alpha, tol, floor, t0, dt, u0, v0, a0, a1, &
                               ratio, worst, work)
-      type(problem_t), intent(in) :: prob          !! model
+      type(model_t), intent(in) :: model          !! model
+      logical, intent(in) :: dense                 !! dense products (else banded)
       real(dp), intent(in) :: delta, alpha         !! Newmark parameters
       real(dp), intent(in) :: tol                  !! relative tolerance (paper: 0.01)
       real(dp), intent(in) :: floor                !! scale floor relative to the largest
@@ -528,33 +462,33 @@ contains
       real(dp), intent(inout) :: work(:, :)        !! (n, 6) workspace
       integer :: n, c, i, j
       real(dp) :: h, s, d, ddot, fc, smax, thr, r
-      n = prob%n
+      n = model%n
       h = 0.5_dp * dt
       associate (am => work(:, 1), um => work(:, 2), vm => work(:, 3), ku => work(:, 4), &
                  cv => work(:, 5), ma => work(:, 6))
          am = 0.5_dp * (a0 + a1)
          um = u0 + h * v0 + h**2 * ((0.5_dp - alpha) * a0 + alpha * am)
          vm = v0 + h * ((1.0_dp - delta) * a0 + delta * am)
-         if (n <= 60) then
-            call dense_matvec(n, prob%sys%k, um, ku)
-            call dense_matvec(n, prob%c, vm, cv)
-            call dense_matvec(n, prob%sys%m, am, ma)
+         if (dense) then
+            call dense_matvec(n, model%sys%k, um, ku)
+            call dense_matvec(n, model%c, vm, cv)
+            call dense_matvec(n, model%sys%m, am, ma)
          else
-            call band_matvec(n, prob%sys%kd, prob%sys%k_band, um, ku)
-            call band_matvec(n, prob%sys%kd, prob%sys%k_band, vm, cv)
-            call band_matvec(n, prob%sys%kd, prob%sys%m_band, vm, ma)
-            cv = prob%gamma * cv + prob%beta * ma
-            call band_matvec(n, prob%sys%kd, prob%sys%m_band, am, ma)
+            call band_matvec(n, model%sys%kd, model%sys%k_band, um, ku)
+            call band_matvec(n, model%sys%kd, model%sys%k_band, vm, cv)
+            call band_matvec(n, model%sys%kd, model%sys%m_band, vm, ma)
+            cv = model%gamma * cv + model%beta * ma
+            call band_matvec(n, model%sys%kd, model%sys%m_band, am, ma)
          end if
-         s = state_load(prob, t0 + h)
+         s = load_factor(model, t0 + h)
          ! am now holds P - F_NL (force on the structure from the stops is -s f e)
-         am = s * prob%q
-         do c = 1, prob%n_contacts
-            i = prob%c_dof(c)
-            d = prob%c_sign(c) * um(i) - prob%c_gap(c)
-            ddot = prob%c_sign(c) * vm(i)
-            fc = contact_force(prob%c_law(c), prob%c_k(c), prob%c_c(c), prob%c_p(c), d, ddot)
-            am(i) = am(i) - prob%c_sign(c) * fc
+         am = s * model%q
+         do c = 1, model%n_contacts
+            i = model%c_dof(c)
+            d = model%c_sign(c) * um(i) - model%c_gap(c)
+            ddot = model%c_sign(c) * vm(i)
+            fc = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), d, ddot)
+            am(i) = am(i) - model%c_sign(c) * fc
          end do
          smax = 0.0_dp
          do j = 1, n

@@ -12,11 +12,12 @@ module gapbeam_checkpoint
    use, intrinsic :: iso_fortran_env, only: int32, int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_sweep, only: point_result_t, pack_point, unpack_point
+   use gapbeam_results, only: point_result_t
    use gapbeam_files, only: remove_file, file_exists
    implicit none
    private
-   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close
+   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
+      unpack_point
 
    character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-1'
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
@@ -134,4 +135,50 @@ contains
       ck%unit = -1
       if (delete .and. allocated(ck%path)) call remove_file(ck%path)
    end subroutine checkpoint_close
+
+   !> A point's results as one real array (for checkpoints); integers are stored exactly.
+   pure function pack_point(pr) result(x)
+      type(point_result_t), intent(in) :: pr   !! a finished point
+      real(dp), allocatable :: x(:)
+      x = [real(pr%status, dp), real(pr%period, dp), real(pr%label, dp), pr%lyapunov, &
+           pr%lyapunov_error, real(pr%steps, dp), pr%seconds, &
+           real(size(pr%lyapunov_running), dp), pr%lyapunov_running, &
+           real(size(pr%n_impacts), dp), real(pr%n_impacts, dp), pr%peak_force, pr%rms_force, &
+           pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
+           real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
+           real(size(pr%u_end), dp), pr%u_end, pr%v_end]
+   end function pack_point
+
+   !> Inverse of pack_point; ok is false when x is not a well-formed record.
+   pure subroutine unpack_point(x, pr, ok)
+      real(dp), intent(in) :: x(:)                !! packed record
+      type(point_result_t), intent(out) :: pr     !! the point
+      logical, intent(out) :: ok                  !! record well formed
+      integer :: k, m, ns, nr, n
+      ok = .false.
+      if (size(x) < 9) return
+      pr%status = nint(x(1));  pr%period = nint(x(2));  pr%label = nint(x(3))
+      pr%lyapunov = x(4);  pr%lyapunov_error = x(5);  pr%steps = nint(x(6), int64)
+      pr%seconds = x(7)
+      k = 8
+      m = nint(x(k));  if (m < 0 .or. k + m > size(x)) return
+      pr%lyapunov_running = x(k + 1:k + m);  k = k + m + 1
+      if (k > size(x)) return
+      ns = nint(x(k));  if (ns < 0 .or. k + 6 * ns > size(x)) return
+      pr%n_impacts = nint(x(k + 1:k + ns));  k = k + ns
+      pr%peak_force = x(k + 1:k + ns);  k = k + ns
+      pr%rms_force = x(k + 1:k + ns);  k = k + ns
+      pr%contact_fraction = x(k + 1:k + ns);  k = k + ns
+      pr%impulse_per_period = x(k + 1:k + ns);  k = k + ns
+      pr%work_rate = x(k + 1:k + ns);  k = k + ns + 1
+      if (k > size(x)) return
+      nr = nint(x(k));  if (nr < 0 .or. k + 2 * nr > size(x)) return
+      pr%p_strain = x(k + 1:k + nr);  k = k + nr
+      pr%p_strain_rate = x(k + 1:k + nr);  k = k + nr + 1
+      if (k > size(x)) return
+      n = nint(x(k));  if (n < 0 .or. k + 2 * n /= size(x)) return
+      pr%u_end = x(k + 1:k + n);  k = k + n
+      pr%v_end = x(k + 1:k + n)
+      ok = .true.
+   end subroutine unpack_point
 end module gapbeam_checkpoint

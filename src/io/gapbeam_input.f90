@@ -10,67 +10,25 @@ module gapbeam_input
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck_text, only: source_t, load_file, make_source, group_names, group_block, &
       split_assignments, lower, basename_stem
-   use gapbeam_model, only: beam_t, root_t, spring_t, point_mass_t, structure_t, dof_code, &
-      dof_w, dof_theta
-   use gapbeam_beam_element, only: rotary_inertia_coefficient, rotary_inertia_words
-   use gapbeam_contact, only: stop_t, stop_side_words, stop_law_words, law_code
-   use gapbeam_damping, only: damping_t, rayleigh_from_ratios, damping_words
-   use gapbeam_excitation, only: forcing_t
-   use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
-      stop_solution_words, step_control_words, linear_solver_words, method_words, &
-      initial_state_words, diagnostics_settings_t, reduction_settings_t
-   use gapbeam_sweep, only: sweep_settings_t, sweep_mode_words, sweep_direction_words, &
-      sweep_axis_words
-   use gapbeam_studies, only: study_settings_t, series_words
-   use gapbeam_settings, only: model_size_settings_t
-   use gapbeam_calibration, only: calibration_words
+   use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
+      stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
+      stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios
+   use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
+      initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
+      sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
+      linear_solver_words, method_words, initial_state_words, sweep_mode_words, &
+      sweep_direction_words, sweep_axis_words, series_words, calibration_words, analysis_words
+   use gapbeam_deck, only: deck_t
    implicit none
    private
-   public :: deck_t, job_t, calibrate_t, read_deck, analysis_words, known_groups
+   public :: read_deck, known_groups
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
 
-   character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
-      // "'sweep', 'work_precision', 'stability', 'model_size'"
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
       'study model_size'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
-
-   !> &job: what to run and where the results go.
-   type :: job_t
-      character(len=32)  :: analysis = 'modes'   !! analysis word
-      character(len=256) :: title = ''           !! title for plots and files
-      character(len=256) :: output = ''          !! output path prefix ('' -> results/<deck stem>)
-   end type job_t
-
-   !> &calibrate: which parameter to fit to a target first frequency.
-   type :: calibrate_t
-      character(len=16) :: parameter = 'root_k_theta'   !! see calibration_words
-      integer  :: index = 1                             !! spring index for 'spring'
-      real(dp) :: target_f1_hz = 0.0_dp                 !! target first frequency [Hz]
-   end type calibrate_t
-
-   !> Everything a deck says, validated.
-   type :: deck_t
-      character(len=:), allocatable :: path          !! deck path as given
-      character(len=:), allocatable :: text          !! effective text: file plus overrides
-      type(job_t) :: job                             !! &job
-      type(structure_t) :: structure                 !! &beam, &root, &springs, &masses
-      integer :: n_print_modes = 0                   !! &modes n_print (0: all)
-      type(calibrate_t) :: calibrate                 !! &calibrate
-      type(stop_t), allocatable :: stops(:)          !! &stops
-      type(damping_t) :: damping                     !! &damping
-      type(forcing_t) :: forcing                     !! &forcing
-      type(solver_settings_t) :: solver              !! &solver
-      type(initial_state_t) :: initial               !! &initial
-      type(output_settings_t) :: output              !! &output
-      type(diagnostics_settings_t) :: diagnostics    !! &diagnostics
-      type(sweep_settings_t) :: sweep                !! &sweep
-      type(reduction_settings_t) :: reduction        !! &reduction
-      type(study_settings_t) :: study                !! &study
-      type(model_size_settings_t) :: model_size      !! &model_size
-   end type deck_t
 
    abstract interface
       !> Reads one namelist group from an internal file.
@@ -427,8 +385,7 @@ contains
             // '(rectangle) or area, second_moment and fibre_distance')
       end if
       call require_word('beam', 'mass_matrix', mass_matrix, "'lumped', 'consistent'", err)
-      if (rotary_inertia_coefficient(rotary_inertia) < 0.0_dp) &
-         call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
+      call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
       if (allocated(err)) return
       cfg = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
          density=density, width=width, thickness=thickness, area=area, &

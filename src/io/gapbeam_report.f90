@@ -6,14 +6,10 @@ module gapbeam_report
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_files, only: write_table, make_parent_directory
-   use gapbeam_input, only: deck_t
-   use gapbeam_assembly, only: system_t
-   use gapbeam_eigen, only: modes_t
-   use gapbeam_problem, only: problem_t
-   use gapbeam_transient, only: transient_result_t
-   use gapbeam_model, only: dof_w
-   use gapbeam_sweep, only: point_result_t
-   use gapbeam_diagnostics, only: label_text
+   use gapbeam_deck, only: deck_t
+   use gapbeam_model, only: system_t, model_t
+   use gapbeam_description, only: dof_w
+   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, mode_shape_table
@@ -121,9 +117,9 @@ contains
    end subroutine write_calibration
 
    !> Transient results: prefix.h5, prefix.history.dat, prefix.poincare.dat.
-   subroutine write_transient(deck, prob, res, diag, err)
+   subroutine write_transient(deck, model, res, diag, err)
       type(deck_t), intent(in) :: deck                 !! the deck
-      type(problem_t), intent(in) :: prob              !! model
+      type(model_t), intent(in) :: model              !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure
@@ -133,7 +129,7 @@ contains
       character(len=20), allocatable :: names(:), units(:)
       integer :: j, ns, nf
       prefix = trim(deck%job%output)
-      ns = prob%n_stops
+      ns = model%n_stops
       call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
       call h5%create(prefix // '.h5', err);  if (allocated(err)) return
       call h5%write_text('/deck', deck%text, err);  if (failed()) return
@@ -166,25 +162,25 @@ contains
       call h5%write('/run/cpu_seconds', res%cpu_seconds, 's', err);  if (failed()) return
       call h5%write('/run/dt_smallest', res%dt_smallest, 's', err);  if (failed()) return
       call h5%write('/run/dt_largest', res%dt_largest, 's', err);  if (failed()) return
-      call h5%write('/model/stop_stiffness', prob%stop_stiffness, 'N/m', err)
+      call h5%write('/model/stop_stiffness', model%stop_stiffness, 'N/m', err)
       if (failed()) return
-      call h5%write('/model/f1_open_hz', prob%f1_open_hz, 'Hz', err);  if (failed()) return
+      call h5%write('/model/f1_open_hz', model%f1_open_hz, 'Hz', err);  if (failed()) return
       ! the discrete model, so that other tools can integrate exactly the same equations
-      call h5%write('/model/stiffness', prob%sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
-      call h5%write('/model/mass', prob%sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
-      call h5%write('/model/damping', prob%c, 'N s/m, ...', err);  if (failed()) return
-      call h5%write('/model/load_shape', prob%q, 'kg (P = s(t) q)', err);  if (failed()) return
-      call h5%write('/model/forcing_omega', prob%omega, 'rad/s', err);  if (failed()) return
-      call h5%write('/model/forcing_half_amplitude', prob%half_amplitude, &
+      call h5%write('/model/stiffness', model%sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
+      call h5%write('/model/mass', model%sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
+      call h5%write('/model/damping', model%c, 'N s/m, ...', err);  if (failed()) return
+      call h5%write('/model/load_shape', model%q, 'kg (P = s(t) q)', err);  if (failed()) return
+      call h5%write('/model/forcing_omega', model%omega, 'rad/s', err);  if (failed()) return
+      call h5%write('/model/forcing_half_amplitude', model%half_amplitude, &
                     'm (s(t) = a omega^2 sin(omega t))', err);  if (failed()) return
-      call h5%write('/model/strain_row', prob%sys%strain_row, '1/m', err);  if (failed()) return
-      call h5%write('/model/contact_dof', prob%c_dof, '1-based dof index', err)
+      call h5%write('/model/strain_row', model%sys%strain_row, '1/m', err);  if (failed()) return
+      call h5%write('/model/contact_dof', model%c_dof, '1-based dof index', err)
       if (failed()) return
-      call h5%write('/model/contact_sign', prob%c_sign, '-', err);  if (failed()) return
-      call h5%write('/model/contact_gap', prob%c_gap, 'm', err);  if (failed()) return
-      call h5%write('/model/contact_stiffness', prob%c_k, 'N/m', err);  if (failed()) return
-      call h5%write('/model/contact_damping', prob%c_c, 'N s/m', err);  if (failed()) return
-      call h5%write('/model/contact_law', prob%c_law, '1: bilinear, 2: hertz', err)
+      call h5%write('/model/contact_sign', model%c_sign, '-', err);  if (failed()) return
+      call h5%write('/model/contact_gap', model%c_gap, 'm', err);  if (failed()) return
+      call h5%write('/model/contact_stiffness', model%c_k, 'N/m', err);  if (failed()) return
+      call h5%write('/model/contact_damping', model%c_c, 'N s/m', err);  if (failed()) return
+      call h5%write('/model/contact_law', model%c_law, '1: bilinear, 2: hertz', err)
       if (failed()) return
       call h5%write('/impacts/count', res%n_impacts, '-', err);  if (failed()) return
       call h5%write('/impacts/peak_force', res%peak_force, 'N', err);  if (failed()) return

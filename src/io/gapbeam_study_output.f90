@@ -5,9 +5,8 @@ module gapbeam_study_output
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_files, only: write_table, write_text_file, make_parent_directory
-   use gapbeam_studies, only: series_result_t, stable_step_t, cpu_to_reach
-   use gapbeam_model_size, only: candidate_t
-   use gapbeam_diagnostics, only: label_text
+   use gapbeam_results, only: series_result_t, stable_step_t, candidate_t, cpu_to_reach, &
+      label_text
    implicit none
    private
    public :: write_work_precision, write_stability, work_precision_summary, write_model_size

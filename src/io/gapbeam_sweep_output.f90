@@ -13,8 +13,7 @@ module gapbeam_sweep_output
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t
    use gapbeam_files, only: write_table, make_parent_directory
-   use gapbeam_sweep, only: point_result_t
-   use gapbeam_diagnostics, only: label_text
+   use gapbeam_results, only: point_result_t, label_text
    implicit none
    private
    public :: sweep_file_t, write_sweep, read_sweep, merge_sweep

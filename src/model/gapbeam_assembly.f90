@@ -5,46 +5,17 @@
 !> both dense and in LAPACK upper band storage, ab(kd+1+i-j, j) = A(i, j), with kd = 3.
 module gapbeam_assembly
    use gapbeam_kinds, only: dp
-   use gapbeam_model, only: structure_t, beam_ei, beam_rho_a, beam_fibre_distance, n_nodes, &
-      dof_w, dof_theta
+   use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_fibre_distance, &
+      n_nodes, dof_w, dof_theta
+   use gapbeam_model, only: system_t
+   use gapbeam_linalg, only: dense_to_band
    use gapbeam_beam_element, only: beam_stiffness, beam_consistent_mass, beam_lumped_mass, &
       beam_curvature_row
    implicit none
    private
-   public :: system_t, assemble, dense_to_band, global_dof
-
-   !> Semi-bandwidth of the assembled matrices.
-   integer, parameter, public :: band_kd = 3
-
-   !> The assembled linear structure (beam + root spring + boundary springs + point masses).
-   type :: system_t
-      integer :: n_dof = 0                         !! number of free dofs
-      integer :: n_node = 0                        !! number of nodes
-      integer :: kd = band_kd                      !! semi-bandwidth
-      integer, allocatable :: dof_of(:, :)         !! (2, n_node) index of (w, theta), 0: fixed
-      real(dp), allocatable :: k(:, :)             !! dense stiffness [N/m ...]
-      real(dp), allocatable :: m(:, :)             !! dense mass [kg ...]
-      real(dp), allocatable :: k_band(:, :)        !! upper band storage of k
-      real(dp), allocatable :: m_band(:, :)        !! upper band storage of m
-      logical :: m_diagonal = .false.              !! true for a lumped mass matrix
-      real(dp), allocatable :: r(:)                !! rigid base-translation influence vector [-]
-      real(dp), allocatable :: strain_row(:)       !! root strain = dot(strain_row, u) [-/m...]
-      integer :: tip_dof = 0                       !! global index of the tip w
-      real(dp) :: fibre_distance = 0.0_dp          !! strain fibre distance c [m]
-      real(dp) :: element_length = 0.0_dp          !! element length [m]
-   end type system_t
+   public :: assemble
 
 contains
-
-   !> Global index of (node, dof code), 0 if constrained; error stop outside the mesh.
-   pure integer function global_dof(sys, node, dof)
-      type(system_t), intent(in) :: sys   !! assembled system
-      integer, intent(in) :: node         !! node index 1..n_node
-      integer, intent(in) :: dof          !! dof_w or dof_theta
-      if (node < 1 .or. node > sys%n_node .or. dof < 1 .or. dof > 2) &
-         error stop 'gapbeam_assembly:global_dof: node or dof outside the mesh'
-      global_dof = sys%dof_of(dof, node)
-   end function global_dof
 
    !> Number the dofs and assemble K, M, r and the root-strain row of a validated structure.
    pure subroutine assemble(st, sys)
@@ -138,18 +109,4 @@ contains
       sys%tip_dof = sys%dof_of(dof_w, nn)
    end subroutine assemble
 
-   !> Copy the upper band of a dense symmetric matrix to LAPACK band storage.
-   pure subroutine dense_to_band(a, kd, ab)
-      real(dp), intent(in) :: a(:, :)                    !! dense symmetric matrix
-      integer, intent(in) :: kd                          !! semi-bandwidth
-      real(dp), allocatable, intent(out) :: ab(:, :)     !! (kd+1, n) upper band storage
-      integer :: i, j, n
-      n = size(a, 2)
-      allocate(ab(kd + 1, n), source=0.0_dp)
-      do j = 1, n
-         do i = max(1, j - kd), j
-            ab(kd + 1 + i - j, j) = a(i, j)
-         end do
-      end do
-   end subroutine dense_to_band
 end module gapbeam_assembly

@@ -8,11 +8,7 @@ module gapbeam_beam_element
    implicit none
    private
    public :: beam_stiffness, beam_consistent_mass, beam_lumped_mass, beam_curvature_row
-   public :: rotary_inertia_words, rotary_inertia_coefficient
-
-   !> Words accepted for the rotary-inertia rule of the lumped mass matrix.
-   character(len=*), parameter :: rotary_inertia_words = &
-      "'half_element', 'hrz', 'none'"
+   public :: rotary_inertia_coefficient
 
 contains
 

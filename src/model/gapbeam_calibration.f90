@@ -8,16 +8,14 @@
 module gapbeam_calibration
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: structure_t, spring_t, beam_ei, dof_w, dof_name
-   use gapbeam_assembly, only: system_t, assemble
-   use gapbeam_eigen, only: modes_t, solve_modes
+   use gapbeam_description, only: structure_t, spring_t, beam_ei, dof_w, dof_name
+   use gapbeam_model, only: system_t
+   use gapbeam_results, only: modes_t
+   use gapbeam_assembly, only: assemble
+   use gapbeam_eigen, only: solve_modes
    implicit none
    private
-   public :: first_frequency, calibrate_parameter, calibrate_spring, calibration_words
-
-   !> Words accepted for the calibrated parameter.
-   character(len=*), parameter :: calibration_words = &
-      "'root_k_theta', 'spring', 'thickness', 'width'"
+   public :: first_frequency, calibrate_parameter, calibrate_spring
 
    real(dp), parameter :: span = 1.0e12_dp     ! parameter searched in [p0/span, p0*span]
 

@@ -10,21 +10,11 @@ module gapbeam_eigen
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dsygv, dpotrf
-   use gapbeam_assembly, only: system_t
+   use gapbeam_model, only: system_t
+   use gapbeam_results, only: modes_t
    implicit none
    private
-   public :: modes_t, solve_modes
-
-   !> Result of a modal analysis.
-   type :: modes_t
-      integer :: n_modes = 0                       !! number of finite-frequency modes
-      real(dp), allocatable :: omega2(:)           !! eigenvalues omega^2 [rad^2/s^2]
-      real(dp), allocatable :: frequency_hz(:)     !! natural frequencies [Hz]
-      real(dp), allocatable :: shapes(:, :)        !! (n_dof, n_modes) mass-normalised shapes
-      real(dp), allocatable :: participation(:)    !! phi' M r, base-excitation factor [kg^0.5]
-      real(dp), allocatable :: effective_mass(:)   !! (phi' M r)^2 [kg]
-      real(dp) :: total_mass = 0.0_dp              !! r' M r, mass moving with the base [kg]
-   end type modes_t
+   public :: solve_modes
 
 contains
 

@@ -14,21 +14,22 @@ module gapbeam_reduction
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dgesv, dpotrf, dpotrs
-   use gapbeam_problem, only: problem_t
-   use gapbeam_eigen, only: modes_t, solve_modes
-   use gapbeam_assembly, only: dense_to_band
+   use gapbeam_model, only: model_t
+   use gapbeam_results, only: modes_t
+   use gapbeam_eigen, only: solve_modes
+   use gapbeam_linalg, only: dense_to_band
    implicit none
    private
-   public :: reduce_problem, reduction_basis, project
+   public :: reduce_model, reduction_basis, project
 
 contains
 
    !> The reduced problem and its basis (physical u = basis z).
-   subroutine reduce_problem(full, n_modes, static_correction, red, basis, err)
-      type(problem_t), intent(in) :: full              !! full model (contacts resolved)
+   subroutine reduce_model(full, n_modes, static_correction, red, basis, err)
+      type(model_t), intent(in) :: full              !! full model (contacts resolved)
       integer, intent(in) :: n_modes                   !! modes kept
       logical, intent(in) :: static_correction         !! add residual attachment modes
-      type(problem_t), intent(out) :: red              !! reduced model
+      type(model_t), intent(out) :: red              !! reduced model
       real(dp), allocatable, intent(out) :: basis(:, :)  !! (n_full, n_red)
       type(error_t), allocatable, intent(out) :: err   !! too few modes, singular selection
       type(modes_t) :: modes
@@ -75,12 +76,12 @@ contains
       red%slot_dof = [(j, j = 1, full%n_slots)]
       call solve_modes(red%sys, modes, err);  if (allocated(err)) return
       red%omega_max = sqrt(maxval(modes%omega2))
-   end subroutine reduce_problem
+   end subroutine reduce_model
 
    !> Basis [modes, residual attachment modes] transformed so that coordinate j is the
    !> displacement of physical dof pinned(j).
    subroutine reduction_basis(full, modes, n_modes, static_correction, pinned, basis, err)
-      type(problem_t), intent(in) :: full
+      type(model_t), intent(in) :: full
       type(modes_t), intent(in) :: modes
       integer, intent(in) :: n_modes
       logical, intent(in) :: static_correction
@@ -174,7 +175,7 @@ contains
 
    !> Coordinates z of a physical vector x in the basis, mass-weighted least squares.
    function project(full, basis, x) result(z)
-      type(problem_t), intent(in) :: full
+      type(model_t), intent(in) :: full
       real(dp), intent(in) :: basis(:, :), x(:)
       real(dp), allocatable :: z(:)
       real(dp), allocatable :: a(:, :), rhs(:, :)

@@ -1,20 +1,20 @@
 !> Runs a sweep job: its shard of the work items in chunks of parallel work, a checkpoint
 !> record for every finished point and a progress line after every chunk (both outside the
 !> parallel region), then the result files.
-module gapbeam_sweep_driver
+module gapbeam_sweep_job
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
    !$ use omp_lib, only: omp_get_max_threads
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_input, only: deck_t
-   use gapbeam_problem, only: problem_t
-   use gapbeam_setup, only: build_model
-   use gapbeam_sweep, only: sweep_settings_t, point_result_t, n_points, n_items, item_points, &
-      run_items
+   use gapbeam_deck, only: deck_t
+   use gapbeam_settings, only: sweep_settings_t, batch_options_t
+   use gapbeam_model, only: model_t
+   use gapbeam_results, only: point_result_t, label_chaotic, label_undecided
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_sweep, only: n_points, n_items, item_points, run_items
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
-   use gapbeam_diagnostics, only: label_chaotic, label_undecided
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -25,20 +25,22 @@ module gapbeam_sweep_driver
 contains
 
    !> Output prefix of a shard: PREFIX, or PREFIX.shard_I_of_N.
-   function sweep_prefix(deck) result(prefix)
-      type(deck_t), intent(in) :: deck   !! the deck (with the shard set)
+   function sweep_prefix(deck, batch) result(prefix)
+      type(deck_t), intent(in) :: deck              !! the deck
+      type(batch_options_t), intent(in) :: batch    !! the shard
       character(len=:), allocatable :: prefix
       prefix = trim(deck%job%output)
-      if (deck%sweep%shard_count > 1) prefix = prefix // '.shard_' &
-         // str(deck%sweep%shard_index) // '_of_' // str(deck%sweep%shard_count)
+      if (batch%shard_count > 1) prefix = prefix // '.shard_' &
+         // str(batch%shard_index) // '_of_' // str(batch%shard_count)
    end function sweep_prefix
 
    !> Run the deck's sweep (its shard); `complete` is false when the time limit stopped it.
-   subroutine run_sweep_job(deck, complete, err)
+   subroutine run_sweep_job(deck, batch, complete, err)
       type(deck_t), intent(in) :: deck                 !! validated deck
+      type(batch_options_t), intent(in) :: batch       !! shard and time limit
       logical, intent(out) :: complete                 !! all points of the shard done
       type(error_t), allocatable, intent(out) :: err   !! setup, I/O or checkpoint failure
-      type(problem_t) :: base
+      type(model_t) :: base
       type(point_result_t), allocatable :: results(:)
       type(checkpoint_t) :: ck
       type(sweep_file_t) :: sf
@@ -56,16 +58,16 @@ contains
       call build_model(deck, base, u0, v0, err)
       if (allocated(err)) return
       np = n_points(deck%sweep);  ni = n_items(deck%sweep)
-      mine = pack([(k, k = 1, ni)], [(mod(k - 1, deck%sweep%shard_count) + 1 &
-                  == deck%sweep%shard_index, k = 1, ni)])
+      mine = pack([(k, k = 1, ni)], [(mod(k - 1, batch%shard_count) + 1 &
+                  == batch%shard_index, k = 1, ni)])
       allocate(results(np), done(np))
       done = .false.
-      prefix = sweep_prefix(deck)
+      prefix = sweep_prefix(deck, batch)
       n_loaded = 0
       if (deck%sweep%checkpoint) then
          call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
-            // '! shard ' // str(deck%sweep%shard_index) // ' of ' &
-            // str(deck%sweep%shard_count), results, done, n_loaded, err)
+            // '! shard ' // str(batch%shard_index) // ' of ' &
+            // str(batch%shard_count), results, done, n_loaded, err)
          if (allocated(err)) return
       end if
       allocate(todo(0))
@@ -87,8 +89,8 @@ contains
       write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' &
          // str(size(deck%sweep%frequency_hz)) // ' frequencies x ' &
          // str(size(deck%sweep%amplitude_pp)) // ' amplitudes), mode ' &
-         // trim(deck%sweep%mode) // ', shard ' // str(deck%sweep%shard_index) // ' of ' &
-         // str(deck%sweep%shard_count) // ': ' // str(n_total) // ' points, ' &
+         // trim(deck%sweep%mode) // ', shard ' // str(batch%shard_index) // ' of ' &
+         // str(batch%shard_count) // ': ' // str(n_total) // ' points, ' &
          // str(n_done) // ' already in the checkpoint; ' // str(threads) // ' threads'
 
       first = 1;  n_run = 0
@@ -117,7 +119,7 @@ contains
                // str(per_point * (n_total - n_done)) // ' s left'
             flush(error_unit)
          end if
-         if (deck%sweep%time_limit_s > 0.0_dp .and. elapsed >= deck%sweep%time_limit_s .and. &
+         if (batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .and. &
              first <= size(todo)) then
             call checkpoint_close(ck, delete=.false.)
             write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
@@ -142,8 +144,8 @@ contains
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
-      sf%shard_index = deck%sweep%shard_index
-      sf%shard_count = deck%sweep%shard_count
+      sf%shard_index = batch%shard_index
+      sf%shard_count = batch%shard_count
       sf%points = sorted_points(deck%sweep, mine)
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
@@ -186,4 +188,4 @@ contains
          // str(n_failed)
       write(output_unit, '(a)') line
    end subroutine summary
-end module gapbeam_sweep_driver
+end module gapbeam_sweep_job

@@ -7,48 +7,17 @@
 !>
 !> * bilinear: f = max(0, k d + c d') while d > 0, else 0 (the damper never pulls);
 !> * hertz:    f = k d^p while d > 0, else 0.
-module gapbeam_contact
+module gapbeam_contact_law
    use gapbeam_kinds, only: dp
-   use gapbeam_model, only: dof_w
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_model, only: model_t
    implicit none
    private
-   public :: stop_t, contact_force, solve_scalar_contact, law_bilinear, law_hertz
-   public :: stop_side_words, stop_law_words, law_code
+   public :: contact_force, solve_scalar_contact, solve_contacts
 
-   integer, parameter :: law_bilinear = 1   !! code of the bilinear law
-   integer, parameter :: law_hertz = 2      !! code of the Hertz law
-   character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
-   character(len=*), parameter :: stop_law_words = "'bilinear', 'hertz'"
-
-   !> A stop as the deck gives it ('both' sides means two one-sided contacts).
-   type :: stop_t
-      integer  :: node = -1                     !! node index [-]
-      integer  :: dof = dof_w                   !! dof code (dof_w or dof_theta)
-      character(len=16) :: side = 'positive'    !! 'positive', 'negative' or 'both'
-      character(len=16) :: law = 'bilinear'     !! 'bilinear' or 'hertz'
-      real(dp) :: gap = 0.0_dp                  !! clearance [m or rad]
-      real(dp) :: stiffness = 0.0_dp            !! k [N/m] (bilinear) or [N/m^p] (hertz)
-      real(dp) :: damping = 0.0_dp              !! contact damper c [N s/m] (bilinear only)
-      real(dp) :: exponent = 1.5_dp             !! Hertz exponent p [-]
-      real(dp) :: rule_factor = 0.0_dp          !! > 0: k = factor * calibrated spring [-]
-      real(dp) :: rule_f1_ratio = 0.0_dp        !! rule target: f1 / f1(open structure) [-]
-      real(dp) :: rule_f1_hz = 0.0_dp           !! rule target: f1 [Hz] (if ratio not given)
-   end type stop_t
+   
 
 contains
-
-   !> Law code of a word; 0 if unknown.
-   pure integer function law_code(word)
-      character(len=*), intent(in) :: word   !! 'bilinear' or 'hertz'
-      select case (trim(word))
-      case ('bilinear')
-         law_code = law_bilinear
-      case ('hertz')
-         law_code = law_hertz
-      case default
-         law_code = 0
-      end select
-   end function law_code
 
    !> Contact force magnitude f >= 0 for penetration d and its rate d_dot.
    elemental function contact_force(law, k, c, p, d, d_dot) result(f)
@@ -116,4 +85,43 @@ contains
          f = k * d**p
       end if
    end function solve_scalar_contact
-end module gapbeam_contact
+
+   !> Exact contact forces of an implicit step with several contacts: projected (non-linear)
+   !> Gauss-Seidel over the contacts with the exact scalar solve, which converges because the
+   !> forces minimise a strictly convex function (H is positive definite).
+   !>
+   !> With the forces f, contact c's penetration and rate are affine:
+   !>    d_c = dstar_c - s_c w sum_o H(slot_c, slot_o) s_o f_o,   d'_c = vstar_c - kappa (...)
+   !> (H = E' Kbar^-1 E of the step, w the weight of the step's end in the instant where the
+   !> law is evaluated: 1 for Newmark, 1 - alpha_f for the alpha methods). Contact `hold` is
+   !> held open (0: none). Starts from the given f.
+   pure subroutine solve_contacts(model, hmat, w, kappa, dstar, vstar, f, hold)
+      type(model_t), intent(in) :: model       !! model (contacts)
+      real(dp), intent(in) :: hmat(:, :)       !! (n_slots, n_slots) compliance at the slots
+      real(dp), intent(in) :: w                !! weight of the step's end [-]
+      real(dp), intent(in) :: kappa            !! d(rate)/d(displacement) of the scheme [1/s]
+      real(dp), intent(in) :: dstar(:)         !! penetrations with zero forces [m]
+      real(dp), intent(in) :: vstar(:)         !! their rates [m/s]
+      real(dp), intent(inout) :: f(:)          !! force magnitudes (in: first guess) [N]
+      integer, intent(in) :: hold              !! contact held open (0: none)
+      integer :: c, o, si, sweep
+      real(dp) :: shift, fold, change, fmax
+      do sweep = 1, 1000
+         change = 0.0_dp;  fmax = 0.0_dp
+         do c = 1, model%n_contacts
+            si = model%c_slot(c)
+            shift = 0.0_dp
+            do o = 1, model%n_contacts
+               if (o /= c) shift = shift + hmat(si, model%c_slot(o)) * model%c_sign(o) * f(o)
+            end do
+            shift = model%c_sign(c) * w * shift
+            fold = f(c)
+            f(c) = solve_scalar_contact(model%c_law(c), model%c_k(c), model%c_c(c), &
+               model%c_p(c), dstar(c) - shift, vstar(c) - kappa * shift, w * hmat(si, si), kappa)
+            if (c == hold) f(c) = 0.0_dp
+            change = max(change, abs(f(c) - fold));  fmax = max(fmax, f(c))
+         end do
+         if (change <= 1.0e-14_dp * fmax .or. fmax == 0.0_dp) exit
+      end do
+   end subroutine solve_contacts
+end module gapbeam_contact_law

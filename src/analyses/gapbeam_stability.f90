@@ -11,11 +11,11 @@ module gapbeam_stability
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dgeev, dpotrf, dpotrs
-   use gapbeam_problem, only: problem_t
-   use gapbeam_assembly, only: dense_to_band
-   use gapbeam_settings, only: solver_settings_t, output_settings_t
-   use gapbeam_stepper, only: stepper_t
-   use gapbeam_integrators, only: make_stepper
+   use gapbeam_model, only: model_t
+   use gapbeam_state, only: state_t
+   use gapbeam_linalg, only: dense_to_band
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_integrator, only: stepper_t, make_stepper
    implicit none
    private
    public :: spectral_radius, test_problem, largest_stable_step, step_is_stable
@@ -23,23 +23,23 @@ module gapbeam_stability
 contains
 
    !> A one-dof problem: unit mass, stiffness omega^2, no damping, no forcing, no contact.
-   function test_problem(omega) result(prob)
+   function test_problem(omega) result(model)
       real(dp), intent(in) :: omega       !! natural frequency [rad/s]
-      type(problem_t) :: prob
-      prob%n = 1
-      prob%sys%n_dof = 1;  prob%sys%n_node = 1;  prob%sys%kd = 0
-      prob%sys%k = reshape([omega**2], [1, 1])
-      prob%sys%m = reshape([1.0_dp], [1, 1])
-      call dense_to_band(prob%sys%k, 0, prob%sys%k_band)
-      call dense_to_band(prob%sys%m, 0, prob%sys%m_band)
-      prob%sys%m_diagonal = .true.
-      prob%sys%r = [1.0_dp];  prob%sys%strain_row = [0.0_dp];  prob%sys%tip_dof = 1
-      prob%c = reshape([0.0_dp], [1, 1]);  prob%q = [0.0_dp]
-      prob%omega = 1.0_dp;  prob%half_amplitude = 0.0_dp
-      allocate(prob%c_dof(0), prob%c_sign(0), prob%c_gap(0), prob%c_law(0), prob%c_k(0), &
-               prob%c_c(0), prob%c_p(0), prob%c_stop(0), prob%c_slot(0), prob%slot_dof(0))
-      allocate(prob%stop_stiffness(0))
-      prob%omega_max = omega
+      type(model_t) :: model
+      model%n = 1
+      model%sys%n_dof = 1;  model%sys%n_node = 1;  model%sys%kd = 0
+      model%sys%k = reshape([omega**2], [1, 1])
+      model%sys%m = reshape([1.0_dp], [1, 1])
+      call dense_to_band(model%sys%k, 0, model%sys%k_band)
+      call dense_to_band(model%sys%m, 0, model%sys%m_band)
+      model%sys%m_diagonal = .true.
+      model%sys%r = [1.0_dp];  model%sys%strain_row = [0.0_dp];  model%sys%tip_dof = 1
+      model%c = reshape([0.0_dp], [1, 1]);  model%q = [0.0_dp]
+      model%omega = 1.0_dp;  model%half_amplitude = 0.0_dp
+      allocate(model%c_dof(0), model%c_sign(0), model%c_gap(0), model%c_law(0), model%c_k(0), &
+               model%c_c(0), model%c_p(0), model%c_stop(0), model%c_slot(0), model%slot_dof(0))
+      allocate(model%stop_stiffness(0))
+      model%omega_max = omega
    end function test_problem
 
    !> Spectral radius of one step of the method at omega dt = x (omega = 1).
@@ -49,19 +49,22 @@ contains
       real(dp), intent(out) :: rho                    !! spectral radius [-]
       type(error_t), allocatable, intent(out) :: err  !! method cannot run
       class(stepper_t), allocatable :: st
-      type(problem_t) :: prob
+      type(model_t) :: model
       type(solver_settings_t) :: c
-      real(dp) :: amp(3, 3), u(1), v(1), a(1), u1(1), v1(1), a1(1), f(0), f1(0), ratio, &
-         wr(3), wi(3), vl(1, 3), vr(1, 3), work(64), h
+      type(state_t) :: s0, s1
+      real(dp) :: amp(3, 3), ratio, wr(3), wi(3), vl(1, 3), vr(1, 3), work(64), h
       logical :: ok
       integer :: j, m, info
       c = cfg
       if (c%method == 'rk45') c%method = 'rk4'     ! the embedded pair's 5th-order step differs;
                                                    ! the stability study uses fixed-step RK4
-      prob = test_problem(1.0_dp)
-      call make_stepper(c, st, err);  if (allocated(err)) return
+      model = test_problem(1.0_dp)
+      call make_stepper(c%method, st, err);  if (allocated(err)) return
       h = x
-      call st%prepare(prob, c, h, err);  if (allocated(err)) return
+      allocate(s0%u(1), s0%v(1), s0%a(1), s0%f(0), s0%f_prev(0), s1%u(1), s1%v(1), s1%a(1), &
+               s1%f(0), s1%f_prev(0))
+      s0%t = 0.0_dp;  s0%dt_prev = h
+      call st%prepare(model, c, h, err);  if (allocated(err)) return
       ! acceleration-carrying methods use (u, v, h^2 a) as the state
       select case (c%method)
       case ('newmark', 'hht', 'generalized_alpha')
@@ -71,16 +74,16 @@ contains
       end select
       amp = 0.0_dp
       do j = 1, m
-         u = 0.0_dp;  v = 0.0_dp;  a = 0.0_dp
+         s0%u = 0.0_dp;  s0%v = 0.0_dp;  s0%a = 0.0_dp
          select case (j)
-         case (1);  u = 1.0_dp
-         case (2);  v = 1.0_dp / h
-         case (3);  a = 1.0_dp / h**2
+         case (1);  s0%u = 1.0_dp
+         case (2);  s0%v = 1.0_dp / h
+         case (3);  s0%a = 1.0_dp / h**2
          end select
-         if (m == 2) a = -u            ! equilibrium: a = -omega^2 u
-         call st%step(prob, 0.0_dp, u, v, a, f, f, h, u1, v1, a1, f1, ok, ratio, 0)
-         amp(1, j) = u1(1);  amp(2, j) = h * v1(1)
-         if (m == 3) amp(3, j) = h**2 * a1(1)
+         if (m == 2) s0%a = -s0%u            ! equilibrium: a = -omega^2 u
+         call st%step(model, s0, s1, ok, ratio, 0)
+         amp(1, j) = s1%u(1);  amp(2, j) = h * s1%v(1)
+         if (m == 3) amp(3, j) = h**2 * s1%a(1)
       end do
       call dgeev('N', 'N', m, amp, 3, wr, wi, vl, 1, vr, 1, work, size(work), info)
       if (info /= 0) then
@@ -93,39 +96,42 @@ contains
    !> Does a fixed step dt stay bounded over n_steps on the model's free, undamped vibration
    !> from a pseudo-random initial displacement (all modes excited)? Unstable when the energy
    !> u'Ku/2 + v'Mv/2 grows beyond 1e4 times its initial value or turns non-finite.
-   subroutine step_is_stable(prob, cfg, dt, n_steps, stable, err)
-      type(problem_t), intent(in) :: prob             !! model (its damping and forcing are ignored)
+   subroutine step_is_stable(model, cfg, dt, n_steps, stable, err)
+      type(model_t), intent(in) :: model             !! model (its damping and forcing are ignored)
       type(solver_settings_t), intent(in) :: cfg      !! method
       real(dp), intent(in) :: dt                      !! step [s]
       integer, intent(in) :: n_steps                  !! steps run
       logical, intent(out) :: stable                  !! bounded
       type(error_t), allocatable, intent(out) :: err  !! method cannot run
       class(stepper_t), allocatable :: st
-      type(problem_t) :: p
-      real(dp), allocatable :: u(:), v(:), a(:), u1(:), v1(:), a1(:), f(:), f1(:)
+      type(model_t) :: p
+      type(state_t) :: s0, s1
       real(dp) :: e0, e, ratio
       integer :: k, i
       integer(8) :: seed
       logical :: ok
-      p = prob
+      p = model
       p%c = 0.0_dp;  p%beta = 0.0_dp;  p%gamma = 0.0_dp;  p%half_amplitude = 0.0_dp
-      call make_stepper(cfg, st, err);  if (allocated(err)) return
+      call make_stepper(cfg%method, st, err);  if (allocated(err)) return
       call st%prepare(p, cfg, dt, err);  if (allocated(err)) return
-      allocate(u(p%n), v(p%n), a(p%n), u1(p%n), v1(p%n), a1(p%n), f(p%n_contacts), &
-               f1(p%n_contacts), source=0.0_dp)
+      allocate(s0%u(p%n), s0%v(p%n), s0%a(p%n), s1%u(p%n), s1%v(p%n), s1%a(p%n), &
+               s0%f(p%n_contacts), s0%f_prev(p%n_contacts), s1%f(p%n_contacts), &
+               s1%f_prev(p%n_contacts), source=0.0_dp)
+      s0%dt_prev = dt
       seed = 20261121_8
       do i = 1, p%n
          seed = mod(seed * 6364136223846793005_8 + 1442695040888963407_8, huge(seed))
-         u(i) = real(mod(abs(seed), 2000001_8) - 1000000_8, dp) * 1.0e-9_dp
+         s0%u(i) = real(mod(abs(seed), 2000001_8) - 1000000_8, dp) * 1.0e-9_dp
       end do
-      a = -solve_m(p, matmul(p%sys%k, u))
-      e0 = energy(p, u, v)
+      s0%a = -solve_m(p, matmul(p%sys%k, s0%u))
+      e0 = energy(p, s0%u, s0%v)
       stable = .true.
       do k = 1, n_steps
-         call st%step(p, (k - 1) * dt, u, v, a, f, f, dt, u1, v1, a1, f1, ok, ratio, 0)
-         u = u1;  v = v1;  a = a1
+         s0%t = (k - 1) * dt
+         call st%step(p, s0, s1, ok, ratio, 0)
+         s0%u = s1%u;  s0%v = s1%v;  s0%a = s1%a
          if (mod(k, 16) == 0 .or. k == n_steps) then
-            e = energy(p, u, v)
+            e = energy(p, s0%u, s0%v)
             if (.not. (e <= 1.0e4_dp * e0)) then
                stable = .false.;  return
             end if
@@ -135,8 +141,8 @@ contains
 
    !> Largest stable fixed step, by bisection between dt_stable (stable) and dt_unstable
    !> (unstable), to relative precision rtol; the bracket is widened first if needed.
-   subroutine largest_stable_step(prob, cfg, dt_guess, n_steps, rtol, dt, err)
-      type(problem_t), intent(in) :: prob             !! model
+   subroutine largest_stable_step(model, cfg, dt_guess, n_steps, rtol, dt, err)
+      type(model_t), intent(in) :: model             !! model
       type(solver_settings_t), intent(in) :: cfg      !! method
       real(dp), intent(in) :: dt_guess                !! a first guess [s]
       integer, intent(in) :: n_steps                  !! steps per trial
@@ -148,12 +154,12 @@ contains
       integer :: it
       lo = dt_guess;  hi = dt_guess
       do it = 1, 60
-         call step_is_stable(prob, cfg, lo, n_steps, stable, err);  if (allocated(err)) return
+         call step_is_stable(model, cfg, lo, n_steps, stable, err);  if (allocated(err)) return
          if (stable) exit
          hi = lo;  lo = 0.5_dp * lo
       end do
       do it = 1, 60
-         call step_is_stable(prob, cfg, hi, n_steps, stable, err);  if (allocated(err)) return
+         call step_is_stable(model, cfg, hi, n_steps, stable, err);  if (allocated(err)) return
          if (.not. stable) exit
          lo = hi;  hi = 2.0_dp * hi
          if (it == 60) then
@@ -165,7 +171,7 @@ contains
       end do
       do while (hi - lo > rtol * lo)
          mid = 0.5_dp * (lo + hi)
-         call step_is_stable(prob, cfg, mid, n_steps, stable, err);  if (allocated(err)) return
+         call step_is_stable(model, cfg, mid, n_steps, stable, err);  if (allocated(err)) return
          if (stable) then
             lo = mid
          else
@@ -176,7 +182,7 @@ contains
    end subroutine largest_stable_step
 
    real(dp) function energy(p, u, v)
-      type(problem_t), intent(in) :: p
+      type(model_t), intent(in) :: p
       real(dp), intent(in) :: u(:), v(:)
       energy = 0.5_dp * dot_product(u, matmul(p%sys%k, u)) &
                + 0.5_dp * dot_product(v, matmul(p%sys%m, v))
@@ -184,7 +190,7 @@ contains
 
    !> M^-1 b (massless dofs get 0).
    function solve_m(p, b) result(x)
-      type(problem_t), intent(in) :: p
+      type(model_t), intent(in) :: p
       real(dp), intent(in) :: b(:)
       real(dp) :: x(size(b))
       real(dp), allocatable :: mm(:, :)

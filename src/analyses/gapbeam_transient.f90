@@ -1,0 +1,78 @@
+!> A transient run with any method: the deck's integrator advances the model from the initial
+!> state over the transient and recorded forcing periods while the recorder watches.
+module gapbeam_transient
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t
+   use gapbeam_model, only: model_t
+   use gapbeam_state, only: state_t
+   use gapbeam_settings, only: solver_settings_t, output_settings_t
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_recorder, only: recorder_t
+   implicit none
+   private
+   public :: integrate
+
+contains
+
+   !> Integrate from (u0, v0) at t = 0 over the settings' transient and recorded periods, with
+   !> the settings' method, or with `integrator` when given (an integrator of a chosen type with
+   !> options set, initialised here).
+   subroutine integrate(model, cfg, out, u0, v0, res, err, integrator)
+      type(model_t), intent(in) :: model               !! model
+      type(solver_settings_t), intent(in) :: cfg       !! method and settings
+      type(output_settings_t), intent(in) :: out       !! what to record
+      real(dp), intent(in) :: u0(:), v0(:)             !! initial state relative to the base
+      type(transient_result_t), intent(out) :: res     !! results
+      type(error_t), allocatable, intent(out) :: err   !! numerical failure
+      class(integrator_t), intent(inout), optional :: integrator   !! the integrator to use
+      class(integrator_t), allocatable :: integ
+      integer(int64) :: count0, count1, rate
+      call system_clock(count0, rate)
+      if (present(integrator)) then
+         call integrator%init(model, cfg, err)
+         if (allocated(err)) return
+         call record(model, cfg, out, u0, v0, integrator, res, err)
+      else
+         call make_integrator(model, cfg, integ, err)
+         if (allocated(err)) return
+         call record(model, cfg, out, u0, v0, integ, res, err)
+      end if
+      if (allocated(err)) return
+      call system_clock(count1)
+      res%cpu_seconds = real(count1 - count0, dp) / real(rate, dp)
+   end subroutine integrate
+
+   !> Advance from (u0, v0) at t = 0 with an initialised integrator while a recorder watches.
+   subroutine record(model, cfg, out, u0, v0, integ, res, err)
+      type(model_t), intent(in) :: model               !! model
+      type(solver_settings_t), intent(in) :: cfg       !! horizon
+      type(output_settings_t), intent(in) :: out       !! what to record
+      real(dp), intent(in) :: u0(:), v0(:)             !! initial state relative to the base
+      class(integrator_t), intent(inout) :: integ      !! integrator
+      type(transient_result_t), intent(out) :: res     !! results
+      type(error_t), allocatable, intent(out) :: err   !! numerical failure
+      type(recorder_t) :: rec
+      type(state_t) :: state
+      real(dp) :: period
+      call rec%init(model, out, cfg%transient_periods, cfg%record_periods, err)
+      if (allocated(err)) return
+      call start_state(model, 0.0_dp, u0, v0, state)
+      period = 2.0_dp * pi / model%omega
+      call integ%advance(state, real(cfg%transient_periods + cfg%record_periods, dp) * period, &
+                         rec, err)
+      if (allocated(err)) return
+      call rec%finish(res)
+      res%steps_accepted = integ%steps_accepted
+      res%steps_rejected = integ%steps_rejected
+      res%events = integ%events
+      res%factorizations = integ%factorizations
+      res%fp_iterations = integ%fp_iterations
+      res%dt_smallest = integ%dt_smallest
+      res%dt_largest = integ%dt_largest
+      if (res%dt_smallest > res%dt_largest) res%dt_smallest = 0.0_dp
+      res%u = state%u;  res%v = state%v;  res%a = state%a
+      res%t_end = state%t
+   end subroutine record
+end module gapbeam_transient

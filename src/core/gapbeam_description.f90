@@ -1,0 +1,222 @@
+!> What a deck describes physically: the beam, its root, boundary springs and point masses, the
+!> gap supports (stops), the damping and the forcing. Pure data with a few pure helpers; the
+!> model builder (src/model) turns it into the matrices the integrators use.
+!>
+!> SI units throughout. The beam lies along x from the root (node 1, x = 0) to the tip
+!> (node n_elem+1, x = length); w is the transverse displacement relative to the base,
+!> theta = dw/dx. Nodes are numbered 1..n_elem+1 from the root.
+!>
+!> Stops: a one-sided contact acts at one dof with a direction s = +1 (met when the dof moves
+!> in +w, u >= gap) or s = -1 (u <= -gap); 'both' sides makes two one-sided contacts.
+module gapbeam_description
+   use gapbeam_kinds, only: dp, pi
+   implicit none
+   private
+   public :: beam_t, root_t, spring_t, point_mass_t, structure_t, stop_t, damping_t, forcing_t
+   public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
+   public :: rayleigh_from_ratios, modal_damping_ratio
+   public :: dof_w, dof_theta, dof_code, dof_name, law_code, law_bilinear, law_hertz
+   public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words
+
+   integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
+   integer, parameter :: dof_theta = 2   !! local dof code of the rotation
+   integer, parameter :: law_bilinear = 1   !! code of the bilinear stop law
+   integer, parameter :: law_hertz = 2      !! code of the Hertz stop law
+
+   character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
+   character(len=*), parameter :: stop_law_words = "'bilinear', 'hertz'"
+   character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios'"
+   !> Rotary-inertia rules of the lumped mass matrix (see gapbeam_beam_element).
+   character(len=*), parameter :: rotary_inertia_words = "'half_element', 'hrz', 'none'"
+
+   !> Uniform Euler-Bernoulli beam.
+   type :: beam_t
+      real(dp) :: length = 0.0_dp          !! length [m]
+      integer  :: n_elem = 4               !! number of elements [-]
+      real(dp) :: youngs_modulus = 0.0_dp  !! Young's modulus E [Pa]
+      real(dp) :: density = 0.0_dp         !! density rho [kg/m^3]
+      real(dp) :: width = 0.0_dp           !! rectangular section width b [m] (0: use area etc.)
+      real(dp) :: thickness = 0.0_dp       !! rectangular section thickness h [m]
+      real(dp) :: area = 0.0_dp            !! general section: area A [m^2]
+      real(dp) :: second_moment = 0.0_dp   !! general section: second moment I [m^4]
+      real(dp) :: fibre_distance = 0.0_dp  !! general section: strain fibre distance c [m]
+      character(len=16) :: mass_matrix = 'lumped'           !! 'lumped' or 'consistent'
+      character(len=16) :: rotary_inertia = 'half_element'  !! lumped rotary-inertia rule
+   end type beam_t
+
+   !> Root (node 1) support: the translation is always fixed.
+   type :: root_t
+      character(len=16) :: condition = 'clamped'  !! 'clamped' or 'spring'
+      real(dp) :: k_theta = 0.0_dp                !! rotational spring [N m/rad] when 'spring'
+   end type root_t
+
+   !> Linear spring from a node dof to ground (the base).
+   type :: spring_t
+      integer  :: node = 0                 !! node index [-]
+      integer  :: dof = dof_w              !! dof_w or dof_theta
+      real(dp) :: stiffness = 0.0_dp       !! [N/m] for w, [N m/rad] for theta
+   end type spring_t
+
+   !> Point mass and rotary inertia at a node.
+   type :: point_mass_t
+      integer  :: node = 0                 !! node index [-]
+      real(dp) :: mass = 0.0_dp            !! translational mass [kg]
+      real(dp) :: inertia = 0.0_dp         !! rotary inertia [kg m^2]
+   end type point_mass_t
+
+   !> The linear structure: beam, root, springs and masses.
+   type :: structure_t
+      type(beam_t) :: beam                            !! the beam
+      type(root_t) :: root                            !! root support
+      type(spring_t), allocatable :: springs(:)       !! boundary springs
+      type(point_mass_t), allocatable :: masses(:)    !! point masses
+   end type structure_t
+
+   !> A stop as the deck gives it ('both' sides means two one-sided contacts).
+   !>
+   !> Laws: bilinear f = max(0, k d + c d') while d > 0, else 0 (the damper never pulls);
+   !> hertz f = k d^p while d > 0, else 0; d = s u - gap the penetration.
+   type :: stop_t
+      integer  :: node = -1                     !! node index [-]
+      integer  :: dof = dof_w                   !! dof code (dof_w or dof_theta)
+      character(len=16) :: side = 'positive'    !! 'positive', 'negative' or 'both'
+      character(len=16) :: law = 'bilinear'     !! 'bilinear' or 'hertz'
+      real(dp) :: gap = 0.0_dp                  !! clearance [m or rad]
+      real(dp) :: stiffness = 0.0_dp            !! k [N/m] (bilinear) or [N/m^p] (hertz)
+      real(dp) :: damping = 0.0_dp              !! contact damper c [N s/m] (bilinear only)
+      real(dp) :: exponent = 1.5_dp             !! Hertz exponent p [-]
+      real(dp) :: rule_factor = 0.0_dp          !! > 0: k = factor * calibrated spring [-]
+      real(dp) :: rule_f1_ratio = 0.0_dp        !! rule target: f1 / f1(open structure) [-]
+      real(dp) :: rule_f1_hz = 0.0_dp           !! rule target: f1 [Hz] (if ratio not given)
+   end type stop_t
+
+   !> Rayleigh damping C = beta M + gamma K of the linear structure (never the stop springs);
+   !> after the deck reader only the coefficients matter.
+   type :: damping_t
+      character(len=16) :: model = 'none'          !! 'none', 'rayleigh' or 'ratios'
+      real(dp) :: mass_coefficient = 0.0_dp        !! beta in C = beta M + gamma K [1/s]
+      real(dp) :: stiffness_coefficient = 0.0_dp   !! gamma [s]
+      real(dp) :: frequency1_hz = 0.0_dp           !! 'ratios': first frequency [Hz]
+      real(dp) :: ratio1 = 0.0_dp                  !! 'ratios': damping ratio at frequency1 [-]
+      real(dp) :: frequency2_hz = 0.0_dp           !! 'ratios': second frequency [Hz]
+      real(dp) :: ratio2 = 0.0_dp                  !! 'ratios': damping ratio at frequency2 [-]
+   end type damping_t
+
+   !> Harmonic base excitation u_b(t) = (amplitude_pp / 2) sin(2 pi f t).
+   type :: forcing_t
+      real(dp) :: frequency_hz = 10.0_dp    !! forcing frequency f [Hz]
+      real(dp) :: amplitude_pp = 0.0_dp     !! base displacement, peak to peak [m]
+   end type forcing_t
+
+contains
+
+   !> Bending stiffness EI [N m^2].
+   pure function beam_ei(b) result(ei)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: ei
+      if (b%width > 0.0_dp .and. b%thickness > 0.0_dp) then
+         ei = b%youngs_modulus * b%width * b%thickness**3 / 12.0_dp
+      else
+         ei = b%youngs_modulus * b%second_moment
+      end if
+   end function beam_ei
+
+   !> Mass per unit length rho*A [kg/m].
+   pure function beam_rho_a(b) result(rho_a)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: rho_a
+      if (b%width > 0.0_dp .and. b%thickness > 0.0_dp) then
+         rho_a = b%density * b%width * b%thickness
+      else
+         rho_a = b%density * b%area
+      end if
+   end function beam_rho_a
+
+   !> Distance of the strain fibre from the neutral axis [m] (h/2 for a rectangle).
+   pure function beam_fibre_distance(b) result(c)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: c
+      if (b%width > 0.0_dp .and. b%thickness > 0.0_dp) then
+         c = 0.5_dp * b%thickness
+      else
+         c = b%fibre_distance
+      end if
+   end function beam_fibre_distance
+
+   !> Total beam mass [kg].
+   pure function beam_mass(b) result(m)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: m
+      m = beam_rho_a(b) * b%length
+   end function beam_mass
+
+   !> Number of nodes of the mesh.
+   pure integer function n_nodes(b)
+      type(beam_t), intent(in) :: b   !! beam
+      n_nodes = b%n_elem + 1
+   end function n_nodes
+
+   !> Forcing angular frequency [rad/s].
+   pure real(dp) function forcing_omega(f)
+      type(forcing_t), intent(in) :: f   !! forcing
+      forcing_omega = 2.0_dp * pi * f%frequency_hz
+   end function forcing_omega
+
+   !> Dof code of a word ('w' or 'theta'); 0 when unknown.
+   pure integer function dof_code(word)
+      character(len=*), intent(in) :: word   !! 'w' or 'theta'
+      select case (trim(word))
+      case ('w')
+         dof_code = dof_w
+      case ('theta')
+         dof_code = dof_theta
+      case default
+         dof_code = 0
+      end select
+   end function dof_code
+
+   !> Word of a dof code.
+   pure function dof_name(code) result(word)
+      integer, intent(in) :: code   !! dof_w or dof_theta
+      character(len=:), allocatable :: word
+      if (code == dof_theta) then
+         word = 'theta'
+      else
+         word = 'w'
+      end if
+   end function dof_name
+
+   !> Law code of a word; 0 if unknown.
+   pure integer function law_code(word)
+      character(len=*), intent(in) :: word   !! 'bilinear' or 'hertz'
+      select case (trim(word))
+      case ('bilinear')
+         law_code = law_bilinear
+      case ('hertz')
+         law_code = law_hertz
+      case default
+         law_code = 0
+      end select
+   end function law_code
+
+   !> Coefficients (beta, gamma) with zeta(f) = beta/(2 omega) + gamma omega/2 through two pairs.
+   pure subroutine rayleigh_from_ratios(f1, z1, f2, z2, beta, gamma)
+      real(dp), intent(in) :: f1, z1, f2, z2   !! frequencies [Hz] and ratios [-]
+      real(dp), intent(out) :: beta            !! mass coefficient [1/s]
+      real(dp), intent(out) :: gamma           !! stiffness coefficient [s]
+      real(dp) :: w1, w2
+      w1 = 2.0_dp * pi * f1;  w2 = 2.0_dp * pi * f2
+      beta = 2.0_dp * w1 * w2 * (z1 * w2 - z2 * w1) / (w2**2 - w1**2)
+      gamma = 2.0_dp * (z2 * w2 - z1 * w1) / (w2**2 - w1**2)
+   end subroutine rayleigh_from_ratios
+
+   !> Modal damping ratio of Rayleigh damping at a frequency [-].
+   elemental function modal_damping_ratio(beta, gamma, f_hz) result(zeta)
+      real(dp), intent(in) :: beta    !! mass coefficient [1/s]
+      real(dp), intent(in) :: gamma   !! stiffness coefficient [s]
+      real(dp), intent(in) :: f_hz    !! frequency [Hz]
+      real(dp) :: zeta, w
+      w = 2.0_dp * pi * f_hz
+      zeta = beta / (2.0_dp * w) + gamma * w / 2.0_dp
+   end function modal_damping_ratio
+end module gapbeam_description

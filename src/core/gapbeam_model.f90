@@ -1,0 +1,107 @@
+!> The discrete model an analysis integrates: the assembled structure (system_t) and, around
+!> it, damping, contacts and forcing (model_t). Types and small pure helpers only; the model
+!> builder (src/model) fills them from what the deck describes.
+!>
+!> Equations in coordinates relative to the base:
+!>    M a + C v + K u + sum_c (-s_c f_c) e_c = s(t) q,    q = M r,  s(t) = -u_b''(t)
+!> with C = beta M + gamma K and f_c >= 0 the magnitude of contact c (see gapbeam_contact_law).
+module gapbeam_model
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: str
+   use gapbeam_description, only: dof_name
+   implicit none
+   private
+   public :: system_t, model_t, load_factor, global_dof, dof_label, energy_norm, band_kd
+
+   integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices
+
+   !> Global matrices and the dof map of the assembled structure.
+   type :: system_t
+      integer :: n_dof = 0                         !! number of free dofs
+      integer :: n_node = 0                        !! number of nodes
+      integer :: kd = band_kd                      !! semi-bandwidth
+      integer, allocatable :: dof_of(:, :)         !! (2, n_node) index of (w, theta), 0: fixed
+      real(dp), allocatable :: k(:, :)             !! dense stiffness [N/m ...]
+      real(dp), allocatable :: m(:, :)             !! dense mass [kg ...]
+      real(dp), allocatable :: k_band(:, :)        !! upper band storage of k
+      real(dp), allocatable :: m_band(:, :)        !! upper band storage of m
+      logical :: m_diagonal = .false.              !! true for a lumped mass matrix
+      real(dp), allocatable :: r(:)                !! rigid base-translation influence vector [-]
+      real(dp), allocatable :: strain_row(:)       !! root strain = dot(strain_row, u) [-/m...]
+      integer :: tip_dof = 0                       !! global index of the tip w
+      real(dp) :: fibre_distance = 0.0_dp          !! strain fibre distance c [m]
+      real(dp) :: element_length = 0.0_dp          !! element length [m]
+   end type system_t
+
+   !> Everything the integrators need, in global dofs.
+   type :: model_t
+      type(system_t) :: sys                      !! K, M, r, strain row, dof map
+      integer :: n = 0                           !! number of dofs
+      real(dp) :: beta = 0.0_dp                  !! Rayleigh mass coefficient [1/s]
+      real(dp) :: gamma = 0.0_dp                 !! Rayleigh stiffness coefficient [s]
+      real(dp), allocatable :: c(:, :)           !! dense damping matrix
+      real(dp), allocatable :: q(:)              !! load shape M r [kg]
+      real(dp) :: omega = 0.0_dp                 !! forcing angular frequency [rad/s]
+      real(dp) :: half_amplitude = 0.0_dp        !! A_pp / 2 [m]
+      ! contacts (one-sided)
+      integer :: n_contacts = 0                  !! number of one-sided contacts
+      integer :: n_stops = 0                     !! number of deck stops
+      integer, allocatable :: c_dof(:)           !! global dof of each contact
+      real(dp), allocatable :: c_sign(:)         !! direction s = +1 or -1
+      real(dp), allocatable :: c_gap(:)          !! gap [m]
+      integer, allocatable :: c_law(:)           !! law code
+      real(dp), allocatable :: c_k(:)            !! stiffness
+      real(dp), allocatable :: c_c(:)            !! damper [N s/m]
+      real(dp), allocatable :: c_p(:)            !! Hertz exponent
+      integer, allocatable :: c_stop(:)          !! deck stop of each contact
+      integer, allocatable :: c_slot(:)          !! index of the contact's dof in slot_dof
+      integer :: n_slots = 0                     !! distinct contact dofs
+      integer, allocatable :: slot_dof(:)        !! global dof of each slot
+      real(dp), allocatable :: stop_stiffness(:) !! resolved stiffness of each deck stop
+      real(dp) :: omega_max = 0.0_dp             !! highest natural frequency [rad/s]
+      real(dp) :: f1_open_hz = 0.0_dp            !! first frequency, stops open [Hz]
+   end type model_t
+
+contains
+
+   !> Load factor s(t) with P(t) = s(t) q: s = (A_pp/2) Omega^2 sin(Omega t) [m/s^2].
+   pure real(dp) function load_factor(model, t)
+      type(model_t), intent(in) :: model   !! model
+      real(dp), intent(in) :: t            !! time [s]
+      load_factor = model%half_amplitude * model%omega**2 * sin(model%omega * t)
+   end function load_factor
+
+   !> Global index of a node dof (0 when fixed); a node outside the mesh is a programming error.
+   pure integer function global_dof(sys, node, dof)
+      type(system_t), intent(in) :: sys   !! assembled system
+      integer, intent(in) :: node         !! node index 1..n_node
+      integer, intent(in) :: dof          !! dof_w or dof_theta
+      if (node < 1 .or. node > sys%n_node .or. dof < 1 .or. dof > 2) &
+         error stop 'gapbeam_model:global_dof: node or dof outside the mesh'
+      global_dof = sys%dof_of(dof, node)
+   end function global_dof
+
+   !> 'dof 5 (node 3 w)' style label of a global dof.
+   function dof_label(model, i) result(s)
+      type(model_t), intent(in) :: model   !! model
+      integer, intent(in) :: i             !! global dof
+      character(len=:), allocatable :: s
+      integer :: node, d
+      s = 'dof ' // str(i)
+      if (.not. allocated(model%sys%dof_of)) return
+      do node = 1, model%sys%n_node
+         do d = 1, 2
+            if (model%sys%dof_of(d, node) == i) s = 'dof ' // str(i) // ' (node ' // str(node) &
+               // ' ' // dof_name(d) // ')'
+         end do
+      end do
+   end function dof_label
+
+   !> Energy norm sqrt(u'Ku + v'Mv) of a state (or of a difference of states).
+   pure real(dp) function energy_norm(model, u, v)
+      type(model_t), intent(in) :: model   !! model
+      real(dp), intent(in) :: u(:), v(:)   !! displacement, velocity
+      energy_norm = sqrt(max(0.0_dp, dot_product(u, matmul(model%sys%k, u)) &
+                             + dot_product(v, matmul(model%sys%m, v))))
+   end function energy_norm
+end module gapbeam_model

@@ -1,0 +1,190 @@
+!> What analyses produce: the result types of every analysis, in one place at the bottom of the
+!> dependency graph, so that writers, tests and analyses share them without depending on each
+!> other.
+module gapbeam_results
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp
+   implicit none
+   private
+   public :: modes_t, transient_result_t, allocate_result, lyapunov_t, point_result_t, &
+      series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach
+   public :: label_chaotic, label_undecided
+
+   integer, parameter :: label_chaotic = -1     !! label code of a chaotic response
+   integer, parameter :: label_undecided = 0    !! neither periodic nor provably chaotic
+
+   !> Natural frequencies and mode shapes of the open structure.
+   type :: modes_t
+      integer :: n_modes = 0                       !! number of finite-frequency modes
+      real(dp), allocatable :: omega2(:)           !! eigenvalues omega^2 [rad^2/s^2]
+      real(dp), allocatable :: frequency_hz(:)     !! natural frequencies [Hz]
+      real(dp), allocatable :: shapes(:, :)        !! (n_dof, n_modes) mass-normalised shapes
+      real(dp), allocatable :: participation(:)    !! phi' M r, base-excitation factor [kg^0.5]
+      real(dp), allocatable :: effective_mass(:)   !! (phi' M r)^2 [kg]
+      real(dp) :: total_mass = 0.0_dp              !! r' M r, mass moving with the base [kg]
+   end type modes_t
+
+   !> Everything a transient run produces.
+   type :: transient_result_t
+      real(dp), allocatable :: time(:)              !! history sample times [s]
+      real(dp), allocatable :: strain(:)            !! root strain [-]
+      real(dp), allocatable :: strain_filtered(:)   !! low-pass filtered root strain (if asked) [-]
+      real(dp), allocatable :: strain_rate(:)       !! root strain rate [1/s]
+      real(dp), allocatable :: tip_displacement(:)  !! tip w relative to the base [m]
+      real(dp), allocatable :: stop_force(:, :)     !! (samples, stops) contact force [N]
+      real(dp), allocatable :: p_time(:)            !! Poincare sample times [s]
+      real(dp), allocatable :: p_strain(:)          !! Poincare root strain [-]
+      real(dp), allocatable :: p_strain_rate(:)     !! Poincare root strain rate [1/s]
+      real(dp), allocatable :: p_tip(:)             !! Poincare tip displacement [m]
+      real(dp), allocatable :: p_tip_velocity(:)    !! Poincare tip velocity [m/s]
+      integer(int64) :: steps_accepted = 0          !! Newmark solves accepted (sub-steps too)
+      integer(int64) :: steps_rejected = 0          !! steps rejected by the control
+      integer(int64) :: events = 0                  !! steps split at a contact event
+      integer(int64) :: factorizations = 0          !! Kbar factorizations
+      integer(int64) :: fp_iterations = 0           !! fixed-point iterations
+      real(dp) :: cpu_seconds = 0.0_dp              !! elapsed time of the run [s]
+      real(dp) :: dt_smallest = 0.0_dp              !! smallest step used [s]
+      real(dp) :: dt_largest = 0.0_dp               !! largest step used [s]
+      integer, allocatable :: n_impacts(:)          !! per stop: contact onsets in the record
+      real(dp), allocatable :: peak_force(:)        !! per stop [N]
+      real(dp), allocatable :: rms_force(:)         !! per stop [N]
+      real(dp), allocatable :: contact_fraction(:)  !! per stop: time in contact / record [-]
+      real(dp), allocatable :: impulse_per_period(:)!! per stop [N s]
+      real(dp), allocatable :: work_rate(:)         !! per stop: (1/T) int f |d'| dt [W]
+      real(dp), allocatable :: first_contact_time(:) !! per stop: first onset, -1 if none [s]
+      real(dp) :: strain_min = huge(1.0_dp)         !! root strain range over the record [-]
+      real(dp) :: strain_max = -huge(1.0_dp)        !! (step ends) [-]
+      real(dp) :: strain_rate_min = huge(1.0_dp)    !! root strain rate range [1/s]
+      real(dp) :: strain_rate_max = -huge(1.0_dp)   !! [1/s]
+      real(dp), allocatable :: u(:), v(:), a(:)     !! final state
+      real(dp) :: t_end = 0.0_dp                    !! final time [s]
+   end type transient_result_t
+
+   !> Estimate of the largest Lyapunov exponent.
+   type :: lyapunov_t
+      real(dp) :: exponent = 0.0_dp              !! lambda [1/s]
+      real(dp) :: uncertainty = 0.0_dp           !! standard error over 10 blocks [1/s]
+      real(dp), allocatable :: running(:)        !! estimate after each period [1/s]
+   end type lyapunov_t
+
+   !> Everything one point produces.
+   type :: point_result_t
+      integer :: status = 0                          !! 0 done, 1 failed
+      character(len=:), allocatable :: message       !! failure message
+      integer :: period = 0                          !! detected period (0: none)
+      integer :: label = 0                           !! classify() code
+      real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
+      real(dp) :: lyapunov_error = 0.0_dp            !! its standard error [1/s]
+      real(dp), allocatable :: lyapunov_running(:)   !! running estimate [1/s]
+      integer, allocatable :: n_impacts(:)           !! per stop [-]
+      real(dp), allocatable :: peak_force(:)         !! per stop [N]
+      real(dp), allocatable :: rms_force(:)          !! per stop [N]
+      real(dp), allocatable :: contact_fraction(:)   !! per stop [-]
+      real(dp), allocatable :: impulse_per_period(:) !! per stop [N s]
+      real(dp), allocatable :: work_rate(:)          !! per stop [W]
+      real(dp), allocatable :: p_strain(:)           !! Poincare root strain [-]
+      real(dp), allocatable :: p_strain_rate(:)      !! Poincare root strain rate [1/s]
+      real(dp), allocatable :: u_end(:), v_end(:)    !! final state at a period boundary
+      integer(int64) :: steps = 0                    !! Newmark steps of the point
+      real(dp) :: seconds = 0.0_dp                   !! elapsed time of the point [s]
+   end type point_result_t
+
+   !> One series of the work-precision study.
+   type :: series_result_t
+      character(len=:), allocatable :: name          !! series word
+      character(len=:), allocatable :: parameter_name  !! what varies
+      real(dp), allocatable :: parameter(:)          !! its values
+      real(dp), allocatable :: seconds(:)            !! elapsed time of a run [s]
+      real(dp), allocatable :: error(:)              !! final-state error [-]
+      real(dp), allocatable :: poincare_error(:)     !! Poincare points error [-]
+      real(dp), allocatable :: steps(:)              !! steps accepted [-]
+      integer, allocatable :: status(:)              !! 0 done, 1 failed (e.g. unstable)
+   end type series_result_t
+
+   !> Measured and theoretical largest stable step of a method.
+   type :: stable_step_t
+      character(len=:), allocatable :: name          !! method
+      real(dp) :: measured = 0.0_dp                  !! by bisection [s]
+      real(dp) :: theory = 0.0_dp                    !! limit / omega_max [s]
+      real(dp) :: limit = 0.0_dp                     !! omega_max dt at the limit [-]
+   end type stable_step_t
+
+   !> One model of the ladder and how it did.
+   type :: candidate_t
+      character(len=:), allocatable :: name          !! e.g. '4 elements', '3 modes + static'
+      integer :: n_elem = 0                          !! elements of its mesh
+      integer :: n_modes = 0                         !! 0: full model; else modes kept
+      logical :: static_correction = .false.         !! modal: residual flexibility added
+      integer :: n_coordinates = 0                   !! size of the integrated model
+      integer :: n_compared = 0                      !! frequencies below the cut-off compared
+      real(dp) :: frequency_error = 0.0_dp           !! largest relative error below cut-off
+      integer :: period = 0                          !! detected period
+      integer :: label = 0                           !! label code
+      real(dp) :: lyapunov = 0.0_dp                  !! largest exponent [1/s]
+      real(dp) :: poincare_distance = 0.0_dp         !! to the finest model's set [-]
+      real(dp) :: peak_force = 0.0_dp                !! stop 1 [N]
+      real(dp) :: strain_range = 0.0_dp              !! root strain range over the record [-]
+      real(dp) :: strain_rate_range = 0.0_dp         !! root strain rate range [1/s]
+      real(dp) :: seconds = 0.0_dp                   !! elapsed time of the run [s]
+      logical :: acceptable = .false.                !! meets every tolerance
+      integer :: status = 0                          !! 0 done, 1 failed
+      character(len=:), allocatable :: message       !! failure
+   end type candidate_t
+
+contains
+
+   !> Allocate the result arrays: history (n_hist samples), Poincare (n_poinc points) and the
+   !> per-stop statistics (ns stops), zeroed; first contact times -1 (none yet).
+   subroutine allocate_result(res, n_hist, n_poinc, ns)
+      type(transient_result_t), intent(inout) :: res   !! results
+      integer, intent(in) :: n_hist, n_poinc, ns        !! sizes
+      allocate(res%time(n_hist), res%strain(n_hist), res%strain_rate(n_hist), &
+               res%tip_displacement(n_hist), res%stop_force(n_hist, ns))
+      allocate(res%p_time(n_poinc), res%p_strain(n_poinc), res%p_strain_rate(n_poinc), &
+               res%p_tip(n_poinc), res%p_tip_velocity(n_poinc))
+      allocate(res%n_impacts(ns), source=0)
+      allocate(res%first_contact_time(ns), source=-1.0_dp)
+      allocate(res%peak_force(ns), source=0.0_dp)
+   end subroutine allocate_result
+
+   !> Text of a label code: 'period_3', 'chaotic', 'undecided'.
+   pure function label_text(code) result(t)
+      integer, intent(in) :: code    !! label code
+      character(len=:), allocatable :: t
+      character(len=12) :: buf
+      if (code == label_chaotic) then
+         t = 'chaotic'
+      else if (code == label_undecided) then
+         t = 'undecided'
+      else
+         write(buf, '(i0)') code
+         t = 'period_' // trim(buf)
+      end if
+   end function label_text
+
+   !> Elapsed time for a series to reach an error level (log-log interpolation between the
+   !> runs that bracket it); a negative number when the series never reaches it.
+   pure real(dp) function cpu_to_reach(sr, level) result(t)
+      type(series_result_t), intent(in) :: sr      !! series
+      real(dp), intent(in) :: level                !! error level [-]
+      integer :: k
+      real(dp) :: w
+      t = -1.0_dp
+      do k = 1, size(sr%error)
+         if (sr%status(k) /= 0) cycle
+         if (sr%error(k) <= level) then
+            if (k > 1) then
+               if (sr%status(k - 1) == 0 .and. sr%error(k - 1) > level .and. &
+                   sr%error(k) > 0.0_dp) then
+                  w = log(level / sr%error(k - 1)) / log(sr%error(k) / sr%error(k - 1))
+                  t = exp(log(sr%seconds(k - 1)) + w * (log(sr%seconds(k)) &
+                      - log(sr%seconds(k - 1))))
+                  return
+               end if
+            end if
+            t = sr%seconds(k)
+            return
+         end if
+      end do
+   end function cpu_to_reach
+end module gapbeam_results

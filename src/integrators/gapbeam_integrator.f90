@@ -1,0 +1,268 @@
+!> The shape of time integration: integrators advance a state, observers watch the pieces of
+!> trajectory they produce.
+!>
+!> * `integrator_t`: built once from the model and the solver settings (`init`: factorisations,
+!>   eigen decompositions), then `advance(state, t_target, observer)` carries a state_t to a
+!>   target time, locating contact events inside. The same object advances any number of
+!>   states (a Lyapunov pair, the periods of a shooting method) without rebuilding anything.
+!> * `piece_t`: one accepted interval [ta, tb] of a trajectory, handed to the observer: the
+!>   contact forces, penetration rates and onsets at its ends, the root strain at its end, and
+!>   dense output in between (`sample`, `state_at`). An integrator that knows more (the exact
+!>   one: integrals of the contact force and certified extrema over the piece) says so in
+!>   `exact_statistics`.
+!> * `observer_t`: receives the pieces in time order; `t_watch` is the instant from which it
+!>   keeps statistics (integrators end a piece there and track extrema from then on).
+!> * `stepper_t`: one step of a one-step method at one step size; the stepping integrator
+!>   (gapbeam_stepping) drives any stepper with step control and event location.
+!>
+!> The registry (submodule gapbeam_integrator_registry) maps the deck's method word to an
+!> implementation: adding a method is one module and one line there. Analyses use this module
+!> only, never an implementation.
+module gapbeam_integrator
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t
+   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_state, only: state_t
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_contact_law, only: contact_force
+   use gapbeam_lapack, only: dpotrf, dpotrs
+   implicit none
+   private
+   public :: piece_t, observer_t, integrator_t, stepper_t, make_integrator, make_stepper
+   public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium
+
+   !> One accepted interval [ta, tb] of a trajectory, as an observer sees it.
+   type, abstract :: piece_t
+      real(dp) :: ta = 0.0_dp                      !! start [s]
+      real(dp) :: tb = 0.0_dp                      !! end [s]
+      real(dp), allocatable :: f_a(:), f_b(:)      !! contact forces at ta (right limit), tb [N]
+      real(dp), allocatable :: vabs_a(:), vabs_b(:) !! |velocity| of each contact dof there
+      logical, allocatable :: onset(:)             !! the contact closes in (ta, tb] (an impact)
+      real(dp), allocatable :: onset_time(:)       !! when [s]
+      real(dp) :: strain_b = 0.0_dp                !! root strain at tb [-]
+      real(dp) :: rate_b = 0.0_dp                  !! root strain rate at tb [1/s]
+      !> The integrator gives exact statistics below (else the observer uses the end values)
+      logical :: exact_statistics = .false.
+      real(dp), allocatable :: int_f(:)            !! integral of f over the piece [N s]
+      real(dp), allocatable :: int_f2(:)           !! integral of f^2 [N^2 s]
+      real(dp), allocatable :: int_work(:)         !! integral of f |d'| [J]
+      real(dp), allocatable :: t_contact(:)        !! time in contact [s]
+      real(dp), allocatable :: peak(:)             !! largest force of the contact's stop [N]
+      real(dp) :: strain_min = 0.0_dp, strain_max = 0.0_dp   !! root strain range so far [-]
+      real(dp) :: rate_min = 0.0_dp, rate_max = 0.0_dp       !! root strain rate range [1/s]
+   contains
+      procedure(sample_interface), deferred :: sample     !! outputs at an instant
+      procedure(state_interface), deferred :: state_at    !! full state at an instant
+   end type piece_t
+
+   !> Watches a trajectory piece by piece.
+   type, abstract :: observer_t
+      real(dp) :: t_watch = 0.0_dp                 !! statistics are kept from here on [s]
+   contains
+      procedure(observe_interface), deferred :: observe   !! one more piece
+   end type observer_t
+
+   !> A time integrator: built once, advances states.
+   type, abstract :: integrator_t
+      character(len=:), allocatable :: method      !! the deck's method word
+      integer(int64) :: steps_accepted = 0         !! steps (or linear segments) accepted
+      integer(int64) :: steps_rejected = 0         !! steps rejected by the control
+      integer(int64) :: events = 0                 !! contact events located
+      integer(int64) :: factorizations = 0         !! operators built (factorisations, configs)
+      integer(int64) :: fp_iterations = 0          !! fixed-point iterations on the stop force
+      real(dp) :: dt_smallest = huge(1.0_dp)       !! smallest step (segment) [s]
+      real(dp) :: dt_largest = 0.0_dp              !! largest step (segment) [s]
+   contains
+      procedure(init_interface), deferred :: init        !! build for a model
+      procedure(advance_interface), deferred :: advance  !! carry a state to a time
+   end type integrator_t
+
+   !> One step of a one-step method at one step size.
+   type, abstract :: stepper_t
+      real(dp) :: dt = 0.0_dp                 !! step size it is prepared for [s]
+      logical :: ready = .false.              !! prepared
+      integer(int64) :: iterations = 0        !! inner iterations spent (e.g. fixed point)
+      integer(int64) :: evaluations = 0       !! right-hand-side evaluations (explicit methods)
+   contains
+      procedure(prepare_interface), deferred :: prepare   !! factorise / precompute for dt
+      procedure(step_interface), deferred :: step         !! advance one step of size dt
+   end type stepper_t
+
+   abstract interface
+      !> Root strain, its rate, tip displacement and velocity, and each contact's force at t.
+      subroutine sample_interface(self, t, strain, rate, tip, tip_velocity, force)
+         import :: piece_t, dp
+         class(piece_t), intent(in) :: self              !! piece
+         real(dp), intent(in) :: t                       !! instant in [ta, tb] [s]
+         real(dp), intent(out) :: strain, rate           !! [-], [1/s]
+         real(dp), intent(out) :: tip, tip_velocity      !! [m], [m/s]
+         real(dp), intent(out) :: force(:)               !! contact force magnitudes [N]
+      end subroutine sample_interface
+
+      !> Displacement and velocity of every dof at t.
+      subroutine state_interface(self, t, u, v)
+         import :: piece_t, dp
+         class(piece_t), intent(in) :: self              !! piece
+         real(dp), intent(in) :: t                       !! instant in [ta, tb] [s]
+         real(dp), intent(out) :: u(:), v(:)             !! [m, rad], [m/s, rad/s]
+      end subroutine state_interface
+
+      !> Take one more piece of the trajectory.
+      subroutine observe_interface(self, piece)
+         import :: observer_t, piece_t
+         class(observer_t), intent(inout) :: self        !! observer
+         class(piece_t), intent(in) :: piece             !! the piece
+      end subroutine observe_interface
+
+      !> Build the integrator for a model (keeps its own copy of the model).
+      subroutine init_interface(self, model, cfg, err)
+         import :: integrator_t, model_t, solver_settings_t, error_t
+         class(integrator_t), intent(inout) :: self      !! integrator
+         type(model_t), intent(in) :: model              !! model
+         type(solver_settings_t), intent(in) :: cfg      !! settings
+         type(error_t), allocatable, intent(out) :: err  !! unsupported model, LAPACK failure
+      end subroutine init_interface
+
+      !> Carry `state` from state%t to t_target, feeding `obs` (if present) with the pieces.
+      subroutine advance_interface(self, state, t_target, obs, err)
+         import :: integrator_t, state_t, observer_t, dp, error_t
+         class(integrator_t), intent(inout), target :: self   !! integrator
+         type(state_t), intent(inout) :: state           !! state, at t_target on return
+         real(dp), intent(in) :: t_target                !! target time [s]
+         class(observer_t), intent(inout), optional :: obs    !! observer
+         type(error_t), allocatable, intent(out) :: err  !! numerical failure
+      end subroutine advance_interface
+
+      !> Prepare the stepper for steps of size dt.
+      subroutine prepare_interface(self, model, cfg, dt, err)
+         import :: stepper_t, model_t, solver_settings_t, dp, error_t
+         class(stepper_t), intent(inout) :: self          !! stepper
+         type(model_t), intent(in) :: model               !! model
+         type(solver_settings_t), intent(in) :: cfg       !! settings
+         real(dp), intent(in) :: dt                       !! step size [s]
+         type(error_t), allocatable, intent(out) :: err   !! factorisation failure
+      end subroutine prepare_interface
+
+      !> Advance s0 by dt into s1 (t, u, v, a, f; s0%f_prev and s0%dt_prev feed the paper's
+      !> extrapolated fixed point). `ok` false asks for a smaller step (an iteration did not
+      !> converge); `ratio` is an embedded local-error estimate relative to its tolerance
+      !> (> 1: reject), or negative when the method has none. `open_contact` > 0 holds that
+      !> contact open (the step ends at its located onset: the left limit).
+      subroutine step_interface(self, model, s0, s1, ok, ratio, open_contact)
+         import :: stepper_t, model_t, state_t, dp
+         class(stepper_t), intent(inout) :: self          !! stepper
+         type(model_t), intent(in) :: model               !! model
+         type(state_t), intent(in) :: s0                  !! state at the start
+         type(state_t), intent(inout) :: s1               !! state at the end (arrays sized)
+         logical, intent(out) :: ok                       !! step succeeded
+         real(dp), intent(out) :: ratio                   !! embedded error / tolerance, or < 0
+         integer, intent(in) :: open_contact              !! contact held open (0: none)
+      end subroutine step_interface
+   end interface
+
+   interface
+      !> An integrator of the settings' method, initialised for the model (the registry).
+      module subroutine make_integrator(model, cfg, integ, err)
+         type(model_t), intent(in) :: model                      !! model
+         type(solver_settings_t), intent(in) :: cfg              !! method and settings
+         class(integrator_t), allocatable, intent(out) :: integ  !! ready to advance
+         type(error_t), allocatable, intent(out) :: err          !! unknown method, set-up
+      end subroutine make_integrator
+
+      !> An unprepared stepper of a one-step method word (the registry).
+      module subroutine make_stepper(method, proto, err)
+         character(len=*), intent(in) :: method                  !! method word
+         class(stepper_t), allocatable, intent(out) :: proto     !! the method's stepper
+         type(error_t), allocatable, intent(out) :: err          !! not a one-step method
+      end subroutine make_stepper
+   end interface
+
+contains
+
+   !> The state at time t from a displacement and a velocity: massless dofs (lumped mass
+   !> without rotary inertia) put in equilibrium with the others, contact forces from the
+   !> laws, acceleration in equilibrium, no step history.
+   subroutine start_state(model, t, u, v, state)
+      type(model_t), intent(in) :: model        !! model
+      real(dp), intent(in) :: t                 !! time [s]
+      real(dp), intent(in) :: u(:), v(:)        !! displacement, velocity
+      type(state_t), intent(out) :: state       !! the state
+      state%t = t
+      state%u = u;  state%v = v
+      call massless_equilibrium(model, state%u, state%v)
+      allocate(state%a(model%n), state%f(model%n_contacts))
+      call contact_forces_at(model, state%u, state%v, state%f)
+      call equilibrium_acceleration(model, t, state%u, state%v, state%f, state%a)
+      state%f_prev = state%f
+      state%dt_prev = 0.0_dp
+      state%level = 0;  state%comfortable = 0
+   end subroutine start_state
+
+   !> Contact force magnitudes from the laws at (u, v).
+   pure subroutine contact_forces_at(model, u, v, f)
+      type(model_t), intent(in) :: model        !! model
+      real(dp), intent(in) :: u(:), v(:)        !! state
+      real(dp), intent(out) :: f(:)             !! contact force magnitudes [N]
+      integer :: c, i
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         f(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), &
+            model%c_sign(c) * u(i) - model%c_gap(c), model%c_sign(c) * v(i))
+      end do
+   end subroutine contact_forces_at
+
+   !> Put massless dofs (lumped mass without rotary inertia) in static equilibrium with the
+   !> others: K_ss u_s = -K_sr u_r, and the same for the velocity. The initial state of such
+   !> dofs is not free; without this the first step would jump. (K_ss is a diagonal block of
+   !> the positive definite K, hence positive definite.)
+   subroutine massless_equilibrium(model, u, v)
+      type(model_t), intent(in) :: model       !! model
+      real(dp), intent(inout) :: u(:), v(:)    !! state, massless entries replaced
+      integer, allocatable :: s(:), r(:)
+      real(dp), allocatable :: kss(:, :), b(:, :)
+      integer :: i, ns, info
+      s = pack([(i, i = 1, model%n)], [(model%sys%m(i, i) == 0.0_dp, i = 1, model%n)])
+      r = pack([(i, i = 1, model%n)], [(model%sys%m(i, i) /= 0.0_dp, i = 1, model%n)])
+      ns = size(s)
+      if (ns == 0) return
+      kss = model%sys%k(s, s)
+      allocate(b(ns, 2))
+      b(:, 1) = -matmul(model%sys%k(s, r), u(r))
+      b(:, 2) = -matmul(model%sys%k(s, r), v(r))
+      call dpotrf('U', ns, kss, ns, info)
+      if (info /= 0) error stop 'gapbeam_integrator:massless_equilibrium: K_ss not positive ' &
+         // 'definite (the stiffness of a validated model is)'
+      call dpotrs('U', ns, 2, kss, ns, b, ns, info)
+      u(s) = b(:, 1);  v(s) = b(:, 2)
+   end subroutine massless_equilibrium
+
+   !> Acceleration in equilibrium with (t, u, v) and given contact forces f:
+   !> M a = s(t) q - C v - K u - F_c. Massless dofs get a = 0.
+   subroutine equilibrium_acceleration(model, t, u, v, f, a)
+      type(model_t), intent(in) :: model        !! model
+      real(dp), intent(in) :: t                 !! time [s]
+      real(dp), intent(in) :: u(:), v(:)        !! state
+      real(dp), intent(in) :: f(:)              !! contact force magnitudes [N]
+      real(dp), intent(out) :: a(:)             !! acceleration
+      real(dp), allocatable :: rhs(:), msub(:, :), b(:)
+      integer, allocatable :: idx(:)
+      integer :: c, i, info, nm
+      rhs = load_factor(model, t) * model%q - matmul(model%c, v) - matmul(model%sys%k, u)
+      do c = 1, model%n_contacts
+         i = model%c_dof(c)
+         rhs(i) = rhs(i) - model%c_sign(c) * f(c)
+      end do
+      a = 0.0_dp
+      idx = pack([(i, i = 1, model%n)], [(model%sys%m(i, i) > 0.0_dp, i = 1, model%n)])
+      nm = size(idx)
+      if (nm == 0) return
+      msub = model%sys%m(idx, idx)
+      b = rhs(idx)
+      call dpotrf('U', nm, msub, nm, info)
+      if (info /= 0) error stop 'gapbeam_integrator:equilibrium_acceleration: the mass of the ' &
+         // 'dofs with mass is not positive definite'
+      call dpotrs('U', nm, 1, msub, nm, b, nm, info)
+      a(idx) = b
+   end subroutine equilibrium_acceleration
+end module gapbeam_integrator

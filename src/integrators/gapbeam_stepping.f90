@@ -1,0 +1,589 @@
+!> The stepping integrator: any one-step method (a stepper_t) with step-size control and
+!> contact-event location.
+!>
+!> Time is counted in integer ticks of dt_max / 2^max_halvings, with dt_max = T /
+!> steps_per_period (T the forcing period), so every step size the control uses is a power-of-
+!> two fraction of dt_max, each has its stepper (factorisation) cached, and steps land exactly
+!> on the forcing periods. A step is rejected and halved when the half-step residual (or the
+!> method's embedded estimate) exceeds the tolerance, or the fixed point does not converge; the
+!> step doubles after `grow_after` comfortable steps when the time is a multiple of the doubled
+!> step. With `locate_events`, a step in which a contact opens or closes (the penetration of
+!> the cubic Hermite interpolant of the contact dof changes sign, grazing included; with a
+!> damper, the force k d + c d' reaching zero) is split at that instant, and when the force
+!> jumps there (a damper) the next sub-step restarts from the right limit.
+!>
+!> Each accepted sub-step is handed to the observer as a `hermite_piece_t`: the end values and
+!> the cubic Hermite interpolant of (u, v) in between.
+module gapbeam_stepping
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_model, only: model_t, dof_label
+   use gapbeam_state, only: state_t
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_contact_law, only: contact_force
+   use gapbeam_integrator, only: integrator_t, stepper_t, piece_t, observer_t, &
+      equilibrium_acceleration, make_stepper
+   use gapbeam_newmark, only: half_step_ratio, use_dense
+   implicit none
+   private
+   public :: stepping_integrator_t, hermite_piece_t, hermite_weights
+
+   integer, parameter :: max_sub = 8   ! sub-steps of one step at most (event splits)
+   real(dp), parameter :: min_split = 1.0e-3_dp   ! no sub-step shorter than this fraction of a step
+
+   !> One accepted sub-step: end values and the cubic Hermite interpolant in between.
+   type, extends(piece_t) :: hermite_piece_t
+      type(model_t), pointer :: model => null()            !! the integrator's model
+      type(state_t), pointer :: sub(:) => null()           !! the integrator's sub-states
+      integer :: ja = 0, jb = 0                            !! the states at ta and tb
+   contains
+      procedure :: sample => hermite_sample
+      procedure :: state_at => hermite_state
+   end type hermite_piece_t
+
+   !> A one-step method with step control and event location.
+   type, extends(integrator_t) :: stepping_integrator_t
+      type(model_t) :: model                          !! the model (own copy)
+      type(solver_settings_t) :: cfg                  !! settings
+      class(stepper_t), allocatable :: ops(:)         !! one stepper per step level 0..kmax
+      class(stepper_t), allocatable :: scratch        !! for the sub-steps of an event split
+      type(state_t), allocatable :: sub(:)            !! sub-states of a step (storage)
+      integer :: ix(0:max_sub) = 0                    !! sub-state k is sub(ix(k))
+      type(hermite_piece_t) :: piece                  !! handed to the observer
+      real(dp) :: period = 0.0_dp                     !! forcing period [s]
+      real(dp) :: dt_max = 0.0_dp                     !! largest step [s]
+      real(dp) :: tick_dt = 0.0_dp                    !! time unit [s]
+      integer :: kmax = 0                             !! smallest step = dt_max / 2^kmax
+      logical :: half_step = .false.                  !! half-step residual control
+      logical :: embedded = .false.                   !! the method's embedded estimate
+      logical :: dense = .true.                       !! dense products in the residual
+      integer, allocatable :: si(:)                   !! dofs in the root strain
+      real(dp), allocatable :: sw(:)                  !! their weights
+      real(dp), allocatable :: work6(:, :)            !! half-step residual workspace
+      real(dp) :: energy_ref = 0.0_dp                 !! divergence check: reference energy
+      real(dp) :: t_begin = 0.0_dp                    !! start of the current advance [s]
+      integer :: n_since = 0                          !! steps since the last energy check
+      integer :: ev_contact = 0                       !! contact of the located event
+      logical :: ev_onset = .false.                   !! the event closes it (else opens it)
+   contains
+      procedure :: init => stepping_init
+      procedure :: advance => stepping_advance
+      procedure, private :: attempt_step, control_ratio, check_divergence, emit_pieces, &
+         first_event, restart_after_event, one_step
+   end type stepping_integrator_t
+
+contains
+
+   !> Build the steppers (prepared lazily, one per step level) and the workspaces.
+   subroutine stepping_init(self, model, cfg, err)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      type(solver_settings_t), intent(in) :: cfg            !! settings
+      type(error_t), allocatable, intent(out) :: err        !! no such stepper
+      class(stepper_t), allocatable :: proto
+      integer :: k, j
+      call make_stepper(cfg%method, proto, err)
+      if (allocated(err)) return
+      self%method = trim(cfg%method)
+      self%model = model
+      self%cfg = cfg
+      self%period = 2.0_dp * pi / model%omega
+      self%dt_max = self%period / real(cfg%steps_per_period, dp)
+      self%kmax = cfg%max_halvings
+      self%tick_dt = self%dt_max / 2.0_dp**self%kmax
+      self%half_step = cfg%step_control == 'half_step'
+      self%embedded = cfg%step_control == 'embedded'
+      self%dense = use_dense(model, cfg%linear_solver)
+      allocate(self%ops(0:self%kmax), mold=proto)
+      allocate(self%scratch, mold=proto)
+      allocate(self%sub(0:max_sub))
+      self%ix = [(k, k = 0, max_sub)]
+      do k = 0, max_sub
+         allocate(self%sub(k)%u(model%n), self%sub(k)%v(model%n), self%sub(k)%a(model%n), &
+                  self%sub(k)%f(model%n_contacts), self%sub(k)%f_prev(model%n_contacts), &
+                  source=0.0_dp)
+      end do
+      self%si = pack([(j, j = 1, model%n)], model%sys%strain_row /= 0.0_dp)
+      self%sw = model%sys%strain_row(self%si)
+      allocate(self%work6(model%n, 6))
+      associate (p => self%piece, nc => model%n_contacts)
+         allocate(p%f_a(nc), p%f_b(nc), p%vabs_a(nc), p%vabs_b(nc), p%onset_time(nc), &
+                  source=0.0_dp)
+         allocate(p%onset(nc), source=.false.)
+      end associate
+   end subroutine stepping_init
+
+   !> Carry `state` to t_target (see integrator_t%advance). The times must lie on the tick
+   !> grid of the step control (any multiple of dt_max / 2^max_halvings, e.g. any forcing
+   !> period).
+   subroutine stepping_advance(self, state, t_target, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state                 !! state, at t_target on return
+      real(dp), intent(in) :: t_target                      !! target time [s]
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! numerical failure
+      integer(int64) :: tick, end_tick, watch_tick, nt
+      integer :: level, nsub, worst, comfortable
+      real(dp) :: t0, t1, ratio, eratio
+      logical :: ok
+
+      tick = nint(state%t / self%tick_dt, int64)
+      end_tick = nint(t_target / self%tick_dt, int64)
+      if (abs(real(tick, dp) * self%tick_dt - state%t) > 0.01_dp * self%tick_dt .or. &
+          abs(real(end_tick, dp) * self%tick_dt - t_target) > 0.01_dp * self%tick_dt) &
+         error stop 'gapbeam_stepping:advance: times must lie on the step grid'
+      watch_tick = -1
+      if (present(obs)) watch_tick = nint(obs%t_watch / self%tick_dt, int64)
+      call copy_state(state, self%sub(self%ix(0)))
+      if (self%sub(self%ix(0))%dt_prev == 0.0_dp) self%sub(self%ix(0))%dt_prev = self%dt_max
+      level = state%level;  comfortable = state%comfortable
+      self%piece%model => self%model
+      self%piece%sub => self%sub
+      self%t_begin = state%t;  self%n_since = 0
+      self%energy_ref = 0.5_dp * dot_product(state%u, matmul(self%model%sys%k, state%u)) &
+                        + 0.5_dp * dot_product(state%v, matmul(self%model%sys%m, state%v))
+      do while (tick < end_tick)
+         ! never step over the target or the observer's watch instant
+         do while (level < self%kmax .and. (tick + step_ticks(level) > end_tick .or. &
+                   (watch_tick > tick .and. watch_tick < tick + step_ticks(level))))
+            level = level + 1
+         end do
+         nt = step_ticks(level)
+         t0 = real(tick, dp) * self%tick_dt
+         t1 = real(tick + nt, dp) * self%tick_dt
+         if (.not. self%ops(level)%ready) then
+            call self%ops(level)%prepare(self%model, self%cfg, t1 - t0, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+         end if
+         call self%attempt_step(level, t0, t1, nsub, ok, eratio, err)
+         if (allocated(err)) return
+         call self%control_ratio(ok, nsub, eratio, ratio, worst)
+         if (.not. ok .or. ratio > 1.0_dp) then
+            self%steps_rejected = self%steps_rejected + 1
+            comfortable = 0
+            if (level >= self%kmax) then
+               call step_failure(self, ok, t0, t1, ratio, worst, err)
+               return
+            end if
+            level = level + 1
+            cycle
+         end if
+         call self%check_divergence(t0, t1, nsub, err)
+         if (allocated(err)) return
+         if (present(obs)) call self%emit_pieces(nsub, obs)
+         self%steps_accepted = self%steps_accepted + nsub
+         self%dt_smallest = min(self%dt_smallest, t1 - t0)
+         self%dt_largest = max(self%dt_largest, t1 - t0)
+         ! the next step starts from the end of this one (its memory: the last sub-step); the
+         ! storage of the two is swapped, not copied
+         associate (sl => self%sub(self%ix(nsub)), sp => self%sub(self%ix(nsub - 1)))
+            sl%f_prev = sp%f;  sl%dt_prev = sl%t - sp%t
+         end associate
+         self%ix([0, nsub]) = self%ix([nsub, 0])
+         tick = tick + nt
+         ! grow
+         if (.not. (self%half_step .or. self%embedded) .or. ratio < self%cfg%grow_ratio) then
+            comfortable = comfortable + 1
+         else
+            comfortable = 0
+         end if
+         if (level > 0 .and. comfortable >= self%cfg%grow_after) then
+            if (mod(tick, 2 * nt) == 0) then
+               level = level - 1;  comfortable = 0
+            end if
+         end if
+      end do
+      call copy_state(self%sub(self%ix(0)), state)
+      state%t = t_target
+      state%level = level;  state%comfortable = comfortable
+      self%fp_iterations = self%scratch%iterations + sum([(self%ops(level)%iterations, &
+                                                          level = 0, self%kmax)])
+   contains
+      pure integer(int64) function step_ticks(lv)
+         integer, intent(in) :: lv
+         step_ticks = 2_int64**(self%kmax - lv)
+      end function step_ticks
+   end subroutine stepping_advance
+
+   !> The error of a step that fails at the smallest step size.
+   subroutine step_failure(self, ok, t0, t1, ratio, worst, err)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator
+      logical, intent(in) :: ok                          !! false: the fixed point failed
+      real(dp), intent(in) :: t0, t1, ratio              !! the step and its error ratio
+      integer, intent(in) :: worst                       !! dof of the largest residual
+      type(error_t), allocatable, intent(out) :: err     !! the message
+      if (.not. ok) then
+         call fatal_error(err, 'gapbeam_stepping:advance: the fixed point on the stop force ' &
+            // 'does not converge in ' // str(self%cfg%fp_max_iterations) // ' iterations even ' &
+            // 'at the smallest step dt = ' // str(t1 - t0) // ' s (t = ' // str(t0) // ' s, ' &
+            // 'stop ' // dof_label(self%model, self%model%c_dof(1)) &
+            // '); use stop_solution=''condensed'' or allow more max_halvings')
+      else
+         call fatal_error(err, 'gapbeam_stepping:advance: step below the minimum: at t = ' &
+            // str(t0) // ' s the half-step residual at ' // dof_label(self%model, worst) &
+            // ' is ' // str(ratio) // ' times the tolerance with the smallest step dt = ' &
+            // str(t1 - t0) // ' s (steps_per_period = ' // str(self%cfg%steps_per_period) &
+            // ', max_halvings = ' // str(self%kmax) // ')')
+      end if
+   end subroutine step_failure
+
+   !> Attempt the step [t0, t1] from sub(0), split at contact events: sub-states 1..nsub.
+   subroutine attempt_step(self, level, t0, t1, nsub, ok, eratio, err)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(in) :: level                          !! step level (stepper ops(level))
+      real(dp), intent(in) :: t0, t1                        !! the step [s]
+      integer, intent(out) :: nsub                          !! sub-steps taken
+      logical, intent(out) :: ok                            !! no stepper failed
+      real(dp), intent(out) :: eratio                       !! largest embedded error ratio
+      type(error_t), allocatable, intent(out) :: err        !! factorisation failure
+      real(dp) :: t_cur, dt_r, theta
+      self%sub(self%ix(0))%t = t0
+      nsub = 0;  ok = .true.;  t_cur = t0;  eratio = 0.0_dp
+      do
+         dt_r = t1 - t_cur
+         if (nsub == 0) then
+            call self%one_step(self%ops(level), nsub, 0, ok, eratio)
+         else
+            call self%scratch%prepare(self%model, self%cfg, dt_r, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+            call self%one_step(self%scratch, nsub, 0, ok, eratio)
+         end if
+         if (.not. ok) return
+         if (self%cfg%locate_events .and. self%model%n_contacts > 0 .and. &
+             nsub < max_sub - 1) then
+            theta = self%first_event(nsub, dt_r)
+            if (theta * dt_r > min_split * (t1 - t0) .and. &
+                (1.0_dp - theta) * dt_r > min_split * (t1 - t0)) then
+               call self%scratch%prepare(self%model, self%cfg, theta * dt_r, err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+               call self%one_step(self%scratch, nsub, merge(self%ev_contact, 0, self%ev_onset), &
+                                  ok, eratio)
+               if (.not. ok) return
+               nsub = nsub + 1
+               self%sub(self%ix(nsub))%t = t_cur + theta * dt_r
+               t_cur = self%sub(self%ix(nsub))%t
+               self%events = self%events + 1
+               ! only a damper makes the force jump at a switch
+               if (self%model%c_c(self%ev_contact) > 0.0_dp) call self%restart_after_event(nsub)
+               cycle
+            end if
+         end if
+         nsub = nsub + 1
+         self%sub(self%ix(nsub))%t = t1
+         return
+      end do
+   end subroutine attempt_step
+
+   !> One step of a stepper from sub-state k into sub-state k+1.
+   subroutine one_step(self, st, k, open_contact, ok, eratio)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      class(stepper_t), intent(inout) :: st                 !! prepared stepper
+      integer, intent(in) :: k                              !! start sub-state
+      integer, intent(in) :: open_contact                   !! contact held open (0: none)
+      logical, intent(out) :: ok                            !! stepper succeeded
+      real(dp), intent(inout) :: eratio                     !! largest embedded ratio so far
+      real(dp) :: r
+      if (k > 0) then
+         associate (sk => self%sub(self%ix(k)), sp => self%sub(self%ix(k - 1)))
+            sk%f_prev = sp%f;  sk%dt_prev = sk%t - sp%t
+         end associate
+      end if
+      call st%step(self%model, self%sub(self%ix(k)), self%sub(self%ix(k + 1)), ok, r, &
+                   open_contact)
+      if (r > eratio) eratio = r
+   end subroutine one_step
+
+   !> The error ratio of the attempted step: the embedded estimate, or the largest half-step
+   !> residual ratio over the sub-steps (with its dof), 0 for fixed steps.
+   subroutine control_ratio(self, ok, nsub, eratio, ratio, worst)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      logical, intent(in) :: ok                             !! the steppers succeeded
+      integer, intent(in) :: nsub                           !! sub-steps
+      real(dp), intent(in) :: eratio                        !! embedded ratio
+      real(dp), intent(out) :: ratio                        !! > 1: reject
+      integer, intent(out) :: worst                         !! dof of the largest residual
+      integer :: j, c
+      real(dp) :: r
+      ratio = 0.0_dp;  worst = 1
+      if (self%embedded) ratio = eratio
+      if (.not. (ok .and. self%half_step)) return
+      do j = 1, nsub
+         associate (s0 => self%sub(self%ix(j - 1)), s1 => self%sub(self%ix(j)))
+            call half_step_ratio(self%model, self%dense, self%cfg%newmark_delta, &
+               self%cfg%newmark_alpha, self%cfg%half_step_tolerance, self%cfg%residual_floor, &
+               s0%t, s1%t - s0%t, s0%u, s0%v, s0%a, s1%a, r, c, self%work6)
+         end associate
+         if (r > ratio) then
+            ratio = r;  worst = c
+         end if
+      end do
+   end subroutine control_ratio
+
+   !> Divergence of an accepted step: a non-finite state (a non-finite value reaches every dof
+   !> within a step, dense or banded), or every 64 steps an energy beyond energy_bound times
+   !> its largest value in the first forcing period of the advance.
+   subroutine check_divergence(self, t0, t1, nsub, err)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      real(dp), intent(in) :: t0, t1                        !! the step [s]
+      integer, intent(in) :: nsub                           !! its last sub-state
+      type(error_t), allocatable, intent(out) :: err        !! divergence
+      real(dp) :: fsum, energy
+      integer :: j, n
+      n = self%model%n
+      associate (u => self%sub(self%ix(nsub))%u, v => self%sub(self%ix(nsub))%v)
+         fsum = u(1) + v(1) + u(n) + v(n)
+         if (.not. (abs(fsum) <= huge(1.0_dp))) then
+            do j = 1, n
+               if (.not. (abs(u(j)) <= huge(1.0_dp)) .or. .not. (abs(v(j)) <= huge(1.0_dp))) exit
+            end do
+            call fatal_error(err, 'gapbeam_stepping:advance: method ''' // self%method &
+               // ''' diverged: the solution is not finite at t = ' // str(t1) // ' s, dt = ' &
+               // str(t1 - t0) // ' s, ' // dof_label(self%model, min(j, n)))
+            return
+         end if
+         self%n_since = self%n_since + 1
+         if (self%n_since < 64) return
+         self%n_since = 0
+         energy = 0.5_dp * dot_product(u, matmul(self%model%sys%k, u)) &
+                  + 0.5_dp * dot_product(v, matmul(self%model%sys%m, v))
+      end associate
+      if (t1 - self%t_begin <= self%period) then
+         self%energy_ref = max(self%energy_ref, energy)
+      else if (energy > self%cfg%energy_bound * self%energy_ref) then
+         call fatal_error(err, 'gapbeam_stepping:advance: method ''' // self%method &
+            // ''' diverged: the energy at t = ' // str(t1) // ' s is ' &
+            // str(energy / self%energy_ref) // ' times its largest value in the first ' &
+            // 'forcing period (bound energy_bound = ' // str(self%cfg%energy_bound) &
+            // '), dt = ' // str(t1 - t0) // ' s; omega_max dt = ' &
+            // str(self%model%omega_max * (t1 - t0)))
+      end if
+   end subroutine check_divergence
+
+   !> Hand the accepted sub-steps 1..nsub to the observer.
+   subroutine emit_pieces(self, nsub, obs)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      integer, intent(in) :: nsub                           !! sub-steps
+      class(observer_t), intent(inout) :: obs               !! observer
+      integer :: j, c, i, q, ja, jb
+      real(dp) :: fa, fb, st, sv
+      associate (p => self%piece, m => self%model)
+         do j = 1, nsub
+            ja = self%ix(j - 1);  jb = self%ix(j)
+            p%ja = ja;  p%jb = jb
+            associate (sa => self%sub(ja), sb => self%sub(jb))
+               p%ta = sa%t;  p%tb = sb%t
+               ! the watch instant exactly (ticks times tick_dt may differ in the last bit)
+               if (abs(p%ta - obs%t_watch) <= 0.5_dp * self%tick_dt) p%ta = obs%t_watch
+               if (abs(p%tb - obs%t_watch) <= 0.5_dp * self%tick_dt) p%tb = obs%t_watch
+               do c = 1, m%n_contacts
+                  i = m%c_dof(c)
+                  p%f_a(c) = sa%f(c);  p%f_b(c) = sb%f(c)
+                  p%vabs_a(c) = abs(sa%v(i));  p%vabs_b(c) = abs(sb%v(i))
+                  p%onset(c) = p%f_b(c) > 0.0_dp .and. .not. p%f_a(c) > 0.0_dp
+                  if (p%onset(c)) then
+                     ! onset instant: linear interpolation of the penetration
+                     fa = m%c_sign(c) * sa%u(i) - m%c_gap(c)
+                     fb = m%c_sign(c) * sb%u(i) - m%c_gap(c)
+                     if (fa <= 0.0_dp .and. fb > fa) then
+                        p%onset_time(c) = p%ta + (p%tb - p%ta) * (-fa) / (fb - fa)
+                     else
+                        p%onset_time(c) = p%ta
+                     end if
+                  end if
+               end do
+               st = 0.0_dp;  sv = 0.0_dp
+               do q = 1, size(self%si)
+                  st = st + self%sw(q) * sb%u(self%si(q))
+                  sv = sv + self%sw(q) * sb%v(self%si(q))
+               end do
+            end associate
+            p%strain_b = st;  p%rate_b = sv
+            call obs%observe(p)
+         end do
+      end associate
+   end subroutine emit_pieces
+
+   !> First instant (fraction of the sub-step k -> k+1 of length h) where a contact opens or
+   !> closes; 2 if none. Sets ev_contact and ev_onset.
+   real(dp) function first_event(self, k, h) result(th)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(in) :: k                              !! sub-step start
+      real(dp), intent(in) :: h                             !! its length [s]
+      integer :: cc, m, it, i
+      real(dp) :: lo, hi, mid, p0, b1, b2, b3, s, g
+      logical :: closed0, damped
+      integer, parameter :: n_sample = 8
+      th = 2.0_dp
+      associate (md => self%model, u0 => self%sub(self%ix(k))%u, &
+                 v0 => self%sub(self%ix(k))%v, u1 => self%sub(self%ix(k + 1))%u, &
+                 v1 => self%sub(self%ix(k + 1))%v)
+         do cc = 1, md%n_contacts
+            i = md%c_dof(cc);  s = md%c_sign(cc);  g = md%c_gap(cc)
+            damped = md%c_law(cc) == law_bilinear .and. md%c_c(cc) > 0.0_dp
+            closed0 = contact_active(md, cc, 0.0_dp, h, u0(i), v0(i), u1(i), v1(i), damped)
+            if (.not. damped) then
+               ! Bernstein coefficients of the cubic bound it: no sign change, no event
+               p0 = s * u0(i) - g
+               b1 = p0 + s * h * v0(i) / 3.0_dp
+               b3 = s * u1(i) - g
+               b2 = b3 - s * h * v1(i) / 3.0_dp
+               if (closed0) then
+                  if (min(b1, b2, b3) > 0.0_dp) cycle
+               else
+                  if (max(b1, b2, b3) <= 0.0_dp) cycle
+               end if
+            end if
+            do m = 1, n_sample
+               hi = real(m, dp) / n_sample
+               if (hi >= th) exit
+               if (contact_active(md, cc, hi, h, u0(i), v0(i), u1(i), v1(i), damped) &
+                   .neqv. closed0) then
+                  lo = real(m - 1, dp) / n_sample
+                  do it = 1, 60
+                     mid = 0.5_dp * (lo + hi)
+                     if (contact_active(md, cc, mid, h, u0(i), v0(i), u1(i), v1(i), damped) &
+                         .neqv. closed0) then
+                        hi = mid
+                     else
+                        lo = mid
+                     end if
+                  end do
+                  if (hi < th) then
+                     th = hi;  self%ev_contact = cc;  self%ev_onset = .not. closed0
+                  end if
+                  exit
+               end if
+            end do
+         end do
+      end associate
+   end function first_event
+
+   !> At a located event the contact force may jump (a damper's force c d' at impact): the
+   !> next sub-step starts from the right limit, forces of the new contact state and the
+   !> acceleration in equilibrium with them, so that the trapezoidal rule does not average
+   !> across the jump (which would cost an O(dt) velocity error per impact).
+   subroutine restart_after_event(self, k)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(in) :: k                              !! sub-state at the event
+      integer :: c, i
+      real(dp) :: d, dd
+      associate (md => self%model, s => self%sub(self%ix(k)))
+         do c = 1, md%n_contacts
+            i = md%c_dof(c)
+            d = md%c_sign(c) * s%u(i) - md%c_gap(c)
+            dd = md%c_sign(c) * s%v(i)
+            if (c == self%ev_contact) then
+               if (self%ev_onset) then
+                  s%f(c) = contact_force(md%c_law(c), md%c_k(c), md%c_c(c), md%c_p(c), &
+                                         max(d, tiny(1.0_dp)), dd)
+               else
+                  s%f(c) = 0.0_dp
+               end if
+            else
+               s%f(c) = contact_force(md%c_law(c), md%c_k(c), md%c_c(c), md%c_p(c), d, dd)
+            end if
+         end do
+         call equilibrium_acceleration(md, s%t, s%u, s%v, s%f, s%a)
+      end associate
+   end subroutine restart_after_event
+
+   !> Is contact c active at fraction x of a sub-step of length h (cubic Hermite interpolant
+   !> of its dof from (u0, v0) to (u1, v1))? Penetration > 0, and for a bilinear law with a
+   !> damper also k d + c d' > 0 (the release).
+   pure logical function contact_active(model, c, x, h, u0, v0, u1, v1, damped) result(active)
+      type(model_t), intent(in) :: model     !! model
+      integer, intent(in) :: c               !! contact
+      real(dp), intent(in) :: x, h           !! fraction [-], sub-step [s]
+      real(dp), intent(in) :: u0, v0, u1, v1 !! the contact dof at the ends
+      logical, intent(in) :: damped          !! bilinear with a damper
+      real(dp) :: d, dd, h00, h10, h01, h11, g00, g10, g01, g11
+      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      d = model%c_sign(c) * (h00 * u0 + h10 * h * v0 + h01 * u1 + h11 * h * v1) - model%c_gap(c)
+      active = d > 0.0_dp
+      if (active .and. damped) then
+         dd = model%c_sign(c) * (g00 * u0 + g10 * h * v0 + g01 * u1 + g11 * h * v1) / h
+         active = model%c_k(c) * d + model%c_c(c) * dd > 0.0_dp
+      end if
+   end function contact_active
+
+   !> Copy the state (arrays reused when sized).
+   pure subroutine copy_state(a, b)
+      type(state_t), intent(in) :: a      !! source
+      type(state_t), intent(inout) :: b   !! destination
+      b%t = a%t
+      b%u = a%u;  b%v = a%v;  b%a = a%a;  b%f = a%f
+      if (allocated(a%f_prev)) then
+         b%f_prev = a%f_prev
+      else
+         b%f_prev = a%f
+      end if
+      b%dt_prev = a%dt_prev;  b%level = a%level;  b%comfortable = a%comfortable
+   end subroutine copy_state
+
+   !> Root strain, its rate, tip displacement and velocity, contact forces at t (cubic Hermite
+   !> interpolation of the sub-step).
+   subroutine hermite_sample(self, t, strain, rate, tip, tip_velocity, force)
+      class(hermite_piece_t), intent(in) :: self        !! piece
+      real(dp), intent(in) :: t                         !! instant [s]
+      real(dp), intent(out) :: strain, rate, tip, tip_velocity   !! outputs
+      real(dp), intent(out) :: force(:)                 !! contact force magnitudes [N]
+      real(dp) :: h, x, h00, h10, h01, h11, g00, g10, g01, g11, ui, vi
+      integer :: i, c
+      h = self%tb - self%ta
+      x = min(1.0_dp, max(0.0_dp, (t - self%ta) / h))
+      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      strain = 0.0_dp;  rate = 0.0_dp;  tip = 0.0_dp;  tip_velocity = 0.0_dp
+      associate (m => self%model, ua => self%sub(self%ja)%u, va => self%sub(self%ja)%v, &
+                 ub => self%sub(self%jb)%u, vb => self%sub(self%jb)%v)
+         do i = 1, m%n
+            ui = h00 * ua(i) + h10 * h * va(i) + h01 * ub(i) + h11 * h * vb(i)
+            vi = (g00 * ua(i) + g10 * h * va(i) + g01 * ub(i) &
+                  + g11 * h * vb(i)) / h
+            strain = strain + m%sys%strain_row(i) * ui
+            rate = rate + m%sys%strain_row(i) * vi
+            if (i == m%sys%tip_dof) then
+               tip = ui;  tip_velocity = vi
+            end if
+         end do
+         do c = 1, m%n_contacts
+            i = m%c_dof(c)
+            ui = h00 * ua(i) + h10 * h * va(i) + h01 * ub(i) + h11 * h * vb(i)
+            vi = (g00 * ua(i) + g10 * h * va(i) + g01 * ub(i) &
+                  + g11 * h * vb(i)) / h
+            force(c) = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), &
+                                     m%c_sign(c) * ui - m%c_gap(c), m%c_sign(c) * vi)
+         end do
+      end associate
+   end subroutine hermite_sample
+
+   !> Displacement and velocity of every dof at t (cubic Hermite interpolation).
+   subroutine hermite_state(self, t, u, v)
+      class(hermite_piece_t), intent(in) :: self        !! piece
+      real(dp), intent(in) :: t                         !! instant [s]
+      real(dp), intent(out) :: u(:), v(:)               !! state
+      real(dp) :: h, x, h00, h10, h01, h11, g00, g10, g01, g11
+      h = self%tb - self%ta
+      x = min(1.0_dp, max(0.0_dp, (t - self%ta) / h))
+      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      associate (ua => self%sub(self%ja)%u, va => self%sub(self%ja)%v, &
+                 ub => self%sub(self%jb)%u, vb => self%sub(self%jb)%v)
+         u = h00 * ua + h10 * h * va + h01 * ub + h11 * h * vb
+         v = (g00 * ua + g10 * h * va + g01 * ub + g11 * h * vb) / h
+      end associate
+   end subroutine hermite_state
+
+   !> Weights of the cubic Hermite interpolant (h..) and of its derivative times h (g..).
+   pure subroutine hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      real(dp), intent(in) :: x                                   !! fraction of the step
+      real(dp), intent(out) :: h00, h10, h01, h11, g00, g10, g01, g11   !! weights
+      h00 = (1 + 2 * x) * (1 - x)**2;  h10 = x * (1 - x)**2
+      h01 = x**2 * (3 - 2 * x);  h11 = x**2 * (x - 1)
+      g00 = 6 * x**2 - 6 * x;  g10 = 3 * x**2 - 4 * x + 1
+      g01 = -6 * x**2 + 6 * x;  g11 = 3 * x**2 - 2 * x
+   end subroutine hermite_weights
+end module gapbeam_stepping
