@@ -249,7 +249,7 @@ cmd_list() {
 build_release() {
    local build_log line exe=""
    # shellcheck source=setup.sh
-   source "${root}/scripts/setup.sh"
+   source "${root}/scripts/setup.sh" >&2 || return 1   # stdout carries the path only
    build_log=$(mktemp "${TMPDIR:-/tmp}/gapbeam-build-release-XXXXXX")
    printf '%s\n' "regress: fpm build --profile release (in ${root})" >"${build_log}"
    if ! fpm build --profile release >>"${build_log}" 2>&1; then
@@ -296,6 +296,8 @@ cmd_run() {
       printf 'repository: %s\n' "${root}"
       printf 'commit: %s%s\n' "$(git -C "${root}" rev-parse HEAD 2>/dev/null || echo unknown)" \
          "$(git -C "${root}" diff --quiet HEAD -- src app 2>/dev/null || echo ' (+ uncommitted changes)')"
+      printf 'last commit of src/ app/ bench/ fpm.toml: %s\n' \
+         "$(git -C "${root}" log -1 --format='%h %s' -- src app bench fpm.toml 2>/dev/null || echo unknown)"
       printf 'date: %s\n' "$(date -u +%Y-%m-%dT%H:%M:%SZ)"
       printf 'host: %s, %s cores\n' "$(hostname)" "$(nproc)"
    } >"${out}/_meta.txt"
