@@ -439,7 +439,8 @@ def main():
     program = next((u for u in units if u.kind == 'program' and u.src.rel == 'app/main.f90'),
                    None)
     try:
-        git_head = subprocess.run(['git', '-C', root, 'log', '-1', '--format=%h %s'],
+        git_head = subprocess.run(['git', '-C', root, 'log', '-1', '--format=%h %s', '--',
+                                   'src', 'app', 'bench', 'test'],
                                   capture_output=True, text=True, check=True).stdout.strip()
         if subprocess.run(['git', '-C', root, 'diff', '--quiet', 'HEAD', '--', 'src', 'app',
                            'bench', 'test']).returncode != 0:
@@ -447,7 +448,8 @@ def main():
     except (OSError, subprocess.CalledProcessError):
         git_head = ''
 
-    print(f'gapbeam code metrics: {root}' + (f'\n  commit {git_head}' if git_head else ''))
+    print(f'gapbeam code metrics: {root}' + (f'\n  sources (src/ app/ bench/ test/) last changed in {git_head}'
+                                                   if git_head else ''))
     print()
     print('1. Lines per folder (code: not blank and not only a comment)')
     for ln in line_table(code_files, LAYERS + ['app', 'bench']):
