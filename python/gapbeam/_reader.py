@@ -97,6 +97,8 @@ def read_dataset(dset):
     raw = dset[()]
     kind = dset.dtype.kind
     is_string = kind == "S" or (kind == "O" and h5py.check_string_dtype(dset.dtype) is not None)
+    if isinstance(raw, h5py.Empty):  # a dataset with a null dataspace: no value at all
+        return "" if is_string else np.empty((0,), dtype=dset.dtype)
     if not is_string:
         return np.asarray(raw)
     strip = _string_pad_is_space(dset)
