@@ -13,6 +13,9 @@
 #   pkg-config                     apt: pkg-config
 #   gnuplot                        apt: gnuplot-nox
 #   fpm                            pip: python3 -m pip install fpm (the only source used for fpm)
+#   numpy and h5py for python3     pip: python3 -m pip install numpy h5py (the Python reader in
+#                                  python/ and its tests); apt: python3-numpy python3-h5py instead
+#                                  when python3 is a distribution's own, externally managed Python
 # apt-get runs (with sudo when not root) only when something is missing: one `apt-get update`, then
 # one `apt-get install`. Prints nothing when everything is there, else one `setup: installing ...`
 # line per install step; the apt and pip output goes to a log file under ${TMPDIR:-/tmp}, shown when
@@ -92,6 +95,19 @@ _gapbeam_have_hdf5_fortran() {
       || compgen -G '/usr/lib/libhdf5_fortran.so' >/dev/null
 }
 
+# True if python3 imports numpy and h5py (the Python reader in python/ needs them).
+_gapbeam_have_python_modules() {
+   _gapbeam_have python3 && python3 -c 'import numpy, h5py' >/dev/null 2>&1
+}
+
+# True if python3 is a distribution's own Python that pip refuses to install into (PEP 668: an
+# EXTERNALLY-MANAGED marker, and not a virtual environment); its packages come from apt.
+_gapbeam_python_is_external() {
+   _gapbeam_have python3 && python3 -c 'import os, sys, sysconfig
+marker = os.path.join(sysconfig.get_path("stdlib"), "EXTERNALLY-MANAGED")
+sys.exit(0 if os.path.isfile(marker) and sys.prefix == sys.base_prefix else 1)' >/dev/null 2>&1
+}
+
 # Print the apt packages for what is missing, one per line.
 _gapbeam_missing_apt() {
    _gapbeam_have gfortran || printf '%s\n' gfortran
@@ -101,6 +117,9 @@ _gapbeam_missing_apt() {
    _gapbeam_have_hdf5_fortran || printf '%s\n' libhdf5-dev
    _gapbeam_have pkg-config || printf '%s\n' pkg-config
    _gapbeam_have gnuplot || printf '%s\n' gnuplot-nox
+   if _gapbeam_python_is_external && ! _gapbeam_have_python_modules; then
+      printf '%s\n' python3-numpy python3-h5py
+   fi
 }
 
 # Install the missing apt packages (if any).
@@ -217,10 +236,39 @@ _gapbeam_setup_fpm() {
    fi
 }
 
+# Make sure python3 imports numpy and h5py; install them with pip where they are missing (an
+# externally managed python3 got them from apt in _gapbeam_setup_apt).
+_gapbeam_setup_python() {
+   local log
+   _gapbeam_have_python_modules && return 0
+   if ! _gapbeam_have python3; then
+      _gapbeam_setup_error "python3 is missing (the Python reader in python/ and its tests need" \
+         "python3 with numpy and h5py)"
+      return 1
+   fi
+   if ! python3 -m pip --version >/dev/null 2>&1; then
+      _gapbeam_setup_error "numpy or h5py is missing and python3 has no pip (python3 -m pip);" \
+         "install pip, e.g. apt-get install python3-pip, then run this again"
+      return 1
+   fi
+   log=$(_gapbeam_setup_logfile) || { _gapbeam_setup_error "cannot create a log file"; return 1; }
+   printf 'setup: installing numpy h5py (python3 -m pip install numpy h5py, log %s)\n' "$log"
+   if ! python3 -m pip install --disable-pip-version-check numpy h5py >>"$log" 2>&1; then
+      _gapbeam_setup_show_log
+      _gapbeam_setup_error "python3 -m pip install numpy h5py failed (log $log)"
+      return 1
+   fi
+   if ! _gapbeam_have_python_modules; then
+      _gapbeam_setup_error "pip installed numpy and h5py but python3 cannot import them (log $log)"
+      return 1
+   fi
+}
+
 _gapbeam_setup_main() {
    local path_before=$PATH
    _gapbeam_setup_apt || return 1
    _gapbeam_setup_fpm || return 1
+   _gapbeam_setup_python || return 1
    if [[ ${BASH_SOURCE[0]} == "$0" && $PATH != "$path_before" ]]; then
       printf 'setup: fpm is in %s, which is not on your PATH; add it (run.sh and test.sh do)\n' \
          "$(dirname "$(command -v fpm)")"
@@ -233,7 +281,8 @@ _gapbeam_setup_main || _gapbeam_setup_status=$?
 if [[ ${BASH_SOURCE[0]} != "$0" ]]; then
    unset -f _gapbeam_have _gapbeam_setup_error _gapbeam_setup_logfile _gapbeam_setup_show_log \
       _gapbeam_have_lib _gapbeam_hdf5_pc _gapbeam_have_hdf5_fortran _gapbeam_missing_apt \
-      _gapbeam_setup_apt _gapbeam_find_fpm _gapbeam_setup_fpm _gapbeam_setup_main
+      _gapbeam_setup_apt _gapbeam_find_fpm _gapbeam_setup_fpm _gapbeam_have_python_modules \
+      _gapbeam_python_is_external _gapbeam_setup_python _gapbeam_setup_main
    unset _gapbeam_setup_log
 fi
 # The status of the last command is that of the script (executed) or of `source` (sourced); a

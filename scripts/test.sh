@@ -9,8 +9,10 @@
 # (`fpm build --tests --flag "$FLAGS"`); list the test programs (`fpm test --runner echo` with the
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
-# scripts/test_cli.sh on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`).
-# Everything goes to the terminal.
+# scripts/test_cli.sh and scripts/test_sweep_kill.sh on the debug-built `gapbeam` (found with
+# `fpm run --runner echo gapbeam`), and python/tests/test_reader.py (the Python reader in python/
+# against h5py on every analysis's output of that `gapbeam`; PYTHONPATH=python, nothing is
+# pip-installed). Everything goes to the terminal.
 #
 # Counting: every line starting with `PASS  ` or `FAIL  ` (two spaces) is one check. A program that
 # exits non-zero without printing a FAIL line (a crash, a runtime check, a time-out) adds
@@ -20,7 +22,8 @@
 # Environment:
 #   GAPBEAM_TEST_FLAGS    compiler flags (default below); the same string must be given to every
 #                         fpm command, or fpm builds into another folder
-#   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh (default 900)
+#   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh,
+#                         test_sweep_kill.sh and test_reader.py (default 900)
 #   OMP_NUM_THREADS       passed through untouched; OPENBLAS_NUM_THREADS is set to 1
 set -euo pipefail
 
@@ -134,5 +137,18 @@ if [[ -n ${gapbeam_exe} ]]; then
       | tee "${log}" || status=$?
 fi
 count test_sweep_kill.sh "${log}" "${status}"
+
+printf '\n== python/tests/test_reader.py\n'
+log=${work}/test_reader.log
+status=0
+if [[ -z ${gapbeam_exe} ]]; then
+   printf 'FAIL  python: cannot find the debug-built gapbeam executable (fpm run --runner echo)\n' \
+      | tee "${log}"
+else
+   PYTHONPATH="${root}/python${PYTHONPATH:+:${PYTHONPATH}}" PYTHONDONTWRITEBYTECODE=1 \
+      "${runner[@]}" python3 "${root}/python/tests/test_reader.py" "${gapbeam_exe}" </dev/null 2>&1 \
+      | tee "${log}" || status=$?
+fi
+count test_reader.py "${log}" "${status}"
 
 summary
