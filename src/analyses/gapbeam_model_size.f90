@@ -22,7 +22,7 @@ module gapbeam_model_size
    use gapbeam_model_builder, only: build_model
    use gapbeam_eigen, only: solve_modes
    use gapbeam_transient, only: integrate
-   use gapbeam_sweep, only: point_diagnostics
+   use gapbeam_attractor, only: point_diagnostics
    implicit none
    private
    public :: model_size_study, poincare_distance
@@ -136,23 +136,25 @@ contains
       d = deck
       d%structure%beam%n_elem = n_elem
       do i = 1, size(d%stops)
-         d%stops(i)%node = move_node(deck%stops(i)%node, 'stop ' // str(i))
+         d%stops(i)%node = move_node(deck%structure%beam%n_elem, n_elem, deck%stops(i)%node, &
+            'stop ' // str(i), err)
       end do
       if (allocated(d%structure%springs)) then
          do i = 1, size(d%structure%springs)
-            d%structure%springs(i)%node = move_node(deck%structure%springs(i)%node, &
-                                                    'spring ' // str(i))
+            d%structure%springs(i)%node = move_node(deck%structure%beam%n_elem, n_elem, &
+               deck%structure%springs(i)%node, 'spring ' // str(i), err)
          end do
       end if
       if (allocated(d%structure%masses)) then
          do i = 1, size(d%structure%masses)
-            d%structure%masses(i)%node = move_node(deck%structure%masses(i)%node, &
-                                                   'mass ' // str(i))
+            d%structure%masses(i)%node = move_node(deck%structure%beam%n_elem, n_elem, &
+               deck%structure%masses(i)%node, 'mass ' // str(i), err)
          end do
       end if
       if (allocated(d%initial%node)) then
          do i = 1, size(d%initial%node)
-            d%initial%node(i) = move_node(deck%initial%node(i), 'initial value ' // str(i))
+            d%initial%node(i) = move_node(deck%structure%beam%n_elem, n_elem, &
+               deck%initial%node(i), 'initial value ' // str(i), err)
          end do
       end if
       if (n_modes > 0) then
@@ -161,19 +163,23 @@ contains
       else
          d%reduction%kind = 'none'
       end if
-   contains
-      integer function move_node(node, what)
-         integer, intent(in) :: node
-         character(len=*), intent(in) :: what
-         real(dp) :: x
-         x = real(node - 1, dp) / real(deck%structure%beam%n_elem, dp)
-         move_node = nint(x * n_elem) + 1
-         if (abs(real(move_node - 1, dp) - x * n_elem) > 1.0e-9_dp .and. .not. allocated(err)) &
-            call fatal_error(err, 'model_size: ' // what // ' at x/L = ' // str(x) // ' is not ' &
-            // 'a node of the ' // str(n_elem) // '-element mesh; choose element counts whose ' &
-            // 'nodes include it')
-      end function move_node
    end subroutine candidate_deck
+
+   !> The node of an n_elem-element mesh at the position of `node` of an n_from-element mesh;
+   !> an error (kept if one is already set) when that position is not a node of the new mesh.
+   integer function move_node(n_from, n_elem, node, what, err)
+      integer, intent(in) :: n_from, n_elem              !! element counts of the two meshes
+      integer, intent(in) :: node                        !! node of the first mesh
+      character(len=*), intent(in) :: what               !! what sits there, for the message
+      type(error_t), allocatable, intent(inout) :: err   !! not a node
+      real(dp) :: x
+      x = real(node - 1, dp) / real(n_from, dp)
+      move_node = nint(x * n_elem) + 1
+      if (abs(real(move_node - 1, dp) - x * n_elem) > 1.0e-9_dp .and. .not. allocated(err)) &
+         call fatal_error(err, 'model_size: ' // what // ' at x/L = ' // str(x) // ' is not ' &
+         // 'a node of the ' // str(n_elem) // '-element mesh; choose element counts whose ' &
+         // 'nodes include it')
+   end function move_node
 
    !> Build, run and diagnose one candidate.
    subroutine run_candidate(d, pr, ref_modes, cand, err, cutoff_hz)

@@ -204,6 +204,8 @@ contains
       else
          mm = p%sys%m;  x = b
          call dpotrf('U', p%n, mm, p%n, info)
+         if (info /= 0) error stop 'gapbeam_stability:solve_m: a consistent mass matrix is ' &
+            // 'positive definite'
          call dpotrs('U', p%n, 1, mm, p%n, x, p%n, info)
       end if
    end function solve_m

@@ -17,12 +17,10 @@ module gapbeam_sweep
       sweep_settings_t
    use gapbeam_results, only: transient_result_t, point_result_t, lyapunov_t
    use gapbeam_transient, only: integrate
-   use gapbeam_lyapunov, only: largest_lyapunov
-   use gapbeam_diagnostics, only: detect_period, classify
+   use gapbeam_attractor, only: point_diagnostics
    implicit none
    private
-   public :: n_points, n_items, item_points, point_forcing, run_point, run_items, &
-      point_diagnostics
+   public :: n_points, n_items, item_points, point_forcing, run_point, run_items
 
 contains
 
@@ -73,34 +71,6 @@ contains
       f_hz = sw%frequency_hz(mod(p - 1, nf) + 1)
       a_pp = sw%amplitude_pp((p - 1) / nf + 1)
    end subroutine point_forcing
-
-   !> Period, Lyapunov exponent and label of a finished transient run.
-   subroutine point_diagnostics(model, cfg, diag, res, pr, err)
-      type(model_t), intent(in) :: model                !! model at this forcing
-      type(solver_settings_t), intent(in) :: cfg         !! solver settings
-      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
-      type(transient_result_t), intent(in) :: res        !! the run
-      type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
-      type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
-      type(lyapunov_t) :: lyap
-      real(dp) :: sx, sy
-      sx = res%strain_max - res%strain_min
-      sy = res%strain_rate_max - res%strain_rate_min
-      pr%period = detect_period(res%p_strain, res%p_strain_rate, diag%period_max, &
-                                diag%period_tolerance, diag%period_points, sx, sy)
-      pr%u_end = res%u;  pr%v_end = res%v
-      if (diag%lyapunov_periods > 0) then
-         call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
-            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
-         if (allocated(err)) return
-         pr%lyapunov = lyap%exponent
-         pr%lyapunov_error = lyap%uncertainty
-         pr%lyapunov_running = lyap%running
-      else
-         allocate(pr%lyapunov_running(0))
-      end if
-      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas)
-   end subroutine point_diagnostics
 
    !> Run one point from (u0, v0): transient, record, diagnostics.
    subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr)

@@ -4,7 +4,7 @@ module gapbeam_lapack
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: dsygv, dpotrf, dpotrs, dpotri, dpbtrf, dpbtrs, dgesv, dgetrf, dgetrs, dsyev, dgeev
+   public :: dsygv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
    public :: zgesv
 
    interface
@@ -18,15 +18,6 @@ module gapbeam_lapack
          integer,   intent(out)   :: info
       end subroutine dsygv
 
-      !> Symmetric eigenproblem.
-      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-         import :: dp
-         character, intent(in)    :: jobz, uplo
-         integer,   intent(in)    :: n, lda, lwork
-         real(dp),  intent(inout) :: a(lda, *)
-         real(dp),  intent(out)   :: w(*), work(*)
-         integer,   intent(out)   :: info
-      end subroutine dsyev
 
       !> General eigenproblem.
       subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
@@ -57,14 +48,6 @@ module gapbeam_lapack
          integer,   intent(out)   :: info
       end subroutine dpotrs
 
-      !> Inverse from a dense Cholesky factor.
-      subroutine dpotri(uplo, n, a, lda, info)
-         import :: dp
-         character, intent(in)    :: uplo
-         integer,   intent(in)    :: n, lda
-         real(dp),  intent(inout) :: a(lda, *)
-         integer,   intent(out)   :: info
-      end subroutine dpotri
 
       !> Cholesky factorization of a banded SPD matrix.
       subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
@@ -93,24 +76,7 @@ module gapbeam_lapack
          integer,  intent(out)   :: ipiv(*), info
       end subroutine dgesv
 
-      !> LU factorization.
-      subroutine dgetrf(m, n, a, lda, ipiv, info)
-         import :: dp
-         integer,  intent(in)    :: m, n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer,  intent(out)   :: ipiv(*), info
-      end subroutine dgetrf
 
-      !> Solve with an LU factorization.
-      subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
-         import :: dp
-         character, intent(in)    :: trans
-         integer,   intent(in)    :: n, nrhs, lda, ldb
-         real(dp),  intent(in)    :: a(lda, *)
-         integer,   intent(in)    :: ipiv(*)
-         real(dp),  intent(inout) :: b(ldb, *)
-         integer,   intent(out)   :: info
-      end subroutine dgetrs
 
       !> Complex general linear solve (LU with partial pivoting).
       subroutine zgesv(n, nrhs, a, lda, ipiv, b, ldb, info)

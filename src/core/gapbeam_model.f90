@@ -7,11 +7,9 @@
 !> with C = beta M + gamma K and f_c >= 0 the magnitude of contact c (see gapbeam_contact_law).
 module gapbeam_model
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: str
-   use gapbeam_description, only: dof_name
    implicit none
    private
-   public :: system_t, model_t, load_factor, global_dof, dof_label, energy_norm, band_kd
+   public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd
 
    integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices
 
@@ -80,22 +78,6 @@ contains
          error stop 'gapbeam_model:global_dof: node or dof outside the mesh'
       global_dof = sys%dof_of(dof, node)
    end function global_dof
-
-   !> 'dof 5 (node 3 w)' style label of a global dof.
-   function dof_label(model, i) result(s)
-      type(model_t), intent(in) :: model   !! model
-      integer, intent(in) :: i             !! global dof
-      character(len=:), allocatable :: s
-      integer :: node, d
-      s = 'dof ' // str(i)
-      if (.not. allocated(model%sys%dof_of)) return
-      do node = 1, model%sys%n_node
-         do d = 1, 2
-            if (model%sys%dof_of(d, node) == i) s = 'dof ' // str(i) // ' (node ' // str(node) &
-               // ' ' // dof_name(d) // ')'
-         end do
-      end do
-   end function dof_label
 
    !> Energy norm sqrt(u'Ku + v'Mv) of a state (or of a difference of states).
    pure real(dp) function energy_norm(model, u, v)

@@ -53,7 +53,8 @@ module gapbeam_exact
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: law_bilinear
    use gapbeam_contact_law, only: contact_force
-   use gapbeam_integrator, only: integrator_t, piece_t, observer_t, contact_forces_at
+   use gapbeam_observer, only: piece_t, observer_t
+   use gapbeam_integrator, only: integrator_t, contact_forces_at
    use gapbeam_exact_segment, only: reduced_t, config_t, segment_t, setup_reduction, expand, &
       build_config, start_segment, eval_seg, segment_values, segment_state, taylor_next, &
       modal_window, taylor_window, gauss_legendre, sign_after, band, add_fn, mono_quad, &

@@ -1191,7 +1191,7 @@ contains
       if (disc > 0.0_dp) then
          s1 = (b - sqrt(disc)) / (3.0_dp * c)      ! local minimum
          s2 = (b + sqrt(disc)) / (3.0_dp * c)      ! local maximum
-         if (s1 > 0.0_dp .and. poly(s1) <= 0.0_dp) then
+         if (s1 > 0.0_dp .and. cubic_value(y, a, b, c, s1) <= 0.0_dp) then
             hi = s1
          else if (s2 > 0.0_dp) then
             lo = s2
@@ -1202,18 +1202,18 @@ contains
          if (lo >= cap) then
             h = lo;  return
          end if
-         if (poly(cap) > 0.0_dp) then
+         if (cubic_value(y, a, b, c, cap) > 0.0_dp) then
             h = cap;  return
          end if
          hi = cap
       end if
       ! P > 0 at lo, P <= 0 at hi, a single zero in between: Illinois, keeping lo safe
-      plo = poly(lo);  phi = poly(hi);  side = 0
+      plo = cubic_value(y, a, b, c, lo);  phi = cubic_value(y, a, b, c, hi);  side = 0
       do it = 1, 60
          if (hi - lo <= 1.0e-3_dp * lo .or. lo >= cap) exit
          mid = lo + (hi - lo) * plo / (plo - phi)
          if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp * (lo + hi)
-         pm = poly(mid)
+         pm = cubic_value(y, a, b, c, mid)
          if (pm > 0.0_dp) then
             lo = mid;  plo = pm
             if (side == -1) phi = 0.5_dp * phi
@@ -1225,10 +1225,11 @@ contains
          end if
       end do
       h = lo
-   contains
-      pure real(dp) function poly(s)
-         real(dp), intent(in) :: s
-         poly = y + s * (a + s * (b - c * s))
-      end function poly
    end function cubic_root
+
+   !> P(s) = y + a s + b s^2 - c s^3.
+   pure real(dp) function cubic_value(y, a, b, c, s) result(p)
+      real(dp), intent(in) :: y, a, b, c, s   !! coefficients, argument
+      p = y + s * (a + s * (b - c * s))
+   end function cubic_value
 end module gapbeam_exact_segment

@@ -5,13 +5,8 @@
 !>   eigen decompositions), then `advance(state, t_target, observer)` carries a state_t to a
 !>   target time, locating contact events inside. The same object advances any number of
 !>   states (a Lyapunov pair, the periods of a shooting method) without rebuilding anything.
-!> * `piece_t`: one accepted interval [ta, tb] of a trajectory, handed to the observer: the
-!>   contact forces, penetration rates and onsets at its ends, the root strain at its end, and
-!>   dense output in between (`sample`, `state_at`). An integrator that knows more (the exact
-!>   one: integrals of the contact force and certified extrema over the piece) says so in
-!>   `exact_statistics`.
-!> * `observer_t`: receives the pieces in time order; `t_watch` is the instant from which it
-!>   keeps statistics (integrators end a piece there and track extrema from then on).
+!> * observers (gapbeam_observer) receive the pieces of trajectory an advance produces: the
+!>   recorder of a transient run, or nothing (a Lyapunov pair, a shooting period).
 !> * `stepper_t`: one step of a one-step method at one step size; the stepping integrator
 !>   (gapbeam_stepping) drives any stepper with step control and event location.
 !>
@@ -21,47 +16,19 @@
 module gapbeam_integrator
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t
+   use gapbeam_error, only: error_t, str
    use gapbeam_model, only: model_t, load_factor
+   use gapbeam_description, only: dof_name
+   use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_contact_law, only: contact_force
    use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
    private
-   public :: piece_t, observer_t, integrator_t, stepper_t, make_integrator, make_stepper
-   public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium
-
-   !> One accepted interval [ta, tb] of a trajectory, as an observer sees it.
-   type, abstract :: piece_t
-      real(dp) :: ta = 0.0_dp                      !! start [s]
-      real(dp) :: tb = 0.0_dp                      !! end [s]
-      real(dp), allocatable :: f_a(:), f_b(:)      !! contact forces at ta (right limit), tb [N]
-      real(dp), allocatable :: vabs_a(:), vabs_b(:) !! |velocity| of each contact dof there
-      logical, allocatable :: onset(:)             !! the contact closes in (ta, tb] (an impact)
-      real(dp), allocatable :: onset_time(:)       !! when [s]
-      real(dp) :: strain_b = 0.0_dp                !! root strain at tb [-]
-      real(dp) :: rate_b = 0.0_dp                  !! root strain rate at tb [1/s]
-      !> The integrator gives exact statistics below (else the observer uses the end values)
-      logical :: exact_statistics = .false.
-      real(dp), allocatable :: int_f(:)            !! integral of f over the piece [N s]
-      real(dp), allocatable :: int_f2(:)           !! integral of f^2 [N^2 s]
-      real(dp), allocatable :: int_work(:)         !! integral of f |d'| [J]
-      real(dp), allocatable :: t_contact(:)        !! time in contact [s]
-      real(dp), allocatable :: peak(:)             !! largest force of the contact's stop [N]
-      real(dp) :: strain_min = 0.0_dp, strain_max = 0.0_dp   !! root strain range so far [-]
-      real(dp) :: rate_min = 0.0_dp, rate_max = 0.0_dp       !! root strain rate range [1/s]
-   contains
-      procedure(sample_interface), deferred :: sample     !! outputs at an instant
-      procedure(state_interface), deferred :: state_at    !! full state at an instant
-   end type piece_t
-
-   !> Watches a trajectory piece by piece.
-   type, abstract :: observer_t
-      real(dp) :: t_watch = 0.0_dp                 !! statistics are kept from here on [s]
-   contains
-      procedure(observe_interface), deferred :: observe   !! one more piece
-   end type observer_t
+   public :: integrator_t, stepper_t, make_integrator, make_stepper
+   public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
+      dof_label
 
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t
@@ -90,31 +57,6 @@ module gapbeam_integrator
    end type stepper_t
 
    abstract interface
-      !> Root strain, its rate, tip displacement and velocity, and each contact's force at t.
-      subroutine sample_interface(self, t, strain, rate, tip, tip_velocity, force)
-         import :: piece_t, dp
-         class(piece_t), intent(in) :: self              !! piece
-         real(dp), intent(in) :: t                       !! instant in [ta, tb] [s]
-         real(dp), intent(out) :: strain, rate           !! [-], [1/s]
-         real(dp), intent(out) :: tip, tip_velocity      !! [m], [m/s]
-         real(dp), intent(out) :: force(:)               !! contact force magnitudes [N]
-      end subroutine sample_interface
-
-      !> Displacement and velocity of every dof at t.
-      subroutine state_interface(self, t, u, v)
-         import :: piece_t, dp
-         class(piece_t), intent(in) :: self              !! piece
-         real(dp), intent(in) :: t                       !! instant in [ta, tb] [s]
-         real(dp), intent(out) :: u(:), v(:)             !! [m, rad], [m/s, rad/s]
-      end subroutine state_interface
-
-      !> Take one more piece of the trajectory.
-      subroutine observe_interface(self, piece)
-         import :: observer_t, piece_t
-         class(observer_t), intent(inout) :: self        !! observer
-         class(piece_t), intent(in) :: piece             !! the piece
-      end subroutine observe_interface
-
       !> Build the integrator for a model (keeps its own copy of the model).
       subroutine init_interface(self, model, cfg, err)
          import :: integrator_t, model_t, solver_settings_t, error_t
@@ -265,4 +207,20 @@ contains
       call dpotrs('U', nm, 1, msub, nm, b, nm, info)
       a(idx) = b
    end subroutine equilibrium_acceleration
+
+   !> 'dof 5 (node 3 w)' style label of a global dof.
+   function dof_label(model, i) result(s)
+      type(model_t), intent(in) :: model   !! model
+      integer, intent(in) :: i             !! global dof
+      character(len=:), allocatable :: s
+      integer :: node, d
+      s = 'dof ' // str(i)
+      if (.not. allocated(model%sys%dof_of)) return
+      do node = 1, model%sys%n_node
+         do d = 1, 2
+            if (model%sys%dof_of(d, node) == i) s = 'dof ' // str(i) // ' (node ' // str(node) &
+               // ' ' // dof_name(d) // ')'
+         end do
+      end do
+   end function dof_label
 end module gapbeam_integrator

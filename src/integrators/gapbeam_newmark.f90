@@ -375,8 +375,8 @@ contains
       hc = op%c%a1 * u + op%c%a4 * v + op%c%a5 * a
       ! Pbar = M (hm + beta hc) + gamma K hc + s q
       tmp = hm + model%beta * hc
-      call dense_or_band(model%sys%m, model%sys%m_band, tmp, pbar)
-      call dense_or_band(model%sys%k, model%sys%k_band, hc, rhs)
+      call sym_matvec(op%dense, model%sys%kd, model%sys%m, model%sys%m_band, tmp, pbar)
+      call sym_matvec(op%dense, model%sys%kd, model%sys%k, model%sys%k_band, hc, rhs)
       pbar = pbar + model%gamma * rhs + s1 * model%q
       held = 0
       if (present(open_contact)) held = open_contact
@@ -425,17 +425,21 @@ contains
       end if
       v1 = op%c%a1 * u1 - hc
       a1 = op%c%a0 * u1 - hm
-   contains
-      subroutine dense_or_band(ad, ab, x, yy)
-         real(dp), intent(in) :: ad(:, :), ab(:, :), x(:)
-         real(dp), intent(out) :: yy(:)
-         if (op%dense) then
-            call dense_matvec(n, ad, x, yy)
-         else
-            call band_matvec(n, model%sys%kd, ab, x, yy)
-         end if
-      end subroutine dense_or_band
    end subroutine fixed_point_step
+
+   !> y = A x with A dense or in upper band storage.
+   pure subroutine sym_matvec(dense, kd, ad, ab, x, y)
+      logical, intent(in) :: dense                  !! use the dense matrix
+      integer, intent(in) :: kd                     !! semi-bandwidth
+      real(dp), intent(in) :: ad(:, :), ab(:, :)    !! dense, band storage
+      real(dp), intent(in) :: x(:)                  !! vector
+      real(dp), intent(out) :: y(:)                 !! result
+      if (dense) then
+         call dense_matvec(size(x), ad, x, y)
+      else
+         call band_matvec(size(x), kd, ab, x, y)
+      end if
+   end subroutine sym_matvec
 
    !> Half-step residual ratio of a step (paper section 4.2).
    !>

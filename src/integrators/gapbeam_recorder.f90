@@ -22,7 +22,7 @@ module gapbeam_recorder
    use gapbeam_settings, only: output_settings_t
    use gapbeam_results, only: transient_result_t, allocate_result
    use gapbeam_filter, only: lowpass_t, design_lowpass
-   use gapbeam_integrator, only: observer_t, piece_t
+   use gapbeam_observer, only: observer_t, piece_t
    use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private

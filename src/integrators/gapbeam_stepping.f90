@@ -18,13 +18,14 @@ module gapbeam_stepping
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: model_t, dof_label
+   use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: law_bilinear
    use gapbeam_contact_law, only: contact_force
-   use gapbeam_integrator, only: integrator_t, stepper_t, piece_t, observer_t, &
-      equilibrium_acceleration, make_stepper
+   use gapbeam_observer, only: piece_t, observer_t
+   use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, &
+      make_stepper, dof_label
    use gapbeam_newmark, only: half_step_ratio, use_dense
    implicit none
    private
@@ -146,11 +147,11 @@ contains
                         + 0.5_dp * dot_product(state%v, matmul(self%model%sys%m, state%v))
       do while (tick < end_tick)
          ! never step over the target or the observer's watch instant
-         do while (level < self%kmax .and. (tick + step_ticks(level) > end_tick .or. &
-                   (watch_tick > tick .and. watch_tick < tick + step_ticks(level))))
+         do while (level < self%kmax .and. (tick + 2_int64**(self%kmax - level) > end_tick .or. &
+                   (watch_tick > tick .and. watch_tick < tick + 2_int64**(self%kmax - level))))
             level = level + 1
          end do
-         nt = step_ticks(level)
+         nt = 2_int64**(self%kmax - level)
          t0 = real(tick, dp) * self%tick_dt
          t1 = real(tick + nt, dp) * self%tick_dt
          if (.not. self%ops(level)%ready) then
@@ -201,11 +202,6 @@ contains
       state%level = level;  state%comfortable = comfortable
       self%fp_iterations = self%scratch%iterations + sum([(self%ops(level)%iterations, &
                                                           level = 0, self%kmax)])
-   contains
-      pure integer(int64) function step_ticks(lv)
-         integer, intent(in) :: lv
-         step_ticks = 2_int64**(self%kmax - lv)
-      end function step_ticks
    end subroutine stepping_advance
 
    !> The error of a step that fails at the smallest step size.

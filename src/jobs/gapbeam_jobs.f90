@@ -16,7 +16,7 @@ module gapbeam_jobs
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_transient, only: integrate
-   use gapbeam_sweep, only: point_diagnostics
+   use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration

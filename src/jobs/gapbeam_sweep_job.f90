@@ -179,7 +179,7 @@ contains
       integer :: p, c
       character(len=:), allocatable :: line
       line = 'labels:'
-      do p = 1, 16
+      do p = 1, maxval([0, res%label])
          c = count(res%label == p)
          if (c > 0) line = line // ' period ' // str(p) // ': ' // str(c) // ';'
       end do

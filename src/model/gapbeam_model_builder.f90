@@ -42,8 +42,9 @@ contains
          err%message = 'group &reduction: ' // err%message
          return
       end if
-      u0 = project(full, basis, uf)
-      v0 = project(full, basis, vf)
+      call project(full, basis, uf, u0, err)
+      if (.not. allocated(err)) call project(full, basis, vf, v0, err)
+      if (allocated(err)) err%message = 'group &reduction: ' // err%message
    end subroutine build_model
 
    !> Stiffness of each deck stop, applying the paper's rule where asked:

@@ -63,7 +63,7 @@ contains
       red%sys%m_diagonal = .false.
       red%c = red%beta * red%sys%m + red%gamma * red%sys%k
       red%q = matmul(transpose(basis), full%q)
-      red%sys%r = project(full, basis, full%sys%r)
+      call project(full, basis, full%sys%r, red%sys%r, err);  if (allocated(err)) return
       red%sys%strain_row = matmul(full%sys%strain_row, basis)
       red%sys%tip_dof = 0
       do j = 1, size(pinned)
@@ -103,6 +103,11 @@ contains
             att(full%slot_dof(j), j) = 1.0_dp
          end do
          call dpotrf('U', n, kf, n, info)
+         if (info /= 0) then
+            call fatal_error(err, 'gapbeam_reduction: the stiffness is not positive definite ' &
+               // '(dpotrf info=' // str(info) // ')')
+            return
+         end if
          call dpotrs('U', n, ns, kf, n, att, n, info)
          do j = 1, ns
             nrm0 = maxval(abs(att(:, j)))
@@ -174,17 +179,24 @@ contains
    end subroutine reduction_basis
 
    !> Coordinates z of a physical vector x in the basis, mass-weighted least squares.
-   function project(full, basis, x) result(z)
-      type(model_t), intent(in) :: full
-      real(dp), intent(in) :: basis(:, :), x(:)
-      real(dp), allocatable :: z(:)
+   subroutine project(full, basis, x, z, err)
+      type(model_t), intent(in) :: full                !! full model
+      real(dp), intent(in) :: basis(:, :)              !! (n_full, n_red)
+      real(dp), intent(in) :: x(:)                     !! physical vector
+      real(dp), allocatable, intent(out) :: z(:)       !! its coordinates
+      type(error_t), allocatable, intent(out) :: err   !! the basis has no mass in some direction
       real(dp), allocatable :: a(:, :), rhs(:, :)
       integer :: r, info
       r = size(basis, 2)
       a = matmul(transpose(basis), matmul(full%sys%m, basis))
       rhs = reshape(matmul(transpose(basis), matmul(full%sys%m, x)), [r, 1])
       call dpotrf('U', r, a, r, info)
+      if (info /= 0) then
+         call fatal_error(err, 'gapbeam_reduction:project: the reduced mass matrix is not ' &
+            // 'positive definite (dpotrf info=' // str(info) // ')')
+         return
+      end if
       call dpotrs('U', r, 1, a, r, rhs, r, info)
       z = rhs(:, 1)
-   end function project
+   end subroutine project
 end module gapbeam_reduction

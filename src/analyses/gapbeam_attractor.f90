@@ -1,5 +1,8 @@
-!> Largest Lyapunov exponent of a forced run (Benettin's method with a reference and a
-!> perturbed trajectory renormalised once per forcing period).
+!> The attractor of a forced run: its period (from the Poincare points), its largest Lyapunov
+!> exponent and its label.
+!>
+!> Largest Lyapunov exponent: Benettin's method with a reference and a perturbed trajectory
+!> renormalised once per forcing period.
 !>
 !> One integrator object, built once, advances both trajectories one forcing period at a time
 !> with the run's method (the trapezoidal rule for the explicit ones) and FIXED steps
@@ -12,19 +15,48 @@
 !> lambda = sum ln(d_k / d_0) / (N T). The uncertainty is the standard error of the mean over
 !> 10 blocks of periods, and the running estimate after each period is returned to show its
 !> convergence.
-module gapbeam_lyapunov
+module gapbeam_attractor
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
    use gapbeam_model, only: model_t, energy_norm
    use gapbeam_state, only: state_t
-   use gapbeam_settings, only: solver_settings_t
-   use gapbeam_results, only: lyapunov_t
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
+   use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
+   use gapbeam_diagnostics, only: detect_period, classify
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state
    implicit none
    private
-   public :: largest_lyapunov
+   public :: largest_lyapunov, point_diagnostics
 
 contains
+
+   !> Period, Lyapunov exponent and label of a finished transient run.
+   subroutine point_diagnostics(model, cfg, diag, res, pr, err)
+      type(model_t), intent(in) :: model                !! model at this forcing
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      type(transient_result_t), intent(in) :: res        !! the run
+      type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
+      type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
+      type(lyapunov_t) :: lyap
+      real(dp) :: sx, sy
+      sx = res%strain_max - res%strain_min
+      sy = res%strain_rate_max - res%strain_rate_min
+      pr%period = detect_period(res%p_strain, res%p_strain_rate, diag%period_max, &
+                                diag%period_tolerance, diag%period_points, sx, sy)
+      pr%u_end = res%u;  pr%v_end = res%v
+      if (diag%lyapunov_periods > 0) then
+         call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
+            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
+         if (allocated(err)) return
+         pr%lyapunov = lyap%exponent
+         pr%lyapunov_error = lyap%uncertainty
+         pr%lyapunov_running = lyap%running
+      else
+         allocate(pr%lyapunov_running(0))
+      end if
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas)
+   end subroutine point_diagnostics
 
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary.
    subroutine largest_lyapunov(model, cfg, u, v, n_periods, perturbation, lyap, u_end, v_end, &
@@ -112,4 +144,4 @@ contains
       if (nb > 1) var = sum((block(1:nb) - mean)**2) / (nb - 1)
       se = sqrt(var / nb)
    end function block_standard_error
-end module gapbeam_lyapunov
+end module gapbeam_attractor
