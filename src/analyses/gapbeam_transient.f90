@@ -8,7 +8,7 @@ module gapbeam_transient
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
    use gapbeam_results, only: transient_result_t
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
    use gapbeam_recorder, only: recorder_t
    implicit none
    private
@@ -28,11 +28,15 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! numerical failure
       class(integrator_t), intent(inout), optional :: integrator   !! the integrator to use
       class(integrator_t), allocatable :: integ
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
       integer(int64) :: count0, count1, rate
       call system_clock(count0, rate)
       if (present(integrator)) then
-         call integrator%init(model, cfg, err)
+         call resolve_method(model, cfg, eff, reason)
+         call integrator%init(model, eff, err)
          if (allocated(err)) return
+         integrator%reason = reason
          call record(model, cfg, out, u0, v0, integrator, res, err)
       else
          call make_integrator(model, cfg, integ, err)
@@ -74,5 +78,7 @@ contains
       if (res%dt_smallest > res%dt_largest) res%dt_smallest = 0.0_dp
       res%u = state%u;  res%v = state%v;  res%a = state%a
       res%t_end = state%t
+      res%method = integ%method
+      if (allocated(integ%reason)) res%method_reason = integ%reason
    end subroutine record
 end module gapbeam_transient

@@ -37,6 +37,8 @@ module gapbeam_results
       real(dp), allocatable :: p_strain_rate(:)     !! Poincare root strain rate [1/s]
       real(dp), allocatable :: p_tip(:)             !! Poincare tip displacement [m]
       real(dp), allocatable :: p_tip_velocity(:)    !! Poincare tip velocity [m/s]
+      character(len=:), allocatable :: method       !! the method that ran
+      character(len=:), allocatable :: method_reason  !! why ('auto')
       integer(int64) :: steps_accepted = 0          !! Newmark solves accepted (sub-steps too)
       integer(int64) :: steps_rejected = 0          !! steps rejected by the control
       integer(int64) :: events = 0                  !! steps split at a contact event

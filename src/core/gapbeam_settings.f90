@@ -13,10 +13,11 @@ module gapbeam_settings
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words
 
-   character(len=*), parameter :: method_words = "'newmark', 'hht', 'generalized_alpha', " &
+   character(len=*), parameter :: method_words = "'auto', 'newmark', 'hht', 'generalized_alpha', " &
       // "'central_difference', 'rk4', 'rk45', 'exact'"
    character(len=*), parameter :: stop_solution_words = "'condensed', 'fixed_point'"
-   character(len=*), parameter :: step_control_words = "'fixed', 'half_step', 'embedded'"
+   character(len=*), parameter :: step_control_words = "'auto', 'error', 'fixed', 'half_step', " &
+      // "'embedded'"
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
@@ -46,7 +47,12 @@ module gapbeam_settings
 
    !> Time integration settings.
    type :: solver_settings_t
-      character(len=24) :: method = 'newmark'         !! integrator
+      !> integrator: 'auto' takes the exact integrator when every stop is piecewise linear
+      !> (bilinear), else 'newmark' with error control at `tolerance`
+      character(len=24) :: method = 'auto'
+      !> relative accuracy asked of every error-controlled method (local error per forcing
+      !> period of the root strain, the tip and contact displacements, relative to their ranges)
+      real(dp) :: tolerance = 1.0e-4_dp
       real(dp) :: newmark_delta = 0.5_dp              !! Newmark delta (gamma in other texts) [-]
       real(dp) :: newmark_alpha = 0.25_dp             !! Newmark alpha (beta in other texts) [-]
       real(dp) :: hht_alpha = -0.05_dp                !! HHT alpha in [-1/3, 0] [-]
@@ -57,7 +63,10 @@ module gapbeam_settings
       character(len=16) :: stop_solution = 'condensed'   !! 'condensed' or 'fixed_point'
       real(dp) :: fp_tolerance = 1.0e-6_dp            !! fixed point: relative change of F_NL [-]
       integer  :: fp_max_iterations = 50              !! fixed point: iterations before a halving
-      character(len=16) :: step_control = 'half_step' !! 'fixed' or 'half_step'
+      !> 'auto' ('error' for the Newmark family, HHT, generalized-alpha and rk45, 'fixed' for
+      !> central_difference and rk4), 'error' (local error estimate against `tolerance`),
+      !> 'fixed', 'half_step' (the paper's residual rule), 'embedded' (rk45: same as 'error')
+      character(len=16) :: step_control = 'auto'
       integer  :: steps_per_period = 256              !! largest step = T / steps_per_period
       real(dp) :: half_step_tolerance = 0.01_dp       !! residual / largest force term per dof [-]
       real(dp) :: residual_floor = 1.0e-3_dp          !! force scale floor / the largest scale [-]

@@ -38,9 +38,11 @@ module gapbeam_explicit
       real(dp), allocatable :: mfac(:, :)     !! Cholesky factor of M
       real(dp), allocatable :: ku(:, :), kv(:, :)  !! stage slopes (n, 7)
       real(dp), allocatable :: ut(:), vt(:), r(:)  !! workspaces
+      real(dp), allocatable :: eu(:), ev(:)   !! rk45: embedded errors of the step
    contains
       procedure :: prepare => rk_prepare
       procedure :: step => rk_step
+      procedure :: local_error => rk_local_error
    end type runge_kutta_t
 
    ! Dormand-Prince 5(4) tableau
@@ -142,7 +144,8 @@ contains
       call factor_spd(trim(cfg%method), model%sys%m, self%mfac, err)
       if (allocated(err)) return
       if (.not. allocated(self%ku)) allocate(self%ku(model%n, 7), self%kv(model%n, 7), &
-         self%ut(model%n), self%vt(model%n), self%r(model%n))
+         self%ut(model%n), self%vt(model%n), self%r(model%n), self%eu(model%n), &
+         self%ev(model%n))
       self%dt = dt
       self%ready = .true.
    end subroutine rk_prepare
@@ -215,8 +218,10 @@ contains
             do i = 1, model%n
                eu = h * (e1 * ku(i, 1) + e3 * ku(i, 3) + e4 * ku(i, 4) + e5 * ku(i, 5) &
                     + e6 * ku(i, 6) + e7 * ku(i, 7))
+               self%eu(i) = eu
                ev = h * (e1 * kv(i, 1) + e3 * kv(i, 3) + e4 * kv(i, 4) + e5 * kv(i, 5) &
                     + e6 * kv(i, 6) + e7 * kv(i, 7))
+               self%ev(i) = ev
                sc = self%atol + self%rtol * max(abs(u(i)), abs(u1(i)))
                ratio = max(ratio, abs(eu) / sc)
                sc = self%atol + self%rtol * max(abs(v(i)), abs(v1(i)))
@@ -225,6 +230,24 @@ contains
          end if
       end associate
    end subroutine rk_step
+
+   !> rk45: the embedded (4th against 5th order) estimate of the last step's displacement error.
+   subroutine rk_local_error(self, model, s0, s1, fda, ev, coef, has)
+      class(runge_kutta_t), intent(inout) :: self      !! stepper
+      type(model_t), intent(in) :: model               !! model
+      type(state_t), intent(in) :: s0, s1              !! the step
+      real(dp), intent(out) :: fda(:)                  !! e_u / h^2
+      real(dp), intent(out) :: ev(:)                   !! the embedded velocity error
+      real(dp), intent(out) :: coef(3)                 !! [1, -1, 0]: e_u = h^2 fda, ev given
+      logical, intent(out) :: has                      !! rk45 only
+      has = self%embedded
+      coef = [1.0_dp, -1.0_dp, 0.0_dp]
+      if (has) then
+         fda = self%eu / self%dt**2;  ev = self%ev
+      else
+         fda = 0.0_dp;  ev = 0.0_dp
+      end if
+   end subroutine rk_local_error
 
    !> Stage j of an explicit Runge-Kutta step: state s0 + h sum_m aj(m) k_m at t0 + cj h,
    !> slopes into column j of ku, kv.

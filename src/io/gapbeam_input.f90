@@ -691,17 +691,20 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=24) :: method, stop_solution, step_control, linear_solver
       real(dp) :: newmark_delta, newmark_alpha, fp_tolerance, half_step_tolerance, &
-         residual_floor, grow_ratio, hht_alpha, rho_infinity, rk_rtol, rk_atol, energy_bound
+         residual_floor, grow_ratio, hht_alpha, rho_infinity, rk_rtol, rk_atol, energy_bound, &
+         tolerance
+      real(dp), parameter :: unset = -huge(1.0_dp)
       integer :: fp_max_iterations, steps_per_period, max_halvings, grow_after, &
          transient_periods, record_periods
       logical :: locate_events
-      namelist /solver/ method, newmark_delta, newmark_alpha, hht_alpha, rho_infinity, rk_rtol, &
-         rk_atol, energy_bound, stop_solution, fp_tolerance, &
+      namelist /solver/ method, tolerance, newmark_delta, newmark_alpha, hht_alpha, &
+         rho_infinity, rk_rtol, rk_atol, energy_bound, stop_solution, fp_tolerance, &
          fp_max_iterations, step_control, steps_per_period, half_step_tolerance, &
          residual_floor, max_halvings, grow_after, grow_ratio, locate_events, linear_solver, &
          transient_periods, record_periods
       method = cfg%method;  newmark_delta = cfg%newmark_delta;  newmark_alpha = cfg%newmark_alpha
-      hht_alpha = cfg%hht_alpha;  rho_infinity = cfg%rho_infinity;  rk_rtol = cfg%rk_rtol
+      tolerance = unset;  rk_rtol = unset    ! not given (rk_rtol stands in for tolerance)
+      hht_alpha = cfg%hht_alpha;  rho_infinity = cfg%rho_infinity
       rk_atol = cfg%rk_atol;  energy_bound = cfg%energy_bound
       stop_solution = cfg%stop_solution;  fp_tolerance = cfg%fp_tolerance
       fp_max_iterations = cfg%fp_max_iterations;  step_control = cfg%step_control
@@ -710,13 +713,18 @@ contains
       grow_after = cfg%grow_after;  grow_ratio = cfg%grow_ratio
       locate_events = cfg%locate_events;  linear_solver = cfg%linear_solver
       transient_periods = cfg%transient_periods;  record_periods = cfg%record_periods
-      call apply_group(srcs, 'solver', 'method newmark_delta newmark_alpha hht_alpha ' &
+      call apply_group(srcs, 'solver', 'method tolerance newmark_delta newmark_alpha hht_alpha ' &
          // 'rho_infinity rk_rtol rk_atol energy_bound stop_solution ' &
          // 'fp_tolerance fp_max_iterations step_control steps_per_period ' &
          // 'half_step_tolerance residual_floor max_halvings grow_after grow_ratio ' &
          // 'locate_events linear_solver transient_periods record_periods', reader, err)
       if (allocated(err)) return
+      ! rk_rtol (the rk45 tolerance before `tolerance` existed) sets tolerance for rk45 decks
+      if (tolerance == unset .and. rk_rtol /= unset .and. method == 'rk45') tolerance = rk_rtol
+      if (tolerance == unset) tolerance = cfg%tolerance
+      if (rk_rtol == unset) rk_rtol = cfg%rk_rtol
       call require_word('solver', 'method', method, method_words, err)
+      call require_range('solver', 'tolerance', tolerance, 1.0e-12_dp, 0.5_dp, err)
       call require_range('solver', 'newmark_delta', newmark_delta, 0.5_dp, 1.0_dp, err)
       call require_range('solver', 'newmark_alpha', newmark_alpha, 1.0e-3_dp, 1.0_dp, err)
       call require_range('solver', 'hht_alpha', hht_alpha, -1.0_dp / 3.0_dp, 0.0_dp, err)
@@ -741,21 +749,26 @@ contains
       if (allocated(err)) return
       ! combinations of method and step control
       select case (method)
-      case ('newmark', 'hht', 'generalized_alpha')
+      case ('auto', 'newmark', 'hht', 'generalized_alpha')
          if (step_control == 'embedded') call fatal_error(err, "group &solver: step_control = " &
-            // "'embedded' needs method = 'rk45' (the implicit methods use 'fixed' or " &
-            // "'half_step')")
-         if (method /= 'newmark' .and. stop_solution == 'fixed_point') call fatal_error(err, &
+            // "'embedded' needs method = 'rk45' (the implicit methods use 'auto', 'error', " &
+            // "'fixed' or 'half_step')")
+         if (method /= 'newmark' .and. method /= 'auto' .and. step_control == 'half_step') &
+            call fatal_error(err, &
+            "group &solver: step_control = 'half_step' is the Newmark residual rule (method = " &
+            // "'newmark'); method = '" // trim(method) // "' uses 'auto', 'error' or 'fixed'")
+         if (method /= 'newmark' .and. method /= 'auto' .and. stop_solution == 'fixed_point') &
+            call fatal_error(err, &
             "group &solver: stop_solution = 'fixed_point' is the Newmark solver's (method = " &
             // "'newmark'); method = '" // trim(method) // "' uses the condensed solution")
       case ('rk45')
-         if (step_control /= 'embedded') call fatal_error(err, "group &solver: method = 'rk45' " &
-            // "needs step_control = 'embedded' (its own error estimate), got '" &
-            // trim(step_control) // "'")
+         if (step_control == 'fixed' .or. step_control == 'half_step') call fatal_error(err, &
+            "group &solver: method = 'rk45' runs with its own error estimate (step_control = " &
+            // "'auto', 'error' or 'embedded'), got '" // trim(step_control) // "'")
       case ('central_difference', 'rk4')
-         if (step_control /= 'fixed') call fatal_error(err, "group &solver: method = '" &
-            // trim(method) // "' runs with step_control = 'fixed', got '" // trim(step_control) &
-            // "'")
+         if (step_control /= 'fixed' .and. step_control /= 'auto') call fatal_error(err, &
+            "group &solver: method = '" // trim(method) // "' runs with step_control = " &
+            // "'fixed' (or 'auto'), got '" // trim(step_control) // "'")
       end select
       if (allocated(err)) return
       ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings)
@@ -767,7 +780,7 @@ contains
             // 'be below 2**62; lower max_halvings or steps_per_period')
          return
       end if
-      cfg = solver_settings_t(method=method, newmark_delta=newmark_delta, &
+      cfg = solver_settings_t(method=method, tolerance=tolerance, newmark_delta=newmark_delta, &
          newmark_alpha=newmark_alpha, hht_alpha=hht_alpha, rho_infinity=rho_infinity, &
          rk_rtol=rk_rtol, rk_atol=rk_atol, energy_bound=energy_bound, &
          stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
