@@ -44,7 +44,9 @@ module gapbeam_results
       integer(int64) :: events = 0                  !! steps split at a contact event
       integer(int64) :: factorizations = 0          !! Kbar factorizations
       integer(int64) :: fp_iterations = 0           !! fixed-point iterations
-      real(dp) :: cpu_seconds = 0.0_dp              !! elapsed time of the run [s]
+      real(dp) :: cpu_seconds = 0.0_dp              !! CPU time of the run (its thread) [s]
+      real(dp) :: wall_seconds = 0.0_dp             !! elapsed time of the run [s]
+      real(dp) :: setup_seconds = 0.0_dp            !! CPU time of the model's set-up [s]
       real(dp) :: dt_smallest = 0.0_dp              !! smallest step used [s]
       real(dp) :: dt_largest = 0.0_dp               !! largest step used [s]
       integer, allocatable :: n_impacts(:)          !! per stop: contact onsets in the record

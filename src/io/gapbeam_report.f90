@@ -160,6 +160,10 @@ contains
       call h5%write('/run/fixed_point_iterations', int(res%fp_iterations), '-', err)
       if (failed()) return
       call h5%write('/run/cpu_seconds', res%cpu_seconds, 's', err);  if (failed()) return
+      call h5%write('/run/wall_seconds', res%wall_seconds, 's', err);  if (failed()) return
+      call h5%write('/run/setup_seconds', res%setup_seconds, 's', err);  if (failed()) return
+      call h5%write_text('/run/method', res%method, err);  if (failed()) return
+      call h5%write_text('/run/method_reason', res%method_reason, err);  if (failed()) return
       call h5%write('/run/dt_smallest', res%dt_smallest, 's', err);  if (failed()) return
       call h5%write('/run/dt_largest', res%dt_largest, 's', err);  if (failed()) return
       call h5%write('/model/stop_stiffness', model%stop_stiffness, 'N/m', err)

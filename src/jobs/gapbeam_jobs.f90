@@ -16,6 +16,7 @@ module gapbeam_jobs
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_transient, only: integrate
+   use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
@@ -230,10 +231,13 @@ contains
       type(transient_result_t) :: res
       type(point_result_t) :: diag
       real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: setup
       integer :: j
       call describe_structure(dk%structure)
+      setup = thread_cpu_seconds()
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
+      setup = thread_cpu_seconds() - setup
       if (dk%reduction%kind == 'modal') write(output_unit, '(a)') 'model: modal, ' &
          // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
          '                    ', dk%reduction%static_correction)) // ': ' // str(model%n) &
@@ -258,7 +262,10 @@ contains
          // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations'
       if (dk%solver%stop_solution == 'fixed_point') write(output_unit, '(a)') &
          'fixed-point iterations: ' // str(int(res%fp_iterations))
-      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s'
+      write(output_unit, '(a)') 'method: ' // res%method // ' (' // res%method_reason // ')'
+      res%setup_seconds = setup
+      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s, wall ' &
+         // str(res%wall_seconds) // ' s (set-up: ' // str(setup) // ' s cpu)'
       do j = 1, model%n_stops
          write(output_unit, '(a)') 'stop ' // str(j) // ': ' // str(res%n_impacts(j)) &
             // ' impacts in ' // str(dk%solver%record_periods) // ' periods, peak force ' &
