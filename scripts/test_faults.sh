@@ -217,9 +217,14 @@ expect_clean_error 'sweep n_frequency=100000000: an error within 10 s and 1 GiB 
    sweep n_frequency
 
 new_case; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
-   '&solver transient_periods=2147483647, record_periods=2147483647, steps_per_period=100000000, max_halvings=40 /'
+   '&solver transient_periods=2147483647, record_periods=100000000, steps_per_period=100000000, max_halvings=40 /'
 expect_clean_error 'transient_periods + record_periods overflow is an error (today: the 2**62 tick check passes)' \
    solver transient_periods
+
+new_case; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
+   '&solver record_periods=2147483647 /'
+expect_clean_error 'record_periods=2147483647 is refused before any allocation' \
+   solver record_periods
 
 new_case; run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "$(out_override out)" \
    '&beam thickness=1.0e308 /'
