@@ -12,7 +12,7 @@ program main
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
-   use gapbeam_files, only: make_parent_directory
+   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
       run_stability, run_model_size
@@ -31,6 +31,7 @@ program main
    logical :: complete
 
    if (serial_blas()) continue     ! results must not depend on BLAS threads
+   call ignore_file_size_signal()  ! past `ulimit -f` a write fails (and is reported), no kill
    n_args = command_argument_count()
    if (n_args < 1) then
       write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'
@@ -198,7 +199,10 @@ contains
       end if
       call take_lock('merge', out, held)
       call merge_sweep(out, args(2:), .true., e)
-      if (allocated(e)) call fail('merge', e%message, held)
+      if (allocated(e)) then
+         if (index(e%message, 'gapbeam merge: ') /= 1) e%message = 'gapbeam merge: ' // e%message
+         call fail('merge', e%message, held)
+      end if
       call release_lock(held)
       write(output_unit, '(a)') 'merged ' // str(size(args) - 1) // ' shard files into ' &
          // out // '.h5'

@@ -18,7 +18,7 @@ module gapbeam_checkpoint
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_results, only: point_result_t
-   use gapbeam_files, only: remove_file, file_exists
+   use gapbeam_files, only: remove_file, file_exists, file_size
    implicit none
    private
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
@@ -75,6 +75,12 @@ contains
             return
          end if
          inquire(unit=ck%unit, pos=ck%next_pos)
+         if (file_size(path) /= ck%next_pos - 1) then
+            close(ck%unit, status='delete')
+            ck%unit = -1
+            call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // path // ' (is the ' &
+               // 'disk full?)')
+         end if
          return
       end if
       open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='old', &
@@ -215,6 +221,13 @@ contains
          return
       end if
       inquire(unit=ck%unit, pos=ck%next_pos)
+      ! gfortran reports no error when the disk is full: the size on disk tells
+      if (file_size(ck%path) /= ck%next_pos - 1) then
+         call fatal_error(err, 'gapbeam_checkpoint: cannot write to ' // ck%path // ' (point ' &
+            // str(p) // '): only ' // str_int64(file_size(ck%path)) // ' of ' &
+            // str_int64(ck%next_pos - 1) // ' bytes are stored (a full disk?); the ' &
+            // 'points recorded before are kept')
+      end if
    end subroutine checkpoint_append
 
    !> Close the checkpoint, and delete it when the sweep is complete.

@@ -22,15 +22,16 @@
 !>
 !> Serial HDF5 is not thread-safe: use writers and readers from one thread at a time (outside
 !> OpenMP parallel regions, or inside one named critical section). The library is initialised
-!> on first use and shut down by HDF5 itself at program exit, never by this module, so several
-!> files can be written and read in one program, one after another or at the same time.
+!> on first use, without HDF5's clean-up at program exit (which crashes after a close failed
+!> on a full disk), and never shut down by this module, so several files can be written and
+!> read in one program, one after another or at the same time; every file must be closed.
 module gapbeam_hdf5_output
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_files, only: rename_file, remove_file
-   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5iis_valid_f, &
-      h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
+   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, &
+      h5iis_valid_f, h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
       h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, &
       h5pcreate_f, h5pclose_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, H5F_CLOSE_STRONG_F, &
       h5gcreate_f, h5gclose_f, h5lexists_f, h5oopen_f, h5oclose_f, &
@@ -1238,7 +1239,13 @@ contains
          if (status /= 0) ready = .false.
       end if
       hdferr = 0
-      if (.not. ready) call h5open_f(hdferr)
+      if (.not. ready) then
+         ! no clean-up at exit: after a failed close (a full disk) HDF5's exit handler tries the
+         ! file again and crashes (SIGSEGV after the error message was written). Every file
+         ! is closed (or aborted) by its writer or reader, so there is nothing left to clean.
+         call h5dont_atexit_f(status)        ! fails harmlessly once the library is running
+         call h5open_f(hdferr)
+      end if
       if (hdferr /= 0) return
       call h5eset_auto_f(0, hdferr)
    end subroutine library_open
