@@ -121,27 +121,27 @@ contains
          end if
       end do
 
-      call read_job(srcs, deck%job, err);              if (failed()) return
-      call read_beam(srcs, deck%structure%beam, err);  if (failed()) return
-      call read_root(srcs, deck%structure%root, err);  if (failed()) return
+      call read_job(srcs, deck%job, err);              if (failed(err, path)) return
+      call read_beam(srcs, deck%structure%beam, err);  if (failed(err, path)) return
+      call read_root(srcs, deck%structure%root, err);  if (failed(err, path)) return
       call read_springs(srcs, deck%structure%beam%n_elem, deck%structure%root, &
-                        deck%structure%springs, err);  if (failed()) return
+                        deck%structure%springs, err);  if (failed(err, path)) return
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
-      if (failed()) return
-      call read_modes(srcs, deck%n_print_modes, err);  if (failed()) return
-      call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed()) return
-      call read_stops(srcs, deck%structure, deck%stops, err);  if (failed()) return
-      call read_damping(srcs, deck%damping, err);  if (failed()) return
-      call read_forcing(srcs, deck%forcing, err);  if (failed()) return
-      call read_solver(srcs, deck%solver, err);  if (failed()) return
-      call read_initial(srcs, deck%structure, deck%initial, err);  if (failed()) return
-      call read_output(srcs, deck%output, err);  if (failed()) return
-      call read_diagnostics(srcs, deck%diagnostics, err);  if (failed()) return
-      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed()) return
-      call read_study(srcs, deck%study, err);  if (failed()) return
-      call read_model_size(srcs, deck%model_size, err);  if (failed()) return
-      call read_reduction(srcs, deck%reduction, err);  if (failed()) return
-      call check_sizes(deck, err);  if (failed()) return
+      if (failed(err, path)) return
+      call read_modes(srcs, deck%n_print_modes, err);  if (failed(err, path)) return
+      call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
+      call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
+      call read_damping(srcs, deck%damping, err);  if (failed(err, path)) return
+      call read_forcing(srcs, deck%forcing, err);  if (failed(err, path)) return
+      call read_solver(srcs, deck%solver, err);  if (failed(err, path)) return
+      call read_initial(srcs, deck%structure, deck%initial, err);  if (failed(err, path)) return
+      call read_output(srcs, deck%output, err);  if (failed(err, path)) return
+      call read_diagnostics(srcs, deck%diagnostics, err);  if (failed(err, path)) return
+      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed(err, path)) return
+      call read_study(srcs, deck%study, err);  if (failed(err, path)) return
+      call read_model_size(srcs, deck%model_size, err);  if (failed(err, path)) return
+      call read_reduction(srcs, deck%reduction, err);  if (failed(err, path)) return
+      call check_sizes(deck, err);  if (failed(err, path)) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
@@ -161,16 +161,17 @@ contains
             // 'the frequencies and amplitudes to sweep')
          return
       end if
-
-   contains
-
-      logical function failed()
-         failed = allocated(err)
-         if (failed) then
-            if (index(err%message, path // ': ') /= 1) err%message = path // ': ' // err%message
-         end if
-      end function failed
    end subroutine read_deck
+
+   !> True when `err` is set; its message then starts with the deck path.
+   logical function failed(err, path)
+      type(error_t), allocatable, intent(inout) :: err   !! status of a group reader
+      character(len=*), intent(in) :: path               !! deck path as given
+      failed = allocated(err)
+      if (failed) then
+         if (index(err%message, path // ': ') /= 1) err%message = path // ': ' // err%message
+      end if
+   end function failed
 
    !> Sizes of the result arrays, counted in 64-bit integers before anything is allocated:
    !> the history of a run, and the results a sweep keeps for all its points.
