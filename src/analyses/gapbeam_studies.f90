@@ -10,6 +10,7 @@
 !> for each method, and the largest stable fixed step found by bisection with real runs on the
 !> deck's model against the theory of the conditionally stable methods.
 module gapbeam_studies
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_model, only: model_t, energy_norm
@@ -129,6 +130,9 @@ contains
             results(s)%steps(k) = real(res%steps_accepted, dp)
             results(s)%error(k) = energy_norm(model, res%u - ref%u, res%v - ref%v) / norm_ref
             results(s)%poincare_error(k) = maxval(abs(res%p_strain - ref%p_strain)) / srange
+            ! a diverged run (NaN or Inf) reaches no accuracy: it failed
+            if (.not. (ieee_is_finite(results(s)%error(k)) .and. &
+                       ieee_is_finite(results(s)%poincare_error(k)))) results(s)%status(k) = 1
          end do
       end do
    end subroutine work_precision

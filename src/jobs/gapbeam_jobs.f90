@@ -129,7 +129,12 @@ contains
       call describe_structure(dk%structure)
       call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
                                dk%calibrate%target_f1_hz, value, e)
-      if (allocated(e)) return
+      if (allocated(e)) then      ! name the deck variables the calibration starts from
+         e%message = "group &calibrate: parameter = '" // trim(dk%calibrate%parameter) &
+            // "', target_f1_hz = " // str(dk%calibrate%target_f1_hz) // ', starting from ' &
+            // start_text(dk) // ': ' // e%message
+         return
+      end if
       st = dk%structure
       select case (dk%calibrate%parameter)
       case ('root_k_theta')
@@ -148,6 +153,25 @@ contains
          // str(dk%calibrate%target_f1_hz) // ' Hz)'
       call write_calibration(dk, value, units, f1, e)
    end subroutine run_calibrate
+
+   !> The deck variable a calibration starts from, with its value ('&beam width = 0.01').
+   function start_text(dk) result(t)
+      type(deck_t), intent(in) :: dk                   !! the deck
+      character(len=:), allocatable :: t
+      select case (dk%calibrate%parameter)
+      case ('root_k_theta')
+         t = '&root k_theta = ' // str(dk%structure%root%k_theta)
+      case ('spring')
+         t = '&springs stiffness(' // str(dk%calibrate%index) // ') = ' &
+            // str(dk%structure%springs(dk%calibrate%index)%stiffness)
+      case ('thickness')
+         t = '&beam thickness = ' // str(dk%structure%beam%thickness)
+      case ('width')
+         t = '&beam width = ' // str(dk%structure%beam%width)
+      case default
+         t = 'the deck'
+      end select
+   end function start_text
 
    subroutine run_work_precision(dk, e)
       type(deck_t), intent(in) :: dk
