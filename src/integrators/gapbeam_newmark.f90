@@ -37,6 +37,8 @@ module gapbeam_newmark
       real(dp) :: dt = 0.0_dp                    !! step size [s]
       type(newmark_constants_t) :: c             !! step constants
       real(dp), allocatable :: am(:, :)          !! dense: Kbar^-1 M
+      real(dp), allocatable :: kinv(:, :)        !! dense: Kbar^-1 (LAPACK's call overhead
+                                                 !! exceeds the work of a solve at this size)
       real(dp), allocatable :: fac(:, :)         !! dense Cholesky factor of Kbar (upper)
       real(dp), allocatable :: fab(:, :)         !! banded Cholesky factor of Kbar (upper)
       real(dp), allocatable :: gp(:)             !! Kbar^-1 q
@@ -189,9 +191,11 @@ contains
       type(step_op_t), intent(in) :: op        !! step operator
       real(dp), intent(inout) :: x(:)          !! right-hand side, then solution
       integer :: n, info
+      real(dp) :: y(size(x))
       n = model%n
       if (op%dense) then
-         call dpotrs('U', n, 1, op%fac, n, x, n, info)
+         y = x
+         call dense_matvec(n, op%kinv, y, x)
       else
          call band_solve(n, model%sys%kd, op%fab, x)
       end if
@@ -214,8 +218,12 @@ contains
       logical, intent(out) :: has                      !! an estimate is given
       has = .true.
       self%y = s1%a - s0%a
-      call sym_matvec(self%op%dense, model%sys%kd, model%sys%m, model%sys%m_band, self%y, fda)
-      call kbar_solve(model, self%op, fda)
+      if (self%op%dense) then
+         call dense_matvec(model%n, self%op%am, self%y, fda)     ! Kbar^-1 M (a1 - a0)
+      else
+         call sym_matvec(.false., model%sys%kd, model%sys%m, model%sys%m_band, self%y, fda)
+         call kbar_solve(model, self%op, fda)
+      end if
       fda = fda / (self%alpha * self%dt**2)
       ev = 0.0_dp
       coef = [self%alpha - 1.0_dp / 6.0_dp, self%delta - 0.5_dp, 0.5_dp * self%delta &
@@ -266,6 +274,12 @@ contains
          call dpotrs('U', n, 1 + ns, op%fac, n, rhs, n, info)
          op%am = model%sys%m
          call dpotrs('U', n, n, op%fac, n, op%am, n, info)
+         if (allocated(op%kinv)) deallocate(op%kinv)
+         allocate(op%kinv(n, n), source=0.0_dp)
+         do j = 1, n
+            op%kinv(j, j) = 1.0_dp
+         end do
+         call dpotrs('U', n, n, op%fac, n, op%kinv, n, info)
          if (allocated(op%fab)) deallocate(op%fab)
       else
          call dense_to_band(kbar, kd, op%fab)

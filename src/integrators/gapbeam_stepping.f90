@@ -78,6 +78,7 @@ module gapbeam_stepping
       real(dp) :: tolerance = 0.0_dp                  !! relative accuracy asked [-]
       real(dp) :: h_max = 0.0_dp                      !! largest step [s]
       integer :: n_levels = 0                         !! step sizes h_max 2^(-L/2), L = 0..
+      real(dp), allocatable :: h_lev(:)               !! (0:n_levels-1) those sizes [s]
       integer, allocatable :: out_dof(:)              !! outputs watched: tip and contact dofs
       !> ranges and floors of the watched outputs: root strain, the out_dof displacements,
       !> then root strain rate and the out_dof velocities
@@ -567,6 +568,11 @@ contains
       self%order = merge(4, 2, cfg%method == 'rk45')
       self%h_max = self%period / 16.0_dp
       self%n_levels = 2 * cfg%max_halvings + 9
+      if (allocated(self%h_lev)) deallocate(self%h_lev)
+      allocate(self%h_lev(0:self%n_levels - 1))
+      do c = 0, self%n_levels - 1
+         self%h_lev(c) = self%h_max * 2.0_dp**(-0.5_dp * c)
+      end do
       allocate(self%fda(model%n), self%ev(model%n), self%eu(model%n), self%fda_prev(model%n), &
                source=0.0_dp)
       self%out_dof = [integer ::]
@@ -659,7 +665,7 @@ contains
       t0 = self%sub(self%ix(0))%t
       do
          r = 0.0_dp
-         h = self%h_max * 2.0_dp**(-0.5_dp * level)
+         h = self%h_lev(level)
          if (t0 + h > t_stop - 1.0e-9_dp * h) then
             h = t_stop - t0
             call self%scratch%prepare(self%model, self%cfg, h, err)
@@ -691,8 +697,7 @@ contains
             end if
          end if
          if (ok) then
-            if (event .or. h < self%h_max * 2.0_dp**(-0.5_dp * level) * (1.0_dp - 1.0e-9_dp)) &
-               then
+            if (event .or. h < self%h_lev(level) * (1.0_dp - 1.0e-9_dp)) then
                call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
             else

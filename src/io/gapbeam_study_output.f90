@@ -16,38 +16,43 @@ module gapbeam_study_output
 
 contains
 
-   !> Summary: per series the time to reach 1e-3 and 1e-6 and the ratio to the reference series.
+   !> Summary: per series the CPU time to reach output errors of 1e-2, 1e-3, 1e-6 and 1e-9
+   !> and the ratio to the reference series.
    function work_precision_summary(results, reference) result(text)
       type(series_result_t), intent(in) :: results(:)   !! series
       character(len=*), intent(in) :: reference          !! series the ratios refer to
       character(len=:), allocatable :: text
       integer :: s, j, r
       real(dp) :: t, tr
-      character(len=120) :: line
-      real(dp), parameter :: levels(2) = [1.0e-3_dp, 1.0e-6_dp]
+      character(len=200) :: line
+      real(dp), parameter :: levels(4) = [1.0e-2_dp, 1.0e-3_dp, 1.0e-6_dp, 1.0e-9_dp]
       r = 0
       do s = 1, size(results)
          if (results(s)%name == reference) r = s
       end do
-      text = 'time to reach a relative final-state error (log-log interpolation between runs);' &
-         // new_line('a') // 'ratio: time / time of ' // reference // '; failed: every run ' &
-         // 'of the series failed or diverged (non-finite error)' // new_line('a') &
-         // '  series                      t(1e-3) [s]   ratio    t(1e-6) [s]   ratio' &
+      text = 'CPU time to reach an output error (the largest error of the root strain, its ' &
+         // 'rate and the tip' // new_line('a') // 'displacement over the sampled history, ' &
+         // 'relative to their ranges; log-log interpolation between runs);' // new_line('a') &
+         // 'ratio: time / time of ' // reference // '; failed: every run of the series ' &
+         // 'failed or diverged' // new_line('a') // '  series                   ' &
+         // '     t(1e-2) [s]  ratio   t(1e-3) [s]  ratio   t(1e-6) [s]  ratio   t(1e-9) [s]  ratio' &
          // new_line('a')
       do s = 1, size(results)
          write(line, '(2x, a24)') results(s)%name
-         do j = 1, 2
-            t = cpu_to_reach(results(s), levels(j))
+         do j = 1, size(levels)
+            t = cpu_to_reach(results(s), levels(j), output=.true.)
             tr = -1.0_dp
-            if (r > 0) tr = cpu_to_reach(results(r), levels(j))
+            if (r > 0) tr = cpu_to_reach(results(r), levels(j), output=.true.)
             if (all(results(s)%status /= 0)) then
-               line = trim(line) // '           failed      -   '
+               line = trim(line) // '         failed      -'
             else if (t < 0.0_dp) then
-               line = trim(line) // '      not reached      -   '
+               line = trim(line) // '    not reached      -'
+            else if (tr > 0.0_dp .and. t / tr < 999.5_dp) then
+               write(line(len_trim(line) + 1:), '(es14.3, f7.1)') t, t / tr
             else if (tr > 0.0_dp) then
-               write(line(len_trim(line) + 1:), '(es15.3, f9.2)') t, t / tr
+               write(line(len_trim(line) + 1:), '(es14.3, es7.0)') t, t / tr
             else
-               write(line(len_trim(line) + 1:), '(es15.3, a9)') t, '-'
+               write(line(len_trim(line) + 1:), '(es14.3, a7)') t, '-'
             end if
          end do
          text = text // trim(line) // new_line('a')
@@ -78,8 +83,10 @@ contains
       do s = 1, size(results)
          if (allocated(err)) exit
          call write_table(set%temp(1 + s), title // ': ' // results(s)%name, &
-            [character(len=16) :: 'seconds', 'error', 'poincare_error', 'steps', 'parameter'], &
-            [character(len=16) :: 's', '-', '-', '-', results(s)%parameter_name], &
+            [character(len=18) :: 'seconds', 'error', 'poincare_error', 'steps', 'parameter', &
+            'output_error', 'strain_error', 'strain_rate_error', 'tip_error'], &
+            [character(len=18) :: 's', '-', '-', '-', results(s)%parameter_name, '-', '-', '-', &
+            '-'], &
             ok_rows(results(s)), err, in_place=.true.)
       end do
       if (.not. allocated(err)) call write_text_file(set%temp(set%size()), title &
@@ -113,6 +120,14 @@ contains
          if (write_failed(h5, err)) return
          call h5%write(g // '/steps', results(s)%steps, '-', err)
          if (write_failed(h5, err)) return
+         call h5%write(g // '/output_error', results(s)%output_error, '-', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/strain_error', [results(s)%output_errors(1, :)], '-', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/strain_rate_error', [results(s)%output_errors(2, :)], '-', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/tip_error', [results(s)%output_errors(3, :)], '-', err)
+         if (write_failed(h5, err)) return
          call h5%write(g // '/status', results(s)%status, '0: done, 1: failed (an error, or ' &
             // 'a diverged run: non-finite error)', err)
          if (write_failed(h5, err)) return
@@ -121,6 +136,15 @@ contains
          if (write_failed(h5, err)) return
          call h5%write(g // '/seconds_to_1e-6', cpu_to_reach(results(s), 1.0e-6_dp), &
                        's (negative: not reached)', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-3', cpu_to_reach(results(s), 1.0e-3_dp, &
+                       .true.), 's (negative: not reached)', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-6', cpu_to_reach(results(s), 1.0e-6_dp, &
+                       .true.), 's (negative: not reached)', err)
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-9', cpu_to_reach(results(s), 1.0e-9_dp, &
+                       .true.), 's (negative: not reached)', err)
          if (write_failed(h5, err)) return
       end do
       call h5%close(err)
@@ -132,13 +156,17 @@ contains
       real(dp), allocatable :: rows(:, :)
       logical, allocatable :: keep(:)
       keep = series%status == 0 .and. ieee_is_finite(series%error) &
-             .and. ieee_is_finite(series%poincare_error)
-      allocate(rows(count(keep), 5))
+             .and. ieee_is_finite(series%poincare_error) .and. ieee_is_finite(series%output_error)
+      allocate(rows(count(keep), 9))
       rows(:, 1) = pack(series%seconds, keep)
       rows(:, 2) = pack(series%error, keep)
       rows(:, 3) = pack(series%poincare_error, keep)
       rows(:, 4) = pack(series%steps, keep)
       rows(:, 5) = pack(series%parameter, keep)
+      rows(:, 6) = pack(series%output_error, keep)
+      rows(:, 7) = pack(series%output_errors(1, :), keep)
+      rows(:, 8) = pack(series%output_errors(2, :), keep)
+      rows(:, 9) = pack(series%output_errors(3, :), keep)
    end function ok_rows
 
    !> PREFIX.h5, PREFIX.spectral_radius.dat, PREFIX.stability.txt.
