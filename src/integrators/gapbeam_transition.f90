@@ -37,7 +37,7 @@ module gapbeam_transition
    implicit none
    private
    public :: linear_parts_t, switch_log_t, setup_linear_parts, mass_dofs, state_matrix, &
-      vector_field, saltation, expm, flow_jacobian, log_segment, reduce_state
+      vector_field, saltation, expm, flow_jacobian, log_segment, reduce_state, expand_state
 
    !> The structure condensed onto its dofs with mass, as the flow of x = (u_r, v_r) needs it.
    type :: linear_parts_t
@@ -81,6 +81,17 @@ contains
       real(dp) :: x(2 * lp%nr)
       x(1:lp%nr) = u(lp%ir);  x(lp%nr + 1:) = v(lp%ir)
    end function reduce_state
+
+   !> Full (u, v) of a reduced state (massless dofs by condensation).
+   pure subroutine expand_state(lp, x, u, v)
+      type(linear_parts_t), intent(in) :: lp   !! condensed structure
+      real(dp), intent(in) :: x(:)             !! reduced state
+      real(dp), intent(out) :: u(:), v(:)      !! full displacement, velocity
+      u(lp%ir) = x(1:lp%nr);  v(lp%ir) = x(lp%nr + 1:)
+      if (lp%ns > 0) then
+         u(lp%is) = matmul(lp%t, x(1:lp%nr));  v(lp%is) = matmul(lp%t, x(lp%nr + 1:))
+      end if
+   end subroutine expand_state
 
    !> Condense the massless dofs and form M_r^-1 K_r, M_r^-1 C_r, M_r^-1 q_r, M_r^-1 e_c.
    subroutine setup_linear_parts(model, lp, err)
