@@ -1,36 +1,115 @@
-!> The attractor of a forced run: its period (from the Poincare points), its largest Lyapunov
-!> exponent and its label.
+!> The attractor of a forced run and the evidence for its label: the run itself, extended
+!> until the transient has settled; its period (from the Poincare points); its largest
+!> Lyapunov exponent, averaged until its standard error meets a target; and the label.
+!>
+!> Settling: the record is cut into windows whose statistics (gapbeam_diagnostics) are
+!> compared; while they differ by more than `settle_tolerance` of the orbit size the run goes
+!> on for another record (the transient grows by record_periods) up to `transient_max_periods`;
+!> a run that never settles is labelled 'unsettled'. A settled run with a confidently negative
+!> exponent but no period yet (a weakly stable orbit still converging) is run on for the
+!> periods its exponent says it needs to converge to the period tolerance, within the same
+!> budget.
 !>
 !> Largest Lyapunov exponent: Benettin's method with a reference and a perturbed trajectory
-!> renormalised once per forcing period.
-!>
-!> One integrator object, built once, advances both trajectories one forcing period at a time
-!> with the run's method (the trapezoidal rule for the explicit ones) and FIXED steps
-!> (T / steps_per_period, events located), or exactly, so that the two follow the same
-!> discrete map: an adaptive step sequence would differ between them and its local errors
-!> would swamp a small separation. The forcing is T-periodic, so every period starts at t = 0
-!> (the forcing phase stays exact). The separation is measured in the energy norm
-!> ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the state, and
-!> rescaled to that size after every period (both states restart there in equilibrium);
-!> lambda = sum ln(d_k / d_0) / (N T). The uncertainty is the standard error of the mean over
-!> 10 blocks of periods, and the running estimate after each period is returned to show its
-!> convergence.
+!> renormalised once per forcing period. One integrator object, built once, advances both
+!> trajectories one forcing period at a time with the run's method (the trapezoidal rule for
+!> the explicit ones) and FIXED steps (T / steps_per_period, events located), or exactly, so
+!> that the two follow the same discrete map: an adaptive step sequence would differ between
+!> them and its local errors would swamp a small separation. The forcing is T-periodic, so
+!> every period starts at t = 0 (the forcing phase stays exact). The separation is measured in
+!> the energy norm ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the
+!> state, and rescaled to that size after every period (both states restart there in
+!> equilibrium); lambda = sum ln(d_k / d_0) / (N T). The uncertainty sigma is the standard
+!> error of the mean over 10 blocks of periods. N starts at `lyapunov_periods` and grows (to
+!> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin) until
+!> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
+   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
    use gapbeam_model, only: model_t, energy_norm
    use gapbeam_state, only: state_t
-   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t, output_settings_t
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
-   use gapbeam_diagnostics, only: detect_period, classify
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_diagnostics, only: period_search, classify, window_difference
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
+   use gapbeam_transient, only: integrate
+   use gapbeam_clock, only: thread_cpu_seconds
    implicit none
    private
-   public :: largest_lyapunov, point_diagnostics
+   public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
+      transient_budget, lyapunov_budget
 
 contains
 
-   !> Period, Lyapunov exponent and label of a finished transient run.
+   !> Run from (u0, v0) until settled, then period, exponent and label with their evidence.
+   !> `res` is the final record (its history, Poincare points and impact statistics).
+   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err)
+      type(model_t), intent(in) :: model                !! model
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(output_settings_t), intent(in) :: out         !! what to record
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      real(dp), intent(in) :: u0(:), v0(:)               !! initial state
+      type(transient_result_t), intent(out) :: res       !! the final record
+      type(point_result_t), intent(inout) :: pr          !! label, evidence, statistics
+      type(error_t), allocatable, intent(out) :: err     !! solver failure
+      type(solver_settings_t) :: more
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: cpu0, tol, period
+      integer :: budget, discarded, p, n_more, run_steps
+      logical :: settled
+
+      cpu0 = thread_cpu_seconds()
+      period = 2.0_dp * pi / model%omega
+      tol = auto_period_tolerance(model, cfg, diag)
+      budget = transient_budget(cfg, diag)
+      call integrate(model, cfg, out, u0, v0, res, err)
+      if (allocated(err)) return
+      pr%method = res%method
+      run_steps = int(res%steps_accepted)
+      discarded = cfg%transient_periods
+      more = cfg
+      more%transient_periods = 0
+      ! the settling test: another record while the windows disagree
+      do
+         call label_record(res, diag, tol, pr, p, settled)
+         if (settled .or. discarded + cfg%record_periods > budget) exit
+         u = res%u;  v = res%v
+         call integrate(model, more, out, u, v, res, err)
+         if (allocated(err)) return
+         run_steps = run_steps + int(res%steps_accepted)
+         discarded = discarded + cfg%record_periods
+      end do
+      call exponent(model, cfg, diag, res%u, res%v, pr, err)
+      if (allocated(err)) return
+      ! a settled run, stable with confidence, whose orbit has not converged to a period yet:
+      ! run on for the periods its contraction rate needs (and once more a record)
+      if (settled .and. p == 0 .and. diag%lyapunov_periods > 0 .and. &
+          pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp .and. &
+          pr%repeat_distance > tol .and. pr%repeat_distance < huge(1.0_dp)) then
+         n_more = ceiling(1.5_dp * log(pr%repeat_distance / tol) / (-pr%lyapunov * period))
+         n_more = min(n_more, budget - discarded - pr%lyapunov_periods)
+         if (n_more > 0) then
+            more%transient_periods = n_more
+            u = pr%u_end;  v = pr%v_end
+            call integrate(model, more, out, u, v, res, err)
+            if (allocated(err)) return
+            run_steps = run_steps + int(res%steps_accepted)
+            discarded = discarded + pr%lyapunov_periods + n_more
+            call label_record(res, diag, tol, pr, p, settled)
+            pr%u_end = res%u;  pr%v_end = res%v
+         end if
+      end if
+      pr%transient_periods = discarded
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas, &
+                          pr%settled == 1, diag%lyapunov_periods > 0)
+      call copy_statistics(res, pr)
+      pr%steps = run_steps
+      pr%seconds_label = thread_cpu_seconds() - cpu0
+   end subroutine diagnose
+
+   !> Period, Lyapunov exponent and label of a finished transient run (no extension: the
+   !> settling test is reported, and an unsettled record is labelled so).
    subroutine point_diagnostics(model, cfg, diag, res, pr, err)
       type(model_t), intent(in) :: model                !! model at this forcing
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
@@ -38,49 +117,153 @@ contains
       type(transient_result_t), intent(in) :: res        !! the run
       type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
       type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
-      type(lyapunov_t) :: lyap
+      integer :: p
+      logical :: settled
+      call label_record(res, diag, auto_period_tolerance(model, cfg, diag), pr, p, settled)
+      call exponent(model, cfg, diag, res%u, res%v, pr, err)
+      if (allocated(err)) return
+      pr%transient_periods = cfg%transient_periods
+      pr%method = res%method
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas, &
+                          pr%settled == 1, diag%lyapunov_periods > 0)
+   end subroutine point_diagnostics
+
+   !> Period search and settling test of a record, with their evidence in pr.
+   subroutine label_record(res, diag, tol, pr, p, settled)
+      type(transient_result_t), intent(in) :: res        !! the record
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      real(dp), intent(in) :: tol                        !! period tolerance [-]
+      type(point_result_t), intent(inout) :: pr          !! evidence set
+      integer, intent(out) :: p                          !! period (0: none)
+      logical, intent(out) :: settled                    !! windows agree (or no test)
       real(dp) :: sx, sy
       sx = res%strain_max - res%strain_min
       sy = res%strain_rate_max - res%strain_rate_min
-      pr%period = detect_period(res%p_strain, res%p_strain_rate, diag%period_max, &
-                                diag%period_tolerance, diag%period_points, sx, sy)
-      pr%u_end = res%u;  pr%v_end = res%v
+      call period_search(res%p_strain, res%p_strain_rate, diag%period_max, tol, &
+         diag%period_points, sx, sy, p, pr%closest_period, pr%repeat_distance, &
+         pr%period_max_tested)
+      pr%period = p
+      pr%period_tolerance = tol
+      pr%strain_range = sx;  pr%strain_rate_range = sy
+      pr%settle_windows = 0;  pr%window_difference = 0.0_dp
+      if (diag%settle_windows >= 2 .and. size(res%p_strain) >= diag%settle_windows) then
+         pr%settle_windows = diag%settle_windows
+         pr%window_difference = window_difference(res%p_strain, res%p_strain_rate, &
+                                                  diag%settle_windows, p, sx, sy)
+      end if
+      settled = pr%window_difference <= diag%settle_tolerance
+      pr%settled = merge(1, 0, settled)
+   end subroutine label_record
+
+   !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
+   !> pr%v_end: the reference state after the exponent's periods.
+   subroutine exponent(model, cfg, diag, u, v, pr, err)
+      type(model_t), intent(in) :: model                 !! model
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      real(dp), intent(in) :: u(:), v(:)                 !! state on the attractor
+      type(point_result_t), intent(inout) :: pr          !! exponent and its evidence
+      type(error_t), allocatable, intent(out) :: err     !! solver failure
+      type(lyapunov_t) :: lyap
+      pr%u_end = u;  pr%v_end = v
+      pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
+      pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       if (diag%lyapunov_periods > 0) then
-         call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
-            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
+         call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err)
          if (allocated(err)) return
          pr%lyapunov = lyap%exponent
          pr%lyapunov_error = lyap%uncertainty
          pr%lyapunov_running = lyap%running
+         pr%lyapunov_periods = lyap%periods
+         pr%lyapunov_converged = merge(1, 0, lyap%converged)
       else
          allocate(pr%lyapunov_running(0))
       end if
-      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas)
-   end subroutine point_diagnostics
+   end subroutine exponent
 
-   !> Largest Lyapunov exponent from the state (u, v) at a period boundary.
-   subroutine largest_lyapunov(model, cfg, u, v, n_periods, perturbation, lyap, u_end, v_end, &
-                               err)
+   !> Impact statistics and Poincare points of the final record into pr.
+   subroutine copy_statistics(res, pr)
+      type(transient_result_t), intent(in) :: res     !! the record
+      type(point_result_t), intent(inout) :: pr       !! point
+      pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
+      pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
+      pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
+      pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
+   end subroutine copy_statistics
+
+   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for the
+   !> exact integrator and for fixed steps (a periodic orbit of a deterministic map repeats to
+   !> round-off), 10 x the tolerance for error control (rk_rtol for rk45), 1e-3 for the
+   !> paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
+   real(dp) function auto_period_tolerance(model, cfg, diag) result(tol)
+      type(model_t), intent(in) :: model                 !! model (its stop laws)
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
+      if (diag%period_tolerance > 0.0_dp) then
+         tol = diag%period_tolerance
+         return
+      end if
+      call resolve_method(model, cfg, eff, reason)
+      if (eff%method == 'exact' .or. eff%step_control == 'fixed') then
+         tol = 1.0e-6_dp
+      else if (eff%step_control == 'half_step') then
+         tol = 1.0e-3_dp
+      else if (eff%method == 'rk45') then
+         tol = 10.0_dp * eff%rk_rtol
+      else
+         tol = 10.0_dp * eff%tolerance
+      end if
+      tol = min(1.0e-2_dp, max(1.0e-6_dp, tol))
+   end function auto_period_tolerance
+
+   !> Most periods discarded in all: the deck's, else 10 x transient_periods (at least the
+   !> transient and one record).
+   pure integer function transient_budget(cfg, diag) result(n)
+      type(solver_settings_t), intent(in) :: cfg         !! horizon
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      if (diag%transient_max_periods > 0) then
+         n = max(diag%transient_max_periods, cfg%transient_periods)
+      else
+         n = int(min(10_int64 * cfg%transient_periods, int(huge(1), int64) / 2))
+         n = max(n, cfg%transient_periods + cfg%record_periods)
+      end if
+   end function transient_budget
+
+   !> Most periods averaged for the exponent: the deck's, else 20 x lyapunov_periods.
+   pure integer function lyapunov_budget(diag) result(n)
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      if (diag%lyapunov_max_periods > 0) then
+         n = max(diag%lyapunov_max_periods, diag%lyapunov_periods)
+      else
+         n = int(min(20_int64 * diag%lyapunov_periods, int(huge(1), int64) / 2))
+      end if
+   end function lyapunov_budget
+
+   !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
+   !> standard error meets the target of `diag` (or its most periods).
+   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
-      integer, intent(in) :: n_periods                 !! periods averaged
-      real(dp), intent(in) :: perturbation             !! initial separation, relative [-]
+      type(diagnostics_settings_t), intent(in) :: diag !! periods, targets, perturbation
       type(lyapunov_t), intent(out) :: lyap            !! result
       real(dp), allocatable, intent(out) :: u_end(:), v_end(:)  !! reference state at the end
       type(error_t), allocatable, intent(out) :: err   !! solver failure
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:)
-      real(dp) :: d0, d, period, x_norm
-      integer :: k
+      real(dp) :: d0, d, period, x_norm, target, sigma, lambda
+      integer :: k, n, n_max, n_next
 
       period = 2.0_dp * pi / model%omega
+      n_max = lyapunov_budget(diag)
       call make_integrator(model, lyapunov_settings(cfg), integ, err)
       if (allocated(err)) return
       x_norm = energy_norm(model, u, v)
       if (x_norm == 0.0_dp) x_norm = 1.0_dp
-      d0 = perturbation * x_norm
+      d0 = diag%lyapunov_perturbation * x_norm
       ! first direction: along the velocity and displacement of the reference state
       du = u;  dv = v
       d = energy_norm(model, du, dv)
@@ -88,27 +271,52 @@ contains
          du = 1.0_dp;  dv = 0.0_dp;  d = energy_norm(model, du, dv)
       end if
       ua = u;  va = v
-      allocate(lyap%running(n_periods), logs(n_periods))
-      do k = 1, n_periods
-         ! both start each period in equilibrium, so that the acceleration the methods carry
-         ! is the same function of (u, v) in both: the map compared is that of (u, v)
-         call start_state(model, 0.0_dp, ua, va, sa)
-         call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
-         call integ%advance(sa, period, err=err);  if (allocated(err)) return
-         call integ%advance(sb, period, err=err);  if (allocated(err)) return
-         ua = sa%u;  va = sa%v
-         du = sb%u - ua;  dv = sb%v - va
-         d = energy_norm(model, du, dv)
-         if (d == 0.0_dp) then
-            logs(k) = log(tiny(1.0_dp))
-            du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
+      allocate(logs(n_max))
+      k = 0
+      n = diag%lyapunov_periods
+      do
+         do while (k < n)
+            k = k + 1
+            ! both start each period in equilibrium, so that the acceleration the methods carry
+            ! is the same function of (u, v) in both: the map compared is that of (u, v)
+            call start_state(model, 0.0_dp, ua, va, sa)
+            call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
+            call integ%advance(sa, period, err=err);  if (allocated(err)) return
+            call integ%advance(sb, period, err=err);  if (allocated(err)) return
+            ua = sa%u;  va = sa%v
+            du = sb%u - ua;  dv = sb%v - va
+            d = energy_norm(model, du, dv)
+            if (d == 0.0_dp) then
+               logs(k) = log(tiny(1.0_dp))
+               du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
+            else
+               logs(k) = log(d / d0)
+            end if
+         end do
+         lambda = sum(logs(1:n)) / (real(n, dp) * period)
+         sigma = block_standard_error(logs(1:n), period)
+         target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
+         lyap%converged = sigma <= target
+         if (lyap%converged .or. n >= n_max) exit
+         ! sigma ~ 1/sqrt(N): the N that meets the target, 20 % more, whole blocks of 10
+         if (target > 0.0_dp) then
+            n_next = int(min(real(n_max, dp), 1.2_dp * real(n, dp) * (sigma / target)**2))
          else
-            logs(k) = log(d / d0)
+            n_next = n_max
          end if
-         lyap%running(k) = sum(logs(1:k)) / (real(k, dp) * period)
+         n_next = max(n_next, n + max(10, diag%lyapunov_periods / 2))
+         n_next = min(n_max, 10 * ((n_next + 9) / 10))
+         n = n_next
       end do
-      lyap%exponent = lyap%running(n_periods)
-      lyap%uncertainty = block_standard_error(logs, period)
+      lyap%periods = n
+      lyap%uncertainty = sigma
+      allocate(lyap%running(n))
+      lambda = 0.0_dp
+      do k = 1, n
+         lambda = lambda + logs(k)
+         lyap%running(k) = lambda / (real(k, dp) * period)
+      end do
+      lyap%exponent = lyap%running(n)
       u_end = ua;  v_end = va
    end subroutine largest_lyapunov
 

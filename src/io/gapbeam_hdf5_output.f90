@@ -73,10 +73,11 @@ module gapbeam_hdf5_output
       procedure, private :: write_r2 => writer_write_r2
       procedure, private :: write_i0 => writer_write_i0
       procedure, private :: write_i1 => writer_write_i1
+      procedure, private :: write_i2 => writer_write_i2
       procedure, private :: write_s1 => writer_write_s1
       !> Dataset of a real(dp) scalar / rank-1 / rank-2 array, an integer scalar / rank-1 array
       !> or a rank-1 string array, with a `units` attribute.
-      generic :: write => write_r0, write_r1, write_r2, write_i0, write_i1, write_s1
+      generic :: write => write_r0, write_r1, write_r2, write_i0, write_i1, write_i2, write_s1
       procedure :: write_attr => writer_write_attr     !! string attribute on a group or dataset
       procedure :: create_group => writer_create_group !! group and its parents, when missing
       procedure :: exists => writer_exists             !! whether a dataset or group exists
@@ -98,10 +99,11 @@ module gapbeam_hdf5_output
       procedure, private :: read_r2 => reader_read_r2
       procedure, private :: read_i0 => reader_read_i0
       procedure, private :: read_i1 => reader_read_i1
+      procedure, private :: read_i2 => reader_read_i2
       procedure, private :: read_s1 => reader_read_s1
       !> Read a real(dp) scalar / rank-1 / rank-2, an integer scalar / rank-1 or a string array
       !> dataset; arrays are allocated to the stored shape.
-      generic :: read => read_r0, read_r1, read_r2, read_i0, read_i1, read_s1
+      generic :: read => read_r0, read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
       procedure :: read_text => reader_read_text       !! scalar string dataset
       procedure :: read_units => reader_read_units     !! the `units` attribute of a dataset
       procedure :: read_attr => reader_read_attr       !! a string attribute of a group or dataset
@@ -289,6 +291,29 @@ contains
       end if
       call end_dataset(self, proc, dset_path, dset_id, units, err)
    end subroutine writer_write_i1
+
+   !> Write an integer rank-2 array (sizes 0 allowed).
+   subroutine writer_write_i2(self, dset_path, value, units, err)
+      class(h5_writer_t), intent(inout) :: self          !! writer with an open file
+      character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/sweep/starts/label'
+      integer, intent(in) :: value(:, :)                 !! values [units]
+      character(len=*), intent(in) :: units              !! units of `value`, usually '-'
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), parameter :: proc = 'write_i2'
+      integer(hid_t) :: dset_id
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr
+
+      dims = shape(value, kind=hsize_t)
+      call begin_dataset(self, proc, dset_path, H5T_NATIVE_INTEGER, dims, dset_id, err)
+      if (allocated(err)) return
+      if (size(value) > 0) then
+         call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
+            // at('dataset', dset_path, self%part_path))
+      end if
+      call end_dataset(self, proc, dset_path, dset_id, units, err)
+   end subroutine writer_write_i2
 
    !> Write a rank-1 string array (size 0 allowed) as fixed-length strings of `len(value)`.
    subroutine writer_write_s1(self, dset_path, value, units, err)
@@ -621,6 +646,31 @@ contains
       end if
       call close_dataset(proc, dset_id, dset_path, self%path, err)
    end subroutine reader_read_i1
+
+   !> Read an integer rank-2 dataset.
+   subroutine reader_read_i2(self, dset_path, value, err)
+      class(h5_reader_t), intent(in) :: self             !! reader with an open file
+      character(len=*), intent(in) :: dset_path          !! dataset, e.g. '/sweep/starts/label'
+      integer, allocatable, intent(out) :: value(:, :)   !! stored values [units attribute]
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), parameter :: proc = 'read_i2'
+      integer(hid_t) :: dset_id
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr
+
+      call open_numeric(self, proc, dset_path, H5T_INTEGER_F, dims, dset_id, err)
+      if (allocated(err)) then
+         allocate(value(0, 0))
+         return
+      end if
+      allocate(value(dims(1), dims(2)))
+      if (size(value) > 0) then
+         call h5dread_f(dset_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot read ' &
+            // at('dataset', dset_path, self%path))
+      end if
+      call close_dataset(proc, dset_id, dset_path, self%path, err)
+   end subroutine reader_read_i2
 
    !> Read a rank-1 fixed-length string dataset; NUL padding comes back as blanks.
    subroutine reader_read_s1(self, dset_path, value, err)

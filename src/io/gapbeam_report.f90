@@ -11,9 +11,14 @@ module gapbeam_report
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
-   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text
+   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text, &
+      certificate_text
    implicit none
    private
+
+   !> Units attribute of a label code.
+   character(len=*), parameter :: label_units = 'p >= 1: period p; 0: undecided; -1: ' &
+      // 'chaotic; -2: unsettled; -3: failed'
    public :: write_modes, write_transient, write_calibration, mode_shape_table
 
 contains
@@ -266,8 +271,8 @@ contains
       if (write_failed(h5, err)) return
       call h5%write('/diagnostics/period', diag%period, 'forcing periods', err)
       if (write_failed(h5, err)) return
-      call h5%write('/diagnostics/label', diag%label, 'p >= 1: period p; 0: undecided; ' &
-         // '-1: chaotic', err);  if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/label', diag%label, label_units, err)
+      if (write_failed(h5, err)) return
       call h5%write_text('/diagnostics/label_text', label_text(diag%label), err)
       if (write_failed(h5, err)) return
       call h5%write('/diagnostics/lyapunov', diag%lyapunov, '1/s', err)
@@ -276,6 +281,7 @@ contains
       if (write_failed(h5, err)) return
       call h5%write('/diagnostics/lyapunov_running', diag%lyapunov_running, '1/s', err)
       if (write_failed(h5, err)) return
+      call write_evidence(h5, diag, err);  if (write_failed(h5, err)) return
       call h5%write('/final/u', res%u, 'm, rad', err);  if (write_failed(h5, err)) return
       call h5%write('/final/v', res%v, 'm/s, rad/s', err);  if (write_failed(h5, err)) return
       call h5%write('/final/time', res%t_end, 's', err);  if (write_failed(h5, err)) return
@@ -318,4 +324,97 @@ contains
          [character(len=20) :: 'strain', 'strain_rate', 'tip_displacement', 'tip_velocity', &
          'time'], [character(len=20) :: '-', '1/s', 'm', 'm/s', 's'], cols, err, in_place=.true.)
    end subroutine write_transient_tables
+
+   !> The evidence of a transient run's label, its certificate and its starts: the
+   !> /diagnostics datasets besides period, label, lyapunov (docs/labels.md).
+   subroutine write_evidence(h5, diag, err)
+      type(h5_writer_t), intent(inout) :: h5            !! writer with an open file
+      type(point_result_t), intent(in) :: diag          !! diagnosed run
+      type(error_t), allocatable, intent(out) :: err    !! I/O failure
+      character(len=*), parameter :: g = '/diagnostics/'
+      integer :: ns
+      call h5%write(g // 'lyapunov_periods', diag%lyapunov_periods, 'forcing periods', err)
+      if (allocated(err)) return
+      call h5%write(g // 'lyapunov_converged', diag%lyapunov_converged, '1: sigma met its ' &
+         // 'target, 0: stopped at the most periods', err);  if (allocated(err)) return
+      call h5%write(g // 'period_max_tested', diag%period_max_tested, 'forcing periods', err)
+      if (allocated(err)) return
+      call h5%write(g // 'period_tolerance', diag%period_tolerance, '- (of the orbit size)', err)
+      if (allocated(err)) return
+      call h5%write(g // 'closest_period', diag%closest_period, 'forcing periods', err)
+      if (allocated(err)) return
+      call h5%write(g // 'repeat_distance', diag%repeat_distance, '- (of the orbit size)', err)
+      if (allocated(err)) return
+      call h5%write(g // 'transient_periods', diag%transient_periods, 'forcing periods', err)
+      if (allocated(err)) return
+      call h5%write(g // 'settle_windows', diag%settle_windows, '-', err)
+      if (allocated(err)) return
+      call h5%write(g // 'window_difference', diag%window_difference, '- (of the orbit size)', &
+                    err);  if (allocated(err)) return
+      call h5%write(g // 'settled', diag%settled, '1: windows agree (or no test), 0: not ' &
+         // 'settled', err);  if (allocated(err)) return
+      call h5%write(g // 'strain_range', diag%strain_range, '-', err)
+      if (allocated(err)) return
+      call h5%write(g // 'strain_rate_range', diag%strain_rate_range, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'seconds_label', diag%seconds_label, 's (CPU)', err)
+      if (allocated(err)) return
+      call h5%write(g // 'seconds_certify', diag%seconds_certify, 's (CPU)', err)
+      if (allocated(err)) return
+      call h5%write(g // 'certificate', diag%certificate, '0: none, 1: certified, 2: disputed', &
+                    err);  if (allocated(err)) return
+      call h5%write_text(g // 'certificate_text', certificate_text(diag%certificate), err)
+      if (allocated(err)) return
+      call h5%write_text(g // 'certificate_reason', text_or(diag%certificate_reason, &
+         'certification is off (&diagnostics certify = .false.)'), err)
+      if (allocated(err)) return
+      call h5%write_text(g // 'method', text_or(diag%method, ''), err)
+      if (allocated(err)) return
+      call h5%write_text(g // 'accuracy_method', text_or(diag%accuracy_method, ''), err)
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_label', diag%accuracy_label, label_units, err)
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_lyapunov', diag%accuracy_lyapunov, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_lyapunov_error', diag%accuracy_lyapunov_error, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_distance', diag%accuracy_distance, '- (of the orbit size)', &
+                    err);  if (allocated(err)) return
+      call h5%write(g // 'perturbed_label', diag%perturbed_label, label_units, err)
+      if (allocated(err)) return
+      call h5%write(g // 'perturbed_lyapunov', diag%perturbed_lyapunov, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'perturbed_lyapunov_error', diag%perturbed_lyapunov_error, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'perturbed_distance', diag%perturbed_distance, &
+                    '- (of the orbit size)', err);  if (allocated(err)) return
+      ns = 0
+      if (allocated(diag%start_label)) ns = size(diag%start_label)
+      if (ns == 0) return
+      call h5%write(g // 'starts/label', diag%start_label, label_units, err)
+      if (allocated(err)) return
+      call h5%write(g // 'starts/attractor', diag%start_attractor, 'attractor number (0: ' &
+         // 'failed)', err);  if (allocated(err)) return
+      call h5%write(g // 'starts/lyapunov', diag%start_lyapunov, '1/s', err)
+      if (allocated(err)) return
+      call h5%write(g // 'n_attractors', diag%n_attractors, '-', err)
+      if (allocated(err)) return
+      call h5%write(g // 'attractors/label', diag%attractor_label, label_units, err)
+      if (allocated(err)) return
+      call h5%write(g // 'attractors/fraction', diag%attractor_fraction, '- (of the starts)', &
+                    err);  if (allocated(err)) return
+      call h5%write(g // 'attractors/lyapunov', diag%attractor_lyapunov, '1/s', err)
+   end subroutine write_evidence
+
+   !> `t`, or `default` when t is not allocated.
+   pure function text_or(t, default) result(s)
+      character(len=:), allocatable, intent(in) :: t    !! text
+      character(len=*), intent(in) :: default           !! when absent
+      character(len=:), allocatable :: s
+      if (allocated(t)) then
+         s = t
+      else
+         s = default
+      end if
+   end function text_or
 end module gapbeam_report
