@@ -20,8 +20,9 @@
 !> the energy norm ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the
 !> state, and rescaled to that size after every period (both states restart there in
 !> equilibrium); lambda = sum ln(d_k / d_0) / (N T). The uncertainty sigma is the standard
-!> error of the mean over 10 blocks of periods. N starts at `lyapunov_periods` and grows (to
-!> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin) until
+!> error of the mean over 10 blocks of periods (whole multiples of the orbit's period when a
+!> period was found). N starts at `lyapunov_periods` and grows (to the N that sigma ~
+!> 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
@@ -31,7 +32,7 @@ module gapbeam_attractor
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t, output_settings_t
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
-   use gapbeam_diagnostics, only: period_search, classify, window_difference
+   use gapbeam_diagnostics, only: period_search, classify, window_difference, repeat_distance
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
    use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
@@ -55,8 +56,8 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! solver failure
       type(solver_settings_t) :: more
       real(dp), allocatable :: u(:), v(:)
-      real(dp) :: cpu0, tol, period
-      integer :: budget, discarded, p, n_more, run_steps
+      real(dp) :: cpu0, tol, period, rate, distance, pending
+      integer :: budget, discarded, added, p, n_more, run_steps, tries
       logical :: settled
 
       cpu0 = thread_cpu_seconds()
@@ -67,38 +68,53 @@ contains
       if (allocated(err)) return
       pr%method = res%method
       run_steps = int(res%steps_accepted)
-      discarded = cfg%transient_periods
+      discarded = cfg%transient_periods     ! periods before the final record
+      added = 0                             ! periods added to the deck's transient
       more = cfg
       more%transient_periods = 0
       ! the settling test: another record while the windows disagree
       do
-         call label_record(res, diag, tol, pr, p, settled)
-         if (settled .or. discarded + cfg%record_periods > budget) exit
+         call label_record(res, diag, tol, pr, p, settled, pending)
+         if (settled .or. cfg%transient_periods + added + cfg%record_periods > budget) exit
          u = res%u;  v = res%v
          call integrate(model, more, out, u, v, res, err)
          if (allocated(err)) return
          run_steps = run_steps + int(res%steps_accepted)
          discarded = discarded + cfg%record_periods
+         added = added + cfg%record_periods
       end do
       call exponent(model, cfg, diag, res%u, res%v, pr, err)
       if (allocated(err)) return
-      ! a settled run, stable with confidence, whose orbit has not converged to a period yet:
-      ! run on for the periods its contraction rate needs (and once more a record)
-      if (settled .and. p == 0 .and. diag%lyapunov_periods > 0 .and. &
-          pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp .and. &
-          pr%repeat_distance > tol .and. pr%repeat_distance < huge(1.0_dp)) then
-         n_more = ceiling(1.5_dp * log(pr%repeat_distance / tol) / (-pr%lyapunov * period))
-         n_more = min(n_more, budget - discarded - pr%lyapunov_periods)
-         if (n_more > 0) then
+      ! a settled run, stable with confidence, whose orbit has not converged yet (no period
+      ! within the tolerance, or a period p whose divisor d repeats nearly, within
+      ! sqrt(tolerance): an orbit of period d still losing a slowly decaying component): run
+      ! on for the periods its contraction needs (at the exponent's rate, or the slower rate
+      ! the repeat distance showed), while the distance shrinks and the budget lasts
+      if (settled .and. pending > tol .and. diag%lyapunov_periods > 0 .and. &
+          pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp) then
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         rate = -pr%lyapunov * period
+         u = pr%u_end;  v = pr%v_end
+         do tries = 1, 8
+            n_more = ceiling(1.5_dp * log(pending / tol) / rate)
+            n_more = max(1, min(n_more, budget - cfg%transient_periods - added))
+            if (budget - cfg%transient_periods - added < 1) exit
             more%transient_periods = n_more
-            u = pr%u_end;  v = pr%v_end
+            distance = pending
             call integrate(model, more, out, u, v, res, err)
             if (allocated(err)) return
             run_steps = run_steps + int(res%steps_accepted)
-            discarded = discarded + pr%lyapunov_periods + n_more
-            call label_record(res, diag, tol, pr, p, settled)
-            pr%u_end = res%u;  pr%v_end = res%v
-         end if
+            discarded = discarded + n_more
+            added = added + n_more
+            call label_record(res, diag, tol, pr, p, settled, pending)
+            u = res%u;  v = res%v
+            pr%u_end = u;  pr%v_end = v
+            if (.not. (pending > tol) .or. .not. (pending < distance)) exit
+            ! the rate the distance showed over the periods between the two records
+            rate = min(rate, log(distance / pending) / real(n_more + cfg%record_periods, dp))
+            discarded = discarded + cfg%record_periods
+            added = added + cfg%record_periods
+         end do
       end if
       pr%transient_periods = discarded
       pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas, &
@@ -128,15 +144,20 @@ contains
                           pr%settled == 1, diag%lyapunov_periods > 0)
    end subroutine point_diagnostics
 
-   !> Period search and settling test of a record, with their evidence in pr.
-   subroutine label_record(res, diag, tol, pr, p, settled)
+   !> Period search and settling test of a record, with their evidence in pr. `pending` is
+   !> the distance still to converge: the closest repeat distance when no period is found;
+   !> with a period p, the repeat distance of its largest divisor d < p that repeats within
+   !> sqrt(tol) (0 when none does).
+   subroutine label_record(res, diag, tol, pr, p, settled, pending)
       type(transient_result_t), intent(in) :: res        !! the record
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
       real(dp), intent(in) :: tol                        !! period tolerance [-]
       type(point_result_t), intent(inout) :: pr          !! evidence set
       integer, intent(out) :: p                          !! period (0: none)
       logical, intent(out) :: settled                    !! windows agree (or no test)
-      real(dp) :: sx, sy
+      real(dp), intent(out), optional :: pending         !! distance still to converge [-]
+      real(dp) :: sx, sy, dd
+      integer :: d
       sx = res%strain_max - res%strain_min
       sy = res%strain_rate_max - res%strain_rate_min
       call period_search(res%p_strain, res%p_strain_rate, diag%period_max, tol, &
@@ -153,6 +174,21 @@ contains
       end if
       settled = pr%window_difference <= diag%settle_tolerance
       pr%settled = merge(1, 0, settled)
+      if (.not. present(pending)) return
+      if (p == 0) then
+         pending = pr%repeat_distance
+         if (pending >= huge(1.0_dp)) pending = 0.0_dp
+         return
+      end if
+      pending = 0.0_dp
+      do d = p / 2, 1, -1
+         if (mod(p, d) /= 0) cycle
+         dd = repeat_distance(res%p_strain, res%p_strain_rate, d, diag%period_points, sx, sy)
+         if (dd <= sqrt(tol)) then
+            pending = dd
+            return
+         end if
+      end do
    end subroutine label_record
 
    !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
@@ -169,7 +205,8 @@ contains
       pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       if (diag%lyapunov_periods > 0) then
-         call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err)
+         call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
+                               pr%period)
          if (allocated(err)) return
          pr%lyapunov = lyap%exponent
          pr%lyapunov_error = lyap%uncertainty
@@ -243,7 +280,7 @@ contains
 
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
    !> standard error meets the target of `diag` (or its most periods).
-   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err)
+   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
@@ -251,14 +288,18 @@ contains
       type(lyapunov_t), intent(out) :: lyap            !! result
       real(dp), allocatable, intent(out) :: u_end(:), v_end(:)  !! reference state at the end
       type(error_t), allocatable, intent(out) :: err   !! solver failure
+      !> period of the orbit (0 or absent: none): blocks are whole multiples of it
+      integer, intent(in), optional :: orbit_period
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:)
       real(dp) :: d0, d, period, x_norm, target, sigma, lambda
-      integer :: k, n, n_max, n_next
+      integer :: k, n, n_max, n_next, q
 
       period = 2.0_dp * pi / model%omega
       n_max = lyapunov_budget(diag)
+      q = 1
+      if (present(orbit_period)) q = max(1, orbit_period)
       call make_integrator(model, lyapunov_settings(cfg), integ, err)
       if (allocated(err)) return
       x_norm = energy_norm(model, u, v)
@@ -294,7 +335,7 @@ contains
             end if
          end do
          lambda = sum(logs(1:n)) / (real(n, dp) * period)
-         sigma = block_standard_error(logs(1:n), period)
+         sigma = block_standard_error(logs(1:n), period, q)
          target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
          lyap%converged = sigma <= target
          if (lyap%converged .or. n >= n_max) exit
@@ -304,6 +345,8 @@ contains
          else
             n_next = n_max
          end if
+         ! at most 4 x at a time: early on, sigma also carries the 1/N start-up bias
+         n_next = min(n_next, 4 * n)
          n_next = max(n_next, n + max(10, diag%lyapunov_periods / 2))
          n_next = min(n_max, 10 * ((n_next + 9) / 10))
          n = n_next
@@ -336,14 +379,18 @@ contains
       one%locate_events = .true.
    end function lyapunov_settings
 
-   !> Standard error of the mean exponent over 10 blocks of periods [1/s].
-   pure real(dp) function block_standard_error(logs, period) result(se)
+   !> Standard error of the mean exponent over 10 blocks of periods [1/s]; with an orbit of
+   !> period q, each block is a whole number of orbit periods where the record allows (the
+   !> stretching varies along a periodic orbit, and part of a cycle would read as noise).
+   pure real(dp) function block_standard_error(logs, period, q) result(se)
       real(dp), intent(in) :: logs(:)     !! ln(d_k / d_0) per period
       real(dp), intent(in) :: period      !! forcing period [s]
+      integer, intent(in) :: q            !! orbit period (1: none)
       real(dp) :: block(10), mean, var
       integer :: nb, b, per_block
       nb = min(10, size(logs))
       per_block = size(logs) / nb
+      if (q > 1 .and. per_block >= q) per_block = (per_block / q) * q
       do b = 1, nb
          block(b) = sum(logs((b - 1) * per_block + 1:b * per_block)) / (per_block * period)
       end do

@@ -11,7 +11,7 @@ module gapbeam_diagnostics
    implicit none
    private
    public :: detect_period, period_search, classify, window_difference, orbit_distance, &
-      statistics_distance, n_statistics
+      statistics_distance, n_statistics, repeat_distance
 
    integer, parameter :: n_statistics = 10   !! mean, std, 10/50/90 % quantiles of x and y
 
@@ -99,6 +99,26 @@ contains
          end if
       end do
    end subroutine period_search
+
+   !> Repeat distance of candidate period q: the largest distance between the last
+   !> max(n_test, 2q) points (never the first q) and the points q periods earlier, relative
+   !> to the orbit size (huge when the record is shorter than q + 1 points).
+   pure real(dp) function repeat_distance(x, y, q, n_test, scale_x, scale_y) result(d)
+      real(dp), intent(in) :: x(:), y(:)     !! Poincare points
+      integer, intent(in) :: q               !! candidate period
+      integer, intent(in) :: n_test          !! points tested (at least 2q)
+      real(dp), intent(in) :: scale_x, scale_y  !! orbit size per coordinate
+      integer :: n, i
+      real(dp) :: sx, sy
+      n = size(x)
+      d = huge(1.0_dp)
+      if (n < q + 1) return
+      sx = max(scale_x, tiny(1.0_dp));  sy = max(scale_y, tiny(1.0_dp))
+      d = 0.0_dp
+      do i = max(q + 1, n - max(n_test, 2 * q) + 1), n
+         d = max(d, abs(x(i) - x(i - q)) / sx, abs(y(i) - y(i - q)) / sy)
+      end do
+   end function repeat_distance
 
    !> Largest difference between the statistics of successive windows of a record and those
    !> of its last window, relative to the orbit size (the settling test).
