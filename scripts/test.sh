@@ -10,8 +10,9 @@
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
 # scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
-# concurrent runs, corrupted checkpoints: issue 12) and scripts/test_fuzz.sh (378 mutated decks,
-# under 60 s) on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
+# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
+# under 60 s) and scripts/test_labels_cli.sh (failed sweep points: exit status 5, issue 11) on
+# the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`; PYTHONPATH=python, nothing is pip-installed). Everything goes to the
 # terminal.
@@ -142,7 +143,7 @@ if [[ -n ${gapbeam_exe} ]]; then
 fi
 count test_sweep_kill.sh "${log}" "${status}"
 
-for script in test_faults.sh test_fuzz.sh; do
+for script in test_faults.sh test_fuzz.sh test_labels_cli.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0
