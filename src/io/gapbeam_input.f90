@@ -1584,6 +1584,12 @@ contains
          axis_out = [x0]
       else if (n > 1) then
          axis_out = [(x0 + (x1 - x0) * real(k - 1, dp) / real(n - 1, dp), k = 1, n)]
+         if (.not. all(ieee_is_finite(axis_out))) then
+            call fatal_error(err, 'group &sweep: ' // c // '_start = ' // str(x0) // ', ' // c &
+               // '_end = ' // str(x1) // ': the range between them overflows (its values ' &
+               // 'must be finite)')
+            return
+         end if
       else
          axis_out = [get_deck_value(deck, var)]
       end if
@@ -1632,6 +1638,12 @@ contains
             axis_out = [x0]
          else
             axis_out = [(x0 + (x1 - x0) * real(j - 1, dp) / real(n - 1, dp), j = 1, n)]
+            if (.not. all(ieee_is_finite(axis_out))) then
+               call fatal_error(err, 'group &sweep: ' // vstart // ' = ' // str(x0) // ', ' &
+                  // vend // ' = ' // str(x1) // ': the range between them overflows (its ' &
+                  // 'values must be finite)')
+               return
+            end if
          end if
       else
          axis_out = [default]
