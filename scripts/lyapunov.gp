@@ -10,6 +10,10 @@
 # Variables: datafile (required), outfile (required, PNG), plottitle (optional),
 #   xaxis (optional): 'frequency' (default; x = column 1 [Hz]) or 'amplitude' (x = column 2
 #   in mm p-p). scripts/plot.sh picks 'amplitude' when the sweep has a single frequency.
+#   label1, label2 (optional): axis texts of columns 1 and 2 (a sweep over other deck
+#   variables; defaults: the forcing frequency [Hz] and amplitude [mm peak to peak]); scale2
+#   (optional): factor on column 2 (default 1e3).
+# Failed points (label -3, no exponent) are left out; unsettled ones (-2) are drawn as undecided.
 # A black zero line separates contraction (periodic, < 0) from divergence (chaos, > 0).
 # One line of the sweep (the other forcing variable takes one value): points coloured by the
 # program's label, chaotic red, periodic blue, undecided grey, joined by a thin grey line in
@@ -24,6 +28,9 @@ if (!exists("datafile") || !exists("outfile")) {
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: sweep" }
 if (!exists("xaxis") || strlen(xaxis) == 0) { xaxis = "frequency" }
+if (!exists("label1") || strlen(label1) == 0) { label1 = "forcing frequency [Hz]" }
+if (!exists("label2") || strlen(label2) == 0) { label2 = "forcing amplitude [mm peak to peak]" }
+if (!exists("scale2")) { scale2 = 1.0e3 }
 if (xaxis ne "frequency" && xaxis ne "amplitude") {
    print sprintf("lyapunov.gp: xaxis = '%s': expected 'frequency' or 'amplitude'", xaxis)
    exit status 1
@@ -31,8 +38,8 @@ if (xaxis ne "frequency" && xaxis ne "amplitude") {
 
 # x: frequency [Hz] or amplitude [mm p-p]; c: the other forcing variable (one curve per value).
 byfreq = (xaxis eq "frequency") ? 1 : 0
-xval(f, a) = byfreq ? f : a*1.0e3
-cval(f, a) = byfreq ? a*1.0e3 : f
+xval(f, a) = byfreq ? f : a*scale2
+cval(f, a) = byfreq ? a*scale2 : f
 
 # Distinct values of c: a datablock of "value count" rows (smooth frequency sorts and merges
 # equal values), read into a word list. Fixed wide ranges: no autoscaling warnings.
@@ -40,7 +47,7 @@ set format x "%.15g"
 set xrange [-1.0e30 : 1.0e30]
 set yrange [-1.0e30 : 1.0e30]
 set table $lyapunov_c
-plot datafile using (cval($1, $2)):(1) smooth frequency
+plot datafile using (cval($1, $2)):(($4 > -2.5) ? 1 : 1/0) smooth frequency
 unset table
 cvalues = ""
 do for [i = 1:|$lyapunov_c|] {
@@ -51,7 +58,7 @@ nc = words(cvalues)
 set autoscale
 set format x "%g"
 
-stats datafile using (xval($1, $2)):5 nooutput
+stats datafile using (xval($1, $2)):(($4 > -2.5) ? $5 : 1/0) nooutput
 npts = STATS_records
 xmin = STATS_min_x;  xmax = STATS_max_x
 stats datafile using (($4 == -1) ? 1 : 0) nooutput
@@ -71,7 +78,7 @@ if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
 set output outfile
 set title sprintf("%s\nLargest Lyapunov exponent of each of %d sweep points (%d chaotic), error bars: its standard error", \
    plottitle, npts, nchaos)
-set xlabel byfreq ? "forcing frequency [Hz]" : "forcing amplitude [mm peak to peak]"
+set xlabel byfreq ? label1 : label2
 set ylabel "largest Lyapunov exponent [1/s]"
 set format x "%g"
 set format y "%g"
@@ -87,8 +94,9 @@ set tics front
 
 if (nc <= 1) {
    unset colorbox
-   # Classes: 1 periodic (label >= 1), 2 undecided (0), 3 chaotic (-1); the key lists those present.
-   lcls(l) = (l > 0.5) ? 1 : (l > -0.5) ? 2 : 3
+   # Classes: 1 periodic (label >= 1), 2 undecided (0, -2), 3 chaotic (-1), 4 failed (-3, no
+   # exponent: not drawn); the key lists those present.
+   lcls(l) = (l > 0.5) ? 1 : (l > -0.5) ? 2 : (l > -1.5) ? 3 : (l > -2.5) ? 2 : 4
    array lname[3] = ["periodic", "undecided", "chaotic"]
    array lcolour[3] = ["#1f4e9c", "#8a8a8a", "#d62728"]
    lpresent = ""
@@ -102,7 +110,7 @@ if (nc <= 1) {
 } else {
    set palette defined (0 "#2c3e9e", 1 "#1e9bd7", 2 "#2fb36b", 3 "#e3b21b", 4 "#d73027")
    set cbrange [cmin : cmax]
-   set cblabel byfreq ? "forcing amplitude [mm peak to peak]" : "forcing frequency [Hz]"
+   set cblabel byfreq ? label2 : label1
    set colorbox vertical user origin screen 0.905, screen 0.22 size screen 0.02, screen 0.62
    set rmargin at screen 0.86
    cv(i) = real(word(cvalues, i))
