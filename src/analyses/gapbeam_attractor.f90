@@ -57,7 +57,8 @@ contains
       type(solver_settings_t) :: more
       real(dp), allocatable :: u(:), v(:)
       real(dp) :: cpu0, tol, period, rate, distance, pending
-      integer :: budget, discarded, added, p, n_more, run_steps, tries
+      real(dp), allocatable :: section(:, :)
+      integer :: budget, discarded, added, p, n_more, run_steps, tries, attempt
       logical :: settled
 
       cpu0 = thread_cpu_seconds()
@@ -72,19 +73,42 @@ contains
       added = 0                             ! periods added to the deck's transient
       more = cfg
       more%transient_periods = 0
-      ! the settling test: another record while the windows disagree
-      do
-         call label_record(res, diag, tol, pr, p, settled, pending)
-         if (settled .or. cfg%transient_periods + added + cfg%record_periods > budget) exit
-         u = res%u;  v = res%v
+      do attempt = 1, 8
+         ! the settling test: another record while the windows disagree
+         do
+            call label_record(res, diag, tol, pr, p, settled, pending)
+            if (settled .or. cfg%transient_periods + added + cfg%record_periods > budget) exit
+            u = res%u;  v = res%v
+            call integrate(model, more, out, u, v, res, err)
+            if (allocated(err)) return
+            run_steps = run_steps + int(res%steps_accepted)
+            discarded = discarded + cfg%record_periods
+            added = added + cfg%record_periods
+         end do
+         call exponent(model, cfg, diag, res%u, res%v, pr, err, section)
+         if (allocated(err)) return
+         ! the exponent's own periods (the trajectory continued) must show the same attractor:
+         ! a long chaotic transient that falls onto an orbit during them is no chaos. Their
+         ! section points (phase 0) in two windows, each at least 100 periods
+         if (.not. settled .or. diag%settle_windows < 2 .or. size(section, 2) < 200) exit
+         if (window_difference(section(1, :), section(2, :), 2, pr%period, pr%strain_range, &
+             pr%strain_rate_range) <= diag%settle_tolerance) exit
+         if (cfg%transient_periods + added + cfg%record_periods > budget) then
+            settled = .false.;  pr%settled = 0
+            exit
+         end if
+         ! the attractor changed: a new record from the exponent's end, and all again
+         u = pr%u_end;  v = pr%v_end
          call integrate(model, more, out, u, v, res, err)
          if (allocated(err)) return
          run_steps = run_steps + int(res%steps_accepted)
-         discarded = discarded + cfg%record_periods
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
          added = added + cfg%record_periods
       end do
-      call exponent(model, cfg, diag, res%u, res%v, pr, err)
-      if (allocated(err)) return
+      ! still changing after every attempt: not settled
+      if (attempt > 8) then
+         settled = .false.;  pr%settled = 0
+      end if
       ! a settled run, stable with confidence, whose orbit has not converged yet (no period
       ! within the tolerance, or a period p whose divisor d repeats nearly, within
       ! sqrt(tolerance): an orbit of period d still losing a slowly decaying component): run
@@ -193,14 +217,17 @@ contains
 
    !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
    !> pr%v_end: the reference state after the exponent's periods.
-   subroutine exponent(model, cfg, diag, u, v, pr, err)
+   subroutine exponent(model, cfg, diag, u, v, pr, err, section)
       type(model_t), intent(in) :: model                 !! model
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
       real(dp), intent(in) :: u(:), v(:)                 !! state on the attractor
       type(point_result_t), intent(inout) :: pr          !! exponent and its evidence
       type(error_t), allocatable, intent(out) :: err     !! solver failure
+      !> root strain and its rate at the end of each of the exponent's periods (2, N)
+      real(dp), allocatable, intent(out), optional :: section(:, :)
       type(lyapunov_t) :: lyap
+      if (present(section)) allocate(section(2, 0))
       pr%u_end = u;  pr%v_end = v
       pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
@@ -208,6 +235,7 @@ contains
          call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
                                pr%period)
          if (allocated(err)) return
+         if (present(section)) section = lyap%section
          pr%lyapunov = lyap%exponent
          pr%lyapunov_error = lyap%uncertainty
          pr%lyapunov_running = lyap%running
@@ -292,7 +320,7 @@ contains
       integer, intent(in), optional :: orbit_period
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
-      real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:)
+      real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
       real(dp) :: d0, d, period, x_norm, target, sigma, lambda
       integer :: k, n, n_max, n_next, q
 
@@ -312,7 +340,7 @@ contains
          du = 1.0_dp;  dv = 0.0_dp;  d = energy_norm(model, du, dv)
       end if
       ua = u;  va = v
-      allocate(logs(n_max))
+      allocate(logs(n_max), strain(2, n_max))
       k = 0
       n = diag%lyapunov_periods
       do
@@ -325,6 +353,8 @@ contains
             call integ%advance(sa, period, err=err);  if (allocated(err)) return
             call integ%advance(sb, period, err=err);  if (allocated(err)) return
             ua = sa%u;  va = sa%v
+            strain(1, k) = dot_product(model%sys%strain_row, ua)
+            strain(2, k) = dot_product(model%sys%strain_row, va)
             du = sb%u - ua;  dv = sb%v - va
             d = energy_norm(model, du, dv)
             if (d == 0.0_dp) then
@@ -352,6 +382,7 @@ contains
          n = n_next
       end do
       lyap%periods = n
+      lyap%section = strain(:, 1:n)
       lyap%uncertainty = sigma
       allocate(lyap%running(n))
       lambda = 0.0_dp

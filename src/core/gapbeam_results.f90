@@ -77,6 +77,9 @@ module gapbeam_results
       real(dp), allocatable :: running(:)        !! estimate after each period [1/s]
       integer :: periods = 0                     !! periods averaged [-]
       logical :: converged = .false.             !! the uncertainty met its target
+      !> root strain [-] and its rate [1/s] of the reference trajectory at the end of each
+      !> period (forcing phase 0): (2, periods)
+      real(dp), allocatable :: section(:, :)
    end type lyapunov_t
 
    !> Everything one point produces.
