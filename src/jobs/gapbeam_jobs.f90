@@ -17,6 +17,8 @@ module gapbeam_jobs
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
+   use gapbeam_settings, only: batch_options_t
+   use gapbeam_progress_meter, only: meter_t
    use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
@@ -248,9 +250,15 @@ contains
       call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e)
    end subroutine run_model_size
 
-   subroutine run_transient_analysis(dk, e)
+   !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)
+   !> count the forcing periods integrated: the run's, then the exponent's two trajectories.
+   subroutine run_transient_analysis(dk, e, batch)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
+      type(batch_options_t), intent(in), optional :: batch   !! progress options
+      type(batch_options_t) :: opt
+      type(meter_t) :: meter
+      real(dp) :: n_run
       type(model_t) :: model
       type(transient_result_t) :: res
       type(point_result_t) :: diag
@@ -278,8 +286,17 @@ contains
       write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
          // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
          // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
-      call integrate(model, dk%solver, dk%output, u0, v0, res, e)
-      if (allocated(e)) return
+      if (present(batch)) opt = batch
+      n_run = real(dk%solver%transient_periods, dp) + real(dk%solver%record_periods, dp)
+      call meter%start('transient', 'periods', &
+         n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
+         .not. opt%quiet, opt%progress_interval_s)
+      call integrate(model, dk%solver, dk%output, u0, v0, res, e, monitor=meter)
+      if (allocated(e)) then
+         call meter%finish(meter%done)
+         return
+      end if
+      call meter%break_line()
       write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
          // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &
          // ' split at contact events; dt from ' // str(res%dt_smallest) // ' to ' &
@@ -297,7 +314,10 @@ contains
             // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
             // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
       end do
-      call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e)
+      meter%offset = n_run
+      meter%t = -1.0_dp;  meter%dt = -1.0_dp
+      call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e, meter)
+      call meter%finish(meter%done)
       if (allocated(e)) return
       write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
          // str(diag%period) // ' found up to ' // str(dk%diagnostics%period_max) &
