@@ -88,6 +88,8 @@ module gapbeam_settings
       real(dp) :: filter_cutoff_hz = 0.0_dp     !! low-pass before Poincare sampling (0: off) [Hz]
       integer  :: filter_order = 4              !! Butterworth order of that filter [-]
       integer  :: filter_samples_per_period = 256  !! filter sampling rate / forcing frequency [-]
+      logical  :: state_history = .false.       !! keep every dof at the history samples
+      integer  :: shape_points = 8              !! points per element of the deflected shape [-]
    end type output_settings_t
 
    !> Initial state relative to the base: at rest, or given values at listed dofs.

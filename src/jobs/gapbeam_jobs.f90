@@ -7,7 +7,7 @@ module gapbeam_jobs
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
-      modal_damping_ratio
+      modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -19,6 +19,7 @@ module gapbeam_jobs
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
+   use gapbeam_parameters, only: run_parameters, parameter_set_t
    use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
@@ -114,6 +115,15 @@ contains
       end select
    end function method_text
 
+   !> The run's parameters with what the built model resolved.
+   function model_parameters(dk, model) result(p)
+      type(deck_t), intent(in) :: dk                   !! deck
+      type(model_t), intent(in) :: model               !! the model built from it
+      type(parameter_set_t) :: p
+      p = run_parameters(dk, model%stop_stiffness, model%f1_open_hz, &
+                         model%omega_max / (2.0_dp * pi), model%n)
+   end function model_parameters
+
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
       character(len=:), allocatable :: t
@@ -140,9 +150,10 @@ contains
       st = dk%structure
       select case (dk%calibrate%parameter)
       case ('root_k_theta')
-         st%root%k_theta = value;  units = 'N m/rad'
+         st%root%k_theta = value;  units = 'N m rad-1'
       case ('spring')
-         st%springs(dk%calibrate%index)%stiffness = value;  units = 'N/m or N m/rad'
+         st%springs(dk%calibrate%index)%stiffness = value
+         units = trim(merge('N m-1    ', 'N m rad-1', st%springs(dk%calibrate%index)%dof == dof_w))
       case ('thickness')
          st%beam%thickness = value;  units = 'm'
       case ('width')
@@ -191,7 +202,7 @@ contains
       if (allocated(e)) return
       write(output_unit, '(a)') work_precision_summary(results, 'newmark_half_step')
       call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                'newmark_half_step', e)
+                                'newmark_half_step', e, model_parameters(dk, model))
    end subroutine run_work_precision
 
    subroutine run_stability(dk, e)
@@ -215,7 +226,7 @@ contains
             // str(steps(k)%measured / steps(k)%theory)
       end do
       call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
-                           rho, steps, model%omega_max, e)
+                           rho, steps, model%omega_max, e, model_parameters(dk, model))
    end subroutine run_stability
 
    subroutine run_model_size(dk, e)
@@ -247,7 +258,8 @@ contains
       else
          write(output_unit, '(a)') 'recommended: none meets every tolerance'
       end if
-      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e)
+      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e, &
+                            run_parameters(dk))
    end subroutine run_model_size
 
    !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)

@@ -22,6 +22,8 @@ module gapbeam_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
+   use gapbeam_parameters, only: run_parameters
+   use gapbeam_kinds, only: pi
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -168,6 +170,8 @@ contains
       sf%shard_index = batch%shard_index
       sf%shard_count = batch%shard_count
       sf%points = sorted_points(deck%sweep, mine)
+      sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
+                                     base%omega_max / (2.0_dp * pi), base%n)
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
