@@ -141,16 +141,17 @@ contains
       if (ns > 0) then
          call set%add_list('stops/node', [(real(deck%stops(j)%node, dp), j = 1, ns)], '1', &
                            'node of each stop (1 = root)')
-         call set%add_list('stops/gap', deck%stops%gap, stop_units(deck, 'm', 'rad'), &
+         call set%add_list('stops/gap', [(deck%stops(j)%gap, j = 1, ns)], &
+                           stop_units(deck, 'm', 'rad'), &
                            'clearance of each stop (m for a w stop, rad for a theta stop)')
          if (present(stop_stiffness)) call set%add_list('stops/stiffness', stop_stiffness, &
             stiffness_units(deck), 'contact stiffness of each stop, the paper''s rule ' &
             // 'applied (N m-1 for a bilinear w stop, N m rad-1 for a theta stop, N m-p for ' &
             // 'a Hertz stop)')
-         call set%add_list('stops/damping', deck%stops%damping, &
+         call set%add_list('stops/damping', [(deck%stops(j)%damping, j = 1, ns)], &
                            stop_units(deck, 'N s m-1', 'N m s rad-1'), &
                            'contact damper of each stop, active in contact only')
-         call set%add_list('stops/exponent', deck%stops%exponent, '1', &
+         call set%add_list('stops/exponent', [(deck%stops(j)%exponent, j = 1, ns)], '1', &
                            'Hertz exponent p of each stop (bilinear stops: not used)')
          call set%add_list('stops/side', [(side_code(deck%stops(j)%side), j = 1, ns)], '1', &
                            'side of each stop: 1 positive (met moving +w), -1 negative, ' &

@@ -406,7 +406,9 @@ contains
       x = shape_points(model%sys, deck%output%shape_points)
       text = '# ' // trim(deck%job%title) // ': deflected shape relative to the base' &
          // new_line('a') // '# columns: x [m], w [m]; one block (gnuplot index) per history ' &
-         // 'sample, preceded by its time' // new_line('a')
+         // 'sample, preceded by its time' // new_line('a') // '# points per element: ' &
+         // str(deck%output%shape_points) // ' (the nodes are every ' &
+         // str(deck%output%shape_points) // 'th point from the first)' // new_line('a')
       do j = 1, size(deck%stops)
          text = text // '# stop ' // str(j) // ': x = ' // str(real(deck%stops(j)%node - 1, dp) &
             * model%sys%element_length) // ' m, dof ' // trim(merge('w    ', 'theta', &

@@ -294,8 +294,14 @@ contains
          'work_rate_stop1']
       units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
          'N', 'N', 'W']
+      ! the grid's extent in the title line, so that a shard's chart places its tiles on the
+      ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
-         // ' 0 undecided, -1 chaotic)', names, units, cols, err, in_place=.true.)
+         // ' 0 undecided, -1 chaotic); grid: ' // str(nf) // ' frequencies from ' &
+         // num(minval(sf%grid_frequency_hz)) // ' to ' // num(maxval(sf%grid_frequency_hz)) &
+         // ' Hz, ' // str(size(sf%grid_amplitude_pp)) // ' amplitudes from ' &
+         // num(minval(sf%grid_amplitude_pp)) // ' to ' // num(maxval(sf%grid_amplitude_pp)) &
+         // ' m', names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
       deallocate(cols);  allocate(cols(m * nr, 4))
       do j = 1, m
@@ -498,6 +504,15 @@ contains
          end if
       end do
    end subroutine check_merge_paths
+
+   !> A number with 17 significant digits and a decimal point, as every reader takes it.
+   function num(x) result(t)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: t
+      character(len=32) :: buf
+      write(buf, '(es24.16e3)') x
+      t = trim(adjustl(buf))
+   end function num
 
    pure function list_missing(seen) result(t)
       logical, intent(in) :: seen(:)
