@@ -39,7 +39,7 @@ xlen = STATS_max_x
 wmin = STATS_min_y;  wmax = STATS_max_y
 
 # Points per element (the nodes are every per_element-th point), from the header.
-per_element = int(system("sed -n 's/^# points per element: \\([0-9]*\\).*/\\1/p' '" . datafile . "' | head -n 1"))
+per_element = int(system("sed -n 's/^# points per element: \\([0-9]*\\).*/\\1/p' '" . datafile . "' | awk 'NR == 1'"))
 if (per_element < 1) { per_element = 8 }
 # Stops from the header: x [mm], side (+1, -1, 2 both), gap [mm] (w stops only).
 stopinfo = system("sed -n 's/^# stop [0-9]*: x = \\([^ ]*\\) m, dof w, side \\([a-z]*\\), gap \\([^ ]*\\).*/\\1 \\2 \\3/p' '" . datafile . "'")
@@ -76,7 +76,7 @@ do for [j = 1:nstops] {
    }
 }
 # The time of each block: the '# t = ...' lines, in order.
-times = system("sed -n 's/^# t = *//p' '" . datafile . "' | head -n " . nframes)
+times = system("sed -n 's/^# t = *//p' '" . datafile . "' | awk 'NR <= " . nframes . "'")
 do for [i = 0:(nframes - 1)] {
    set title sprintf("%s\nt = %.4f s (frame %d of %d); red: the stop", plottitle, real(word(times, i + 1)), i + 1, nframes)
    plot datafile index 0:i using ($1*1.0e3 >= xlen*0.999 ? $1*1.0e3 : 1/0):($2*1.0e3) \
