@@ -683,6 +683,27 @@ def check_state(c, gapbeam, path):
             not problems and len(grids) == len(res.history.time.values), str(problems[:5]))
 
 
+def check_documented(c, files):
+    """Every dataset the program wrote is documented in docs/outputs.md, as `/path` (the
+    work-precision series as `/work_precision/<series>/...`)."""
+    docs = ROOT / "docs" / "outputs.md"
+    text = docs.read_text(encoding="utf-8") if docs.exists() else ""
+    paths = set()
+    for path in files.values():
+        with h5py.File(path, "r") as f:
+            def visit(n, obj):
+                if isinstance(obj, h5py.Dataset):
+                    parts = ("/" + n).split("/")
+                    if len(parts) > 3 and parts[1] == "work_precision":
+                        parts[2] = "<series>"
+                    paths.add("/".join(parts))
+            f.visititems(visit)
+    missing = sorted(p for p in paths if "`{}`".format(p) not in text)
+    c.check("every dataset written ({} paths over every analysis) is documented in "
+            "docs/outputs.md".format(len(paths)), bool(text) and not missing,
+            "missing: {}".format(", ".join(missing[:12])))
+
+
 def run_all(c, exe):
     import gapbeam
 
@@ -720,6 +741,7 @@ def run_all(c, exe):
                 t = gapbeam.table(res.work_precision.rk45)
                 c.check("work_precision: table(rk45) has one row per level (2)",
                         t.n_rows == 2 and t.units["seconds"] == "s", repr(t))
+        check_documented(c, files)
         if "sweep_merged" in tables and "sweep_independent" in tables:
             a, b = tables["sweep_merged"], tables["sweep_independent"]
             differ = [k for k in b if k != "seconds"
