@@ -27,8 +27,9 @@ if (!exists("frames")) { frames = 192 }
 if (!exists("delay")) { delay = 4 }
 
 # Blocks (samples) in the file, the extent of x and w over the frames drawn.
-stats datafile using 1:2 nooutput
-nblocks = STATS_blocks
+# the time of each block: the '# t = ...' lines, in order (one per block)
+times = system("sed -n 's/^# t = *//p' '" . datafile . "'")
+nblocks = words(times)
 nframes = (frames < nblocks) ? int(frames) : nblocks
 if (nframes < 1) {
    print sprintf("animation.gp: %s has no shape block", datafile)
@@ -75,8 +76,6 @@ do for [j = 1:nstops] {
          nohead lw 5 lc rgb "#d62728" front
    }
 }
-# The time of each block: the '# t = ...' lines, in order.
-times = system("sed -n 's/^# t = *//p' '" . datafile . "' | awk 'NR <= " . nframes . "'")
 do for [i = 0:(nframes - 1)] {
    set title sprintf("%s\nt = %.4f s (frame %d of %d); red: the stop", plottitle, real(word(times, i + 1)), i + 1, nframes)
    plot datafile index 0:i using ($1*1.0e3 >= xlen*0.999 ? $1*1.0e3 : 1/0):($2*1.0e3) \

@@ -338,11 +338,13 @@ contains
          // ' periods)'
       call write_transient(dk, model, res, diag, e)
       if (allocated(e)) return
-      if (dk%output%write_text) then
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5, .history.dat, ' &
-            // '.poincare.dat'
-      else
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5'
-      end if
+      block
+         character(len=:), allocatable :: files
+         files = trim(dk%job%output) // '.h5'
+         if (dk%output%write_text) files = files // ', .history.dat, .poincare.dat'
+         if (dk%output%state_history) files = files // ', .xdmf'
+         if (dk%output%state_history .and. dk%output%write_text) files = files // ', .shape.dat'
+         write(output_unit, '(a)') 'files: ' // files
+      end block
    end subroutine run_transient_analysis
 end module gapbeam_jobs
