@@ -330,7 +330,7 @@ contains
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(error_t), allocatable, intent(out) :: err   !! write failure
-      real(dp), allocatable :: nw(:, :), nt(:, :), sw(:, :)
+      real(dp), allocatable :: nw(:, :), nt(:, :), sw(:, :), forces(:, :)
       integer :: i, np
       call h5%write('/history/time', res%time, 's', err, 'sample time t_rec + (i - 1) T / ' &
          // 'samples_per_period');  if (allocated(err)) return
@@ -346,8 +346,9 @@ contains
       end if
       call h5%write('/history/tip_displacement', res%tip_displacement, 'm', err, 'tip ' &
          // 'displacement w relative to the base');  if (allocated(err)) return
-      call h5%write('/history/stop_force', transpose(res%stop_force), 'N', err, 'force ' &
-         // 'magnitude of each stop', 'sample stop');  if (allocated(err)) return
+      forces = transpose(res%stop_force)   ! (stops, samples): one row per sample in C order
+      call h5%write('/history/stop_force', forces, 'N', err, 'force magnitude of each stop', &
+                    'sample stop');  if (allocated(err)) return
       if (.not. allocated(res%history_u)) return
       np = model%sys%n_node
       allocate(nw(np, size(res%time)), nt(np, size(res%time)))
