@@ -441,7 +441,7 @@ grep -q 'Backtrace\|ERROR STOP' "${dir}/run.stderr" || why+=('no backtrace with 
 report 'GAPBEAM_BACKTRACE=1: the error line, then ERROR STOP and a backtrace, exit 1' "${why[@]}"
 
 new_case; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
-   '&solver half_step_tolerance=1.0e-8, max_halvings=0, transient_periods=0, record_periods=2 /'
+   '&solver step_control="half_step", half_step_tolerance=1.0e-8, max_halvings=0, transient_periods=0, record_periods=2 /'
 why=()
 [[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
 mapfile -t more < <(crash_reasons)

@@ -101,9 +101,13 @@ module gapbeam_results
       character(len=:), allocatable :: name          !! series word
       character(len=:), allocatable :: parameter_name  !! what varies
       real(dp), allocatable :: parameter(:)          !! its values
-      real(dp), allocatable :: seconds(:)            !! elapsed time of a run [s]
+      real(dp), allocatable :: seconds(:)            !! CPU time of a run [s]
       real(dp), allocatable :: error(:)              !! final-state error [-]
       real(dp), allocatable :: poincare_error(:)     !! Poincare points error [-]
+      !> largest error over the sampled history of the root strain, its rate and the tip
+      !> displacement, relative to their ranges in the reference [-]
+      real(dp), allocatable :: output_error(:)
+      real(dp), allocatable :: output_errors(:, :)   !! (3, levels): the three separately [-]
       real(dp), allocatable :: steps(:)              !! steps accepted [-]
       integer, allocatable :: status(:)              !! 0 done, 1 failed (e.g. unstable)
    end type series_result_t
@@ -169,21 +173,27 @@ contains
       end if
    end function label_text
 
-   !> Elapsed time for a series to reach an error level (log-log interpolation between the
-   !> runs that bracket it); a negative number when the series never reaches it.
-   pure real(dp) function cpu_to_reach(sr, level) result(t)
+   !> CPU time for a series to reach an error level (log-log interpolation between the runs
+   !> that bracket it); a negative number when the series never reaches it. The error is the
+   !> final-state one, or with `output` the output error (strain, rate, tip over the history).
+   pure real(dp) function cpu_to_reach(sr, level, output) result(t)
       type(series_result_t), intent(in) :: sr      !! series
       real(dp), intent(in) :: level                !! error level [-]
+      logical, intent(in), optional :: output      !! measure the output error
+      real(dp), allocatable :: e(:)
       integer :: k
       real(dp) :: w
       t = -1.0_dp
-      do k = 1, size(sr%error)
+      e = sr%error
+      if (present(output)) then
+         if (output .and. allocated(sr%output_error)) e = sr%output_error
+      end if
+      do k = 1, size(e)
          if (sr%status(k) /= 0) cycle
-         if (sr%error(k) <= level) then
+         if (e(k) <= level) then
             if (k > 1) then
-               if (sr%status(k - 1) == 0 .and. sr%error(k - 1) > level .and. &
-                   sr%error(k) > 0.0_dp) then
-                  w = log(level / sr%error(k - 1)) / log(sr%error(k) / sr%error(k - 1))
+               if (sr%status(k - 1) == 0 .and. e(k - 1) > level .and. e(k) > 0.0_dp) then
+                  w = log(level / e(k - 1)) / log(e(k) / e(k - 1))
                   t = exp(log(sr%seconds(k - 1)) + w * (log(sr%seconds(k)) &
                       - log(sr%seconds(k - 1))))
                   return

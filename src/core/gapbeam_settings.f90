@@ -29,7 +29,8 @@ module gapbeam_settings
    character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
    character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
       // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
-      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
+      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact', 'newmark_error', " &
+      // "'hht_error', 'generalized_alpha_error', 'auto'"
 
    !> &job: what to run and where the results go.
    type :: job_t
@@ -147,7 +148,9 @@ module gapbeam_settings
       integer :: periods = 10                       !! horizon from rest [forcing periods]
       integer :: base_steps = 64                    !! coarsest fixed steps per period [-]
       real(dp) :: tolerance_start = 0.1_dp          !! loosest half-step tolerance [-]
-      real(dp) :: rtol_start = 1.0e-2_dp            !! loosest rk45 rtol [-]
+      !> loosest &solver tolerance of the error-controlled series (rk45, newmark_error,
+      !> hht_error, generalized_alpha_error, auto), divided by 10 per level [-]
+      real(dp) :: rtol_start = 1.0e-2_dp
       integer :: repeats = 3                        !! timing repeats of short runs [-]
       real(dp) :: omega_dt_min = 1.0e-2_dp          !! stability chart range [-]
       real(dp) :: omega_dt_max = 1.0e3_dp           !! [-]

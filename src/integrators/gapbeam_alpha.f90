@@ -37,6 +37,7 @@ module gapbeam_alpha
       logical :: dense = .true.                !! dense factor (else banded)
       logical :: acceleration_form = .false.   !! solve for a1 (error control)
       real(dp), allocatable :: fac(:, :)       !! Cholesky factor of Kbar (dense)
+      real(dp), allocatable :: kinv(:, :)      !! Kbar^-1 (dense)
       real(dp), allocatable :: fab(:, :)       !! Cholesky factor of Kbar (band storage)
       real(dp), allocatable :: g(:, :)         !! Kbar^-1 E (n, n_slots)
       real(dp), allocatable :: h(:, :)         !! E' Kbar^-1 E
@@ -89,6 +90,14 @@ contains
       if (self%dense) then
          call dpotrf('U', n, kbar, n, info)
          self%fac = kbar
+         if (info == 0) then            ! Kbar^-1 for the hot path (see kbar_solve)
+            if (allocated(self%kinv)) deallocate(self%kinv)
+            allocate(self%kinv(n, n), source=0.0_dp)
+            do j = 1, n
+               self%kinv(j, j) = 1.0_dp
+            end do
+            call dpotrs('U', n, n, self%fac, n, self%kinv, n, info)
+         end if
       else
          call dense_to_band(kbar, kd, self%fab)
          call dpbtrf('U', n, kd, self%fab, kd + 1, info)
@@ -126,9 +135,10 @@ contains
       class(alpha_stepper_t), intent(in) :: self      !! stepper
       type(model_t), intent(in) :: model              !! model
       real(dp), intent(inout) :: x(:)                 !! right-hand side, then solution
-      integer :: info
-      if (self%dense) then
-         call dpotrs('U', model%n, 1, self%fac, model%n, x, model%n, info)
+      real(dp) :: y(size(x))
+      if (self%dense) then        ! LAPACK's call overhead exceeds a product's work at this size
+         y = x
+         call dense_matvec(model%n, self%kinv, y, x)
       else
          call band_solve(model%n, model%sys%kd, self%fab, x)
       end if

@@ -23,7 +23,7 @@ module gapbeam_explicit
    !> Central difference: u1 = u + dt v + dt^2/2 a; (M + dt/2 C) a1 = P1 - K u1 - C (v + dt/2 a)
    !> - F(u1, v + dt/2 a); v1 = v + dt/2 (a + a1).
    type, extends(stepper_t) :: central_difference_t
-      real(dp), allocatable :: fac(:, :)      !! Cholesky factor of M + dt/2 C
+      real(dp), allocatable :: fac(:, :)      !! (M + dt/2 C)^-1
       real(dp), allocatable :: w(:), r(:)     !! workspaces
    contains
       procedure :: prepare => cd_prepare
@@ -35,7 +35,7 @@ module gapbeam_explicit
       logical :: embedded = .false.           !! rk45: adaptive with the embedded estimate
       real(dp) :: rtol = 1.0e-6_dp            !! rk45 relative tolerance
       real(dp) :: atol = 1.0e-12_dp           !! rk45 absolute tolerance (SI units of u, v)
-      real(dp), allocatable :: mfac(:, :)     !! Cholesky factor of M
+      real(dp), allocatable :: mfac(:, :)     !! M^-1
       real(dp), allocatable :: ku(:, :), kv(:, :)  !! stage slopes (n, 7)
       real(dp), allocatable :: ut(:), vt(:), r(:)  !! workspaces
       real(dp), allocatable :: eu(:), ev(:)   !! rk45: embedded errors of the step
@@ -61,19 +61,30 @@ module gapbeam_explicit
 
 contains
 
-   !> Factor a mass-like SPD matrix; error naming the method when it is singular.
-   subroutine factor_spd(name, a, fac, err)
+   !> The inverse of a mass-like SPD matrix (Cholesky, then solves on the identity: LAPACK's
+   !> call overhead exceeds a product's work at these sizes); error naming the method when it
+   !> is singular.
+   subroutine factor_spd(name, a, inv, err)
       character(len=*), intent(in) :: name
       real(dp), intent(in) :: a(:, :)
-      real(dp), allocatable, intent(out) :: fac(:, :)
+      real(dp), allocatable, intent(out) :: inv(:, :)
       type(error_t), allocatable, intent(out) :: err
-      integer :: info, n
+      real(dp), allocatable :: fac(:, :)
+      integer :: info, n, j
       n = size(a, 1)
       fac = a
       call dpotrf('U', n, fac, n, info)
-      if (info /= 0) call fatal_error(err, "method '" // name // "': the mass matrix is " &
+      if (info /= 0) then
+         call fatal_error(err, "method '" // name // "': the mass matrix is " &
          // 'singular (dof ' // str(info) // ' has no mass); explicit methods need a mass at ' &
          // "every dof: use &beam rotary_inertia = 'half_element' or 'hrz', or an implicit method")
+         return
+      end if
+      allocate(inv(n, n), source=0.0_dp)
+      do j = 1, n
+         inv(j, j) = 1.0_dp
+      end do
+      call dpotrs('U', n, n, fac, n, inv, n, info)
    end subroutine factor_spd
 
    !> Contact forces from the laws at (u, v); `hold` > 0 is held open.
@@ -127,8 +138,7 @@ contains
       call dense_matvec(n, model%c, self%w, self%r)
       self%r = p1 * model%q - s1%a - self%r
       call contact_forces(model, s1%u, self%w, open_contact, s1%f, self%r)
-      s1%a = self%r
-      call dpotrs('U', n, 1, self%fac, n, s1%a, n, info)
+      call dense_matvec(n, self%fac, self%r, s1%a)
       s1%v = self%w + 0.5_dp * h * s1%a
       self%evaluations = self%evaluations + 1
    end subroutine cd_step
@@ -163,8 +173,7 @@ contains
       call dense_matvec(n, model%c, v, self%r)
       self%r = load_factor(model, t) * model%q - acc - self%r
       call contact_forces(model, u, v, hold, f, self%r)
-      acc = self%r
-      call dpotrs('U', n, 1, self%mfac, n, acc, n, info)
+      call dense_matvec(n, self%mfac, self%r, acc)
       self%evaluations = self%evaluations + 1
    end subroutine rk_accel
 

@@ -37,6 +37,8 @@ module gapbeam_newmark
       real(dp) :: dt = 0.0_dp                    !! step size [s]
       type(newmark_constants_t) :: c             !! step constants
       real(dp), allocatable :: am(:, :)          !! dense: Kbar^-1 M
+      real(dp), allocatable :: kinv(:, :)        !! dense: Kbar^-1 (LAPACK's call overhead
+                                                 !! exceeds the work of a solve at this size)
       real(dp), allocatable :: fac(:, :)         !! dense Cholesky factor of Kbar (upper)
       real(dp), allocatable :: fab(:, :)         !! banded Cholesky factor of Kbar (upper)
       real(dp), allocatable :: gp(:)             !! Kbar^-1 q
@@ -145,7 +147,7 @@ contains
       type(state_t), intent(inout) :: s1       !! end
       real(dp), intent(inout) :: ut(:), vt(:), r(:), w(:)   !! workspaces (n)
       integer, intent(in) :: hold              !! contact held open (0: none)
-      real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts)
+      real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts), dstep
       integer :: n, c, i
       n = model%n;  h = op%dt;  bh2 = alpha * h**2
       ut = s0%u + h * s0%v + (0.5_dp - alpha) * h**2 * s0%a
@@ -179,8 +181,19 @@ contains
          end do
       end if
       s1%a = r
-      s1%u = ut + bh2 * r
-      s1%v = vt + delta * h * r
+      ! u1 = u + du, v1 = v + dv summed with compensation: over millions of small steps the
+      ! rounding of u + du (eps |u| each) would otherwise bound the accuracy near 1e-8
+      if (.not. allocated(s1%cu)) allocate(s1%cu(n), s1%cv(n))
+      do i = 1, n
+         dstep = h * s0%v(i) + (0.5_dp - alpha) * h**2 * s0%a(i) + bh2 * r(i)
+         if (allocated(s0%cu)) dstep = dstep - s0%cu(i)
+         s1%u(i) = s0%u(i) + dstep
+         s1%cu(i) = (s1%u(i) - s0%u(i)) - dstep
+         dstep = (1.0_dp - delta) * h * s0%a(i) + delta * h * r(i)
+         if (allocated(s0%cv)) dstep = dstep - s0%cv(i)
+         s1%v(i) = s0%v(i) + dstep
+         s1%cv(i) = (s1%v(i) - s0%v(i)) - dstep
+      end do
    end subroutine acceleration_step
 
    !> x := Kbar^-1 x with the step operator's factor.
@@ -189,9 +202,11 @@ contains
       type(step_op_t), intent(in) :: op        !! step operator
       real(dp), intent(inout) :: x(:)          !! right-hand side, then solution
       integer :: n, info
+      real(dp) :: y(size(x))
       n = model%n
       if (op%dense) then
-         call dpotrs('U', n, 1, op%fac, n, x, n, info)
+         y = x
+         call dense_matvec(n, op%kinv, y, x)
       else
          call band_solve(n, model%sys%kd, op%fab, x)
       end if
@@ -214,8 +229,12 @@ contains
       logical, intent(out) :: has                      !! an estimate is given
       has = .true.
       self%y = s1%a - s0%a
-      call sym_matvec(self%op%dense, model%sys%kd, model%sys%m, model%sys%m_band, self%y, fda)
-      call kbar_solve(model, self%op, fda)
+      if (self%op%dense) then
+         call dense_matvec(model%n, self%op%am, self%y, fda)     ! Kbar^-1 M (a1 - a0)
+      else
+         call sym_matvec(.false., model%sys%kd, model%sys%m, model%sys%m_band, self%y, fda)
+         call kbar_solve(model, self%op, fda)
+      end if
       fda = fda / (self%alpha * self%dt**2)
       ev = 0.0_dp
       coef = [self%alpha - 1.0_dp / 6.0_dp, self%delta - 0.5_dp, 0.5_dp * self%delta &
@@ -266,6 +285,12 @@ contains
          call dpotrs('U', n, 1 + ns, op%fac, n, rhs, n, info)
          op%am = model%sys%m
          call dpotrs('U', n, n, op%fac, n, op%am, n, info)
+         if (allocated(op%kinv)) deallocate(op%kinv)
+         allocate(op%kinv(n, n), source=0.0_dp)
+         do j = 1, n
+            op%kinv(j, j) = 1.0_dp
+         end do
+         call dpotrs('U', n, n, op%fac, n, op%kinv, n, info)
          if (allocated(op%fab)) deallocate(op%fab)
       else
          call dense_to_band(kbar, kd, op%fab)

@@ -1425,8 +1425,9 @@ contains
       call apply_group(srcs, 'study', 'series():32 levels periods base_steps tolerance_start ' &
          // 'rtol_start repeats omega_dt_min omega_dt_max n_omega_dt', reader, err)
       if (allocated(err)) return
-      if (all(len_trim(series) == 0)) series(1:8) = [character(len=32) :: 'newmark_half_step', &
-         'newmark_fixed', 'paper', 'hht', 'generalized_alpha', 'rk4', 'rk45', 'exact']
+      if (all(len_trim(series) == 0)) series(1:10) = [character(len=32) :: 'auto', &
+         'newmark_error', 'hht_error', 'generalized_alpha_error', 'rk45', 'newmark_half_step', &
+         'newmark_fixed', 'paper', 'rk4', 'exact']
       n = 0
       do i = 1, size(series)
          if (len_trim(series(i)) == 0) exit
@@ -1439,7 +1440,7 @@ contains
       call require_int('study', 'repeats', repeats, 1, 100, err)
       call require_int('study', 'n_omega_dt', n_omega_dt, 2, 100000, err)
       call require_range('study', 'tolerance_start', tolerance_start, 1.0e-12_dp, 10.0_dp, err)
-      call require_range('study', 'rtol_start', rtol_start, 1.0e-14_dp, 1.0_dp, err)
+      call require_range('study', 'rtol_start', rtol_start, 1.0e-12_dp, 0.5_dp, err)
       call require_positive('study', 'omega_dt_min', omega_dt_min, err)
       call require_range('study', 'omega_dt_max', omega_dt_max, omega_dt_min, 1.0e12_dp, err)
       if (allocated(err)) return

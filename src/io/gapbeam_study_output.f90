@@ -18,38 +18,43 @@ module gapbeam_study_output
 
 contains
 
-   !> Summary: per series the time to reach 1e-3 and 1e-6 and the ratio to the reference series.
+   !> Summary: per series the CPU time to reach output errors of 1e-2, 1e-3, 1e-6 and 1e-9
+   !> and the ratio to the reference series.
    function work_precision_summary(results, reference) result(text)
       type(series_result_t), intent(in) :: results(:)   !! series
       character(len=*), intent(in) :: reference          !! series the ratios refer to
       character(len=:), allocatable :: text
       integer :: s, j, r
       real(dp) :: t, tr
-      character(len=120) :: line
-      real(dp), parameter :: levels(2) = [1.0e-3_dp, 1.0e-6_dp]
+      character(len=200) :: line
+      real(dp), parameter :: levels(4) = [1.0e-2_dp, 1.0e-3_dp, 1.0e-6_dp, 1.0e-9_dp]
       r = 0
       do s = 1, size(results)
          if (results(s)%name == reference) r = s
       end do
-      text = 'time to reach a relative final-state error (log-log interpolation between runs);' &
-         // new_line('a') // 'ratio: time / time of ' // reference // '; failed: every run ' &
-         // 'of the series failed or diverged (non-finite error)' // new_line('a') &
-         // '  series                      t(1e-3) [s]   ratio    t(1e-6) [s]   ratio' &
+      text = 'CPU time to reach an output error (the largest error of the root strain, its ' &
+         // 'rate and the tip' // new_line('a') // 'displacement over the sampled history, ' &
+         // 'relative to their ranges; log-log interpolation between runs);' // new_line('a') &
+         // 'ratio: time / time of ' // reference // '; failed: every run of the series ' &
+         // 'failed or diverged' // new_line('a') // '  series                   ' &
+         // '     t(1e-2) [s]  ratio   t(1e-3) [s]  ratio   t(1e-6) [s]  ratio   t(1e-9) [s]  ratio' &
          // new_line('a')
       do s = 1, size(results)
          write(line, '(2x, a24)') results(s)%name
-         do j = 1, 2
-            t = cpu_to_reach(results(s), levels(j))
+         do j = 1, size(levels)
+            t = cpu_to_reach(results(s), levels(j), output=.true.)
             tr = -1.0_dp
-            if (r > 0) tr = cpu_to_reach(results(r), levels(j))
+            if (r > 0) tr = cpu_to_reach(results(r), levels(j), output=.true.)
             if (all(results(s)%status /= 0)) then
-               line = trim(line) // '           failed      -   '
+               line = trim(line) // '         failed      -'
             else if (t < 0.0_dp) then
-               line = trim(line) // '      not reached      -   '
+               line = trim(line) // '    not reached      -'
+            else if (tr > 0.0_dp .and. t / tr < 999.5_dp) then
+               write(line(len_trim(line) + 1:), '(es14.3, f7.1)') t, t / tr
             else if (tr > 0.0_dp) then
-               write(line(len_trim(line) + 1:), '(es15.3, f9.2)') t, t / tr
+               write(line(len_trim(line) + 1:), '(es14.3, es7.0)') t, t / tr
             else
-               write(line(len_trim(line) + 1:), '(es15.3, a9)') t, '-'
+               write(line(len_trim(line) + 1:), '(es14.3, a7)') t, '-'
             end if
          end do
          text = text // trim(line) // new_line('a')
@@ -81,8 +86,10 @@ contains
       do s = 1, size(results)
          if (allocated(err)) exit
          call write_table(set%temp(1 + s), title // ': ' // results(s)%name, &
-            [character(len=16) :: 'seconds', 'error', 'poincare_error', 'steps', 'parameter'], &
-            [character(len=16) :: 's', '-', '-', '-', results(s)%parameter_name], &
+            [character(len=18) :: 'seconds', 'error', 'poincare_error', 'steps', 'parameter', &
+            'output_error', 'strain_error', 'strain_rate_error', 'tip_error'], &
+            [character(len=18) :: 's', '-', '-', '-', results(s)%parameter_name, '-', '-', '-', &
+            '-'], &
             ok_rows(results(s)), err, in_place=.true.)
       end do
       if (.not. allocated(err)) call write_text_file(set%temp(set%size()), title &
@@ -122,6 +129,19 @@ contains
          if (write_failed(h5, err)) return
          call h5%write(g // '/steps', results(s)%steps, '1', err, 'accepted steps of the run')
          if (write_failed(h5, err)) return
+         call h5%write(g // '/output_error', results(s)%output_error, '1', err, 'largest ' &
+            // 'relative error of the outputs (root strain, its rate, the tip) over the whole ' &
+            // 'history, against the exact integrator')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/strain_error', [results(s)%output_errors(1, :)], '1', err, &
+                       'relative error of the root strain over the history')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/strain_rate_error', [results(s)%output_errors(2, :)], '1', err, &
+                       'relative error of the root strain rate over the history')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/tip_error', [results(s)%output_errors(3, :)], '1', err, &
+                       'relative error of the tip displacement over the history')
+         if (write_failed(h5, err)) return
          call h5%write(g // '/status', results(s)%status, '1', err, 'status of each run: 0 ' &
             // 'done, 1 failed (an error, or a diverged run: non-finite error)')
          if (write_failed(h5, err)) return
@@ -131,6 +151,18 @@ contains
          if (write_failed(h5, err)) return
          call h5%write(g // '/seconds_to_1e-6', cpu_to_reach(results(s), 1.0e-6_dp), 's', err, &
                        'time to reach a relative error of 1e-6; negative: not reached')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-3', cpu_to_reach(results(s), 1.0e-3_dp, &
+                       .true.), 's', err, 'time to reach an output error of 1e-3; negative: ' &
+                       // 'not reached')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-6', cpu_to_reach(results(s), 1.0e-6_dp, &
+                       .true.), 's', err, 'time to reach an output error of 1e-6; negative: ' &
+                       // 'not reached')
+         if (write_failed(h5, err)) return
+         call h5%write(g // '/seconds_to_output_1e-9', cpu_to_reach(results(s), 1.0e-9_dp, &
+                       .true.), 's', err, 'time to reach an output error of 1e-9; negative: ' &
+                       // 'not reached')
          if (write_failed(h5, err)) return
       end do
       call h5%close(err)
@@ -143,14 +175,20 @@ contains
       type(series_result_t), intent(in) :: series                !! one series
       real(dp), allocatable :: rows(:, :)
       logical, allocatable :: ok(:)
+      real(dp) :: inf
+      inf = ieee_value(0.0_dp, ieee_positive_inf)
       ok = series%status == 0 .and. ieee_is_finite(series%error) &
-           .and. ieee_is_finite(series%poincare_error)
-      allocate(rows(size(ok), 5))
+           .and. ieee_is_finite(series%poincare_error) .and. ieee_is_finite(series%output_error)
+      allocate(rows(size(ok), 9))
       rows(:, 1) = series%seconds
-      rows(:, 2) = merge(series%error, ieee_value(0.0_dp, ieee_positive_inf), ok)
-      rows(:, 3) = merge(series%poincare_error, ieee_value(0.0_dp, ieee_positive_inf), ok)
+      rows(:, 2) = merge(series%error, inf, ok)
+      rows(:, 3) = merge(series%poincare_error, inf, ok)
       rows(:, 4) = series%steps
       rows(:, 5) = series%parameter
+      rows(:, 6) = merge(series%output_error, inf, ok)
+      rows(:, 7) = merge(series%output_errors(1, :), inf, ok)
+      rows(:, 8) = merge(series%output_errors(2, :), inf, ok)
+      rows(:, 9) = merge(series%output_errors(3, :), inf, ok)
    end function ok_rows
 
    !> Root attributes, /deck, /run/files and /parameters of a study file.
