@@ -14,9 +14,9 @@
 # Series: found with ls; the legend is the series name from the file name (PREFIX.wp_<series>.dat);
 # known series keep a fixed colour and marker across charts; a file without data rows (no run
 # completed) is left out of the legend and named in a note under it. The exact integrator (series 'exact', one point) is a single black star.
-# A run that failed or diverged has error +Infinity in its table (gapbeam keeps it): it is marked
-# with a cross in its series' colour on a dashed line at the top, at its elapsed time, and a
-# note under the legend counts them.
+# A run that failed or diverged is listed in PREFIX.work_precision_failed.dat: it is marked with a
+# cross in its series' colour on a dashed line at the top, at its elapsed time, and a note under
+# the legend counts them.
 # Axes: x elapsed time [s], log; y relative error [-], log, a decade beyond the data, floored at
 # 1e-16: an error below 1e-16 (the exact integrator against itself: 0) is drawn on the floor, and a
 # note says so.
@@ -87,8 +87,6 @@ do for [k = 1 : nseries] {
    }
    stats sfile(k) using (column(errorcolumn) < floor_err ? 1 : 0) nooutput
    nfloor = nfloor + STATS_sum
-   stats sfile(k) using (column(errorcolumn) > 1.0e300 ? 1 : 0) nooutput
-   nfailed = nfailed + STATS_sum
    stats sfile(k) using ((column(errorcolumn) >= floor_err && column(errorcolumn) <= 1.0e300) \
       ? 1 : 0) nooutput
    if (STATS_sum > 0) {
@@ -155,12 +153,18 @@ if (words(empty) > 0) {
 clip(v) = (v < floor_err) ? floor_err : ((v > 1.0e300) ? NaN : v)
 lfile(k) = prefix . ".wp_" . word(lines, k) . ".dat"
 lk(k) = index_of(word(lines, k), series)
-# Failed or diverged runs (error +Infinity in the table) are marked, not dropped: a cross of
-# the series' colour at the top edge of the chart, at the run's elapsed time.
+# Failed or diverged runs (PREFIX.work_precision_failed.dat: series number, seconds, parameter,
+# steps; its title line ends with the series names in number order) are marked, not dropped: a
+# cross of the series' colour on a dashed line at the top of the chart, at the run's time.
+failfile = prefix . ".work_precision_failed.dat"
+failnames = system("sed -n '1s/.*series numbers: *//p' " . shquote(failfile) . " 2>/dev/null")
+nfailed = int(system("grep -c -v -E '^[[:space:]]*(#|$)' " . shquote(failfile) . " 2>/dev/null || true") + 0)
 y_fail = y_hi/1.6
-failed_at(v) = (v > 1.0e300) ? y_fail : NaN
 # a run that failed before it was timed (0 s) is drawn at the left edge
 x_fail(t) = (t > 0) ? t : x_lo*1.3
+fcolour(i) = (index_of(word(failnames, int(i)), series) > 0) \
+   ? scolour(index_of(word(failnames, int(i)), series)) : "#808080"
+fcol(i) = int(("0x" . fcolour(i)[2:7]) + 0)
 if (nfailed > 0) {
    set label 3 sprintf("x on the top line:\n%d run%s failed\nor diverged\n(error not finite)", \
       nfailed, (nfailed == 1) ? "" : "s") at graph 1.03, graph 0.22 left front font ",10" \
@@ -170,8 +174,8 @@ if (nfailed > 0) {
 }
 plot for [k = 1 : words(lines)] lfile(k) using 1:(clip(column(errorcolumn))) \
         with linespoints lw 2 pt smarker(lk(k)) ps 1.3 lc rgb scolour(lk(k)) title word(lines, k), \
-     for [k = 1 : words(lines)] lfile(k) using (x_fail($1)):(failed_at(column(errorcolumn))) \
-        with points pt 2 ps 2.0 lw 2.5 lc rgb scolour(lk(k)) notitle, \
+     for [q = 1 : ((nfailed > 0) ? 1 : 0)] failfile using (x_fail($2)):(y_fail):(fcol($1)) \
+        with points pt 2 ps 2.0 lw 2.5 lc rgb variable notitle, \
      for [k = 1 : has_exact] prefix . ".wp_exact.dat" using 1:(clip(column(errorcolumn))) \
         with points pt 3 ps 3.5 lw 2.5 lc rgb "#000000" title "exact"
 

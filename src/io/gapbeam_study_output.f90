@@ -2,7 +2,7 @@
 !> the spectral-radius table, and a plain-text summary. The files of one run form an output
 !> set (gapbeam_output_set): put in place together, or not at all.
 module gapbeam_study_output
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_positive_inf
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t, write_failed
@@ -61,7 +61,9 @@ contains
       end do
    end function work_precision_summary
 
-   !> PREFIX.h5, PREFIX.wp_<series>.dat, PREFIX.work_precision.txt.
+   !> PREFIX.h5, PREFIX.wp_<series>.dat (the runs that succeeded), PREFIX.work_precision_failed.dat
+   !> (the runs that failed or diverged: marked on the chart, never taken for results),
+   !> PREFIX.work_precision.txt.
    subroutine write_work_precision(prefix, title, deck_text, results, reference, err, params)
       character(len=*), intent(in) :: prefix, title, deck_text   !! output, title, deck
       type(series_result_t), intent(in) :: results(:)            !! series
@@ -70,16 +72,18 @@ contains
       type(parameter_set_t), intent(in), optional :: params      !! /parameters
       type(output_set_t) :: set
       character(len=:), allocatable :: suffixes(:)
+      character(len=:), allocatable :: names
       integer :: s, width
-      width = len('.work_precision.txt')
+      width = len('.work_precision_failed.dat')
       do s = 1, size(results)
          width = max(width, len('.wp_' // results(s)%name // '.dat'))
       end do
-      allocate(character(len=width) :: suffixes(size(results) + 2))
+      allocate(character(len=width) :: suffixes(size(results) + 3))
       suffixes(1) = '.h5'
       do s = 1, size(results)
          suffixes(1 + s) = '.wp_' // results(s)%name // '.dat'
       end do
+      suffixes(size(suffixes) - 1) = '.work_precision_failed.dat'
       suffixes(size(suffixes)) = '.work_precision.txt'
       call set%begin(prefix, suffixes, err);  if (allocated(err)) return
       call work_precision_h5(set, deck_text, results, err, params)
@@ -92,6 +96,15 @@ contains
             '-'], &
             ok_rows(results(s)), err, in_place=.true.)
       end do
+      names = ''
+      do s = 1, size(results)
+         names = names // ' ' // results(s)%name
+      end do
+      if (.not. allocated(err)) call write_table(set%temp(set%size() - 1), title // ': failed ' &
+         // 'or diverged runs (error not finite); series numbers:' // names, &
+         [character(len=16) :: 'series', 'seconds', 'parameter', 'steps', 'status'], &
+         [character(len=16) :: '-', 's', '-', '-', '1: failed'], failed_rows(results), err, &
+         in_place=.true.)
       if (.not. allocated(err)) call write_text_file(set%temp(set%size()), title &
          // new_line('a') // work_precision_summary(results, reference), err, in_place=.true.)
       call set%finish(err)
@@ -168,28 +181,61 @@ contains
       call h5%close(err)
    end subroutine work_precision_h5
 
-   !> The rows of a series' table, one per run: a run that failed or diverged (a non-finite
-   !> error) is kept with its errors set to +Infinity, so that charts mark it instead of
-   !> dropping it and no interpolation can take it for a result.
+   !> The rows of a series' table: the runs that succeeded, with finite errors (a failed or
+   !> diverged run is in PREFIX.work_precision_failed.dat instead).
    function ok_rows(series) result(rows)
       type(series_result_t), intent(in) :: series                !! one series
       real(dp), allocatable :: rows(:, :)
+      logical, allocatable :: keep(:)
+      keep = run_ok(series)
+      allocate(rows(count(keep), 9))
+      rows(:, 1) = pack(series%seconds, keep)
+      rows(:, 2) = pack(series%error, keep)
+      rows(:, 3) = pack(series%poincare_error, keep)
+      rows(:, 4) = pack(series%steps, keep)
+      rows(:, 5) = pack(series%parameter, keep)
+      rows(:, 6) = pack(series%output_error, keep)
+      rows(:, 7) = pack(series%output_errors(1, :), keep)
+      rows(:, 8) = pack(series%output_errors(2, :), keep)
+      rows(:, 9) = pack(series%output_errors(3, :), keep)
+   end function ok_rows
+
+   !> Which runs of a series succeeded with finite errors.
+   function run_ok(series) result(ok)
+      type(series_result_t), intent(in) :: series                !! one series
       logical, allocatable :: ok(:)
-      real(dp) :: inf
-      inf = ieee_value(0.0_dp, ieee_positive_inf)
       ok = series%status == 0 .and. ieee_is_finite(series%error) &
            .and. ieee_is_finite(series%poincare_error) .and. ieee_is_finite(series%output_error)
-      allocate(rows(size(ok), 9))
-      rows(:, 1) = series%seconds
-      rows(:, 2) = merge(series%error, inf, ok)
-      rows(:, 3) = merge(series%poincare_error, inf, ok)
-      rows(:, 4) = series%steps
-      rows(:, 5) = series%parameter
-      rows(:, 6) = merge(series%output_error, inf, ok)
-      rows(:, 7) = merge(series%output_errors(1, :), inf, ok)
-      rows(:, 8) = merge(series%output_errors(2, :), inf, ok)
-      rows(:, 9) = merge(series%output_errors(3, :), inf, ok)
-   end function ok_rows
+   end function run_ok
+
+   !> The runs that failed or diverged, every series: (series number, seconds, parameter,
+   !> steps, 1), so that a chart can mark them; finite numbers only.
+   function failed_rows(results) result(rows)
+      type(series_result_t), intent(in) :: results(:)            !! every series
+      real(dp), allocatable :: rows(:, :)
+      logical, allocatable :: bad(:)
+      real(dp) :: secs
+      integer :: s, k, n
+      n = 0
+      do s = 1, size(results)
+         n = n + count(.not. run_ok(results(s)))
+      end do
+      allocate(rows(n, 5))
+      n = 0
+      do s = 1, size(results)
+         bad = .not. run_ok(results(s))
+         do k = 1, size(bad)
+            if (.not. bad(k)) cycle
+            n = n + 1
+            secs = results(s)%seconds(k)
+            if (.not. ieee_is_finite(secs)) secs = 0.0_dp
+            rows(n, :) = [real(s, dp), secs, results(s)%parameter(k), &
+                          real(results(s)%steps(k), dp), 1.0_dp]
+            if (.not. ieee_is_finite(rows(n, 3))) rows(n, 3) = 0.0_dp
+            if (.not. ieee_is_finite(rows(n, 4))) rows(n, 4) = 0.0_dp
+         end do
+      end do
+   end function failed_rows
 
    !> Root attributes, /deck, /run/files and /parameters of a study file.
    subroutine study_head(h5, set, analysis, deck_text, err, params)
