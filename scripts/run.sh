@@ -143,7 +143,9 @@ if [[ ${main_job} -eq 1 ]]; then
       grep -h '^error:' "${out}"/*.log >&2 || true
       exit 1
    fi
-   grep -h '^attractor:\|^labels:' "${out}"/*.log | sed 's/^/main: /' || true
+   for f in "${out}"/*.log; do
+      sed -n "s#^\(attractor\|labels\): #main: $(basename "${f}" .log): #p" "${f}"
+   done
    PYTHONPATH="${root}/python${PYTHONPATH:+:${PYTHONPATH}}" PYTHONDONTWRITEBYTECODE=1 \
       python3 scripts/main_summary.py "${out}" || exit 1
    for p in line_4mm_up line_4mm_down; do "${plot}" --format "${fmt}" sweep "${out}/${p}" || exit 1; done

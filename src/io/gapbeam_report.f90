@@ -61,7 +61,8 @@ contains
 
    !> The files of write_modes, under the set's temporary names.
    subroutine write_modes_files(set, deck, sys, modes, stop_stiffness, err)
-      type(output_set_t), intent(in) :: set            !! .h5, .modes.dat, .shapes.dat, .shape_curves.dat
+      !> .h5, .modes.dat, .shapes.dat, .shape_curves.dat
+      type(output_set_t), intent(in) :: set
       type(deck_t), intent(in) :: deck                 !! the deck (title, text)
       type(system_t), intent(in) :: sys                !! assembled structure
       type(modes_t), intent(in) :: modes               !! modes

@@ -177,7 +177,8 @@ contains
          call write_parameter_set(h5, sf%parameters, err)
       end if
       if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/title', sf%title, err, '&job title');  if (write_failed(h5, err)) return
+      call h5%write_text('/sweep/title', sf%title, err, '&job title')
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
                     'frequency axis of the sweep grid')
       if (write_failed(h5, err)) return

@@ -57,7 +57,8 @@ contains
             // 'Format="HDF">' // h5 // ':/history/shape_segments</DataItem>' // nl &
             // '    </Topology>' // nl &
             // '    <Geometry GeometryType="XYZ">' // nl &
-            // '     <DataItem ItemType="HyperSlab" Dimensions="' // np_s // ' 3" Type="HyperSlab">' &
+            // '     <DataItem ItemType="HyperSlab" Dimensions="' // np_s &
+            // ' 3" Type="HyperSlab">' &
             // nl // '      <DataItem Dimensions="3 3" NumberType="Int" Format="XML">' &
             // str(i - 1) // ' 0 0 1 1 1 1 ' // np_s // ' 3</DataItem>' // nl &
             // '      <DataItem Dimensions="' // ns_s // ' ' // np_s // ' 3" NumberType="Float" ' &
