@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
-# scripts/plot.sh - render the PNG plots of one gapbeam run from its gnuplot-ready text files.
+# scripts/plot.sh - render the figures of one gapbeam run from its gnuplot-ready text files.
 #
 # Usage:
-#   scripts/plot.sh ANALYSIS PREFIX
+#   scripts/plot.sh [--format png|pdf|svg] ANALYSIS PREFIX
 #   scripts/plot.sh transient results/moon_shaw_10p5hz
+#   scripts/plot.sh --format pdf sweep results/sweep_line_4mm     (vector figures for a paper)
 #   (scripts/run.sh calls it after a run with the program's `analysis:` and `output:` words)
 #
+# --format (or GAPBEAM_PLOT_FORMAT): png (default), pdf or svg; every figure is written as
+# PREFIX.<figure>.<format> (scripts/terminal.gp sets the terminal). The animation is a GIF
+# whatever the format.
 # ANALYSIS=transient: PREFIX.history.dat  -> PREFIX.history.png  (scripts/strain_history.gp:
 #                                            root strain and stop force against time, paper Fig. 3)
 #                     PREFIX.poincare.dat -> PREFIX.poincare.png (scripts/poincare.gp: strain rate
 #                                            against strain once per period, paper Figs. 4-9)
-# ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies)
+#                     PREFIX.shape.dat    -> PREFIX.animation.gif (scripts/animation.gp: the beam
+#                                            against its stop over the first 3 periods of history;
+#                                            only with &output state_history = .true.)
+# ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies,
+#                     PREFIX.shape_curves.dat for the shapes between the nodes)
 #                                         -> PREFIX.shapes.png   (scripts/mode_shapes.gp)
 # ANALYSIS=sweep:     PREFIX.bifurcation.dat -> PREFIX.bifurcation.png (scripts/bifurcation.gp:
 #                                            Poincare root strain against the forcing frequency,
@@ -37,9 +45,9 @@
 #                                            acceptable candidates filled, tolerance line)
 # Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
 # Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
-# Prints `plot: wrote FILE.png` per PNG written. A .dat file that is missing or holds no data row
+# Prints `plot: wrote FILE` per figure written. A .dat file that is missing or holds no data row
 # (e.g. the deck set `&output write_text = .false.`) is reported on stderr and skipped.
-# A PNG is written under a temporary name and renamed when gnuplot has succeeded.
+# A figure is written under a temporary name and renamed when gnuplot has succeeded.
 # Exit status: 0; 1 when gnuplot is missing or fails; 2 on bad usage.
 set -euo pipefail
 
@@ -49,8 +57,23 @@ if [[ ${1:-} == -h || ${1:-} == --help ]]; then
    sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"
    exit 0
 fi
+fmt=${GAPBEAM_PLOT_FORMAT:-png}
+if [[ ${1:-} == --format ]]; then
+   fmt=${2:-}
+   shift 2 || true
+elif [[ ${1:-} == --format=* ]]; then
+   fmt=${1#--format=}
+   shift
+fi
+case ${fmt} in
+   png | pdf | svg) ;;
+   *)
+      printf "plot: error: format '%s': expected png, pdf or svg\n" "${fmt}" >&2
+      exit 2
+      ;;
+esac
 if [[ $# -ne 2 || -z $2 ]]; then
-   printf 'usage: scripts/plot.sh ANALYSIS PREFIX   (e.g. transient results/moon_shaw_10p5hz)\n' >&2
+   printf 'usage: scripts/plot.sh [--format png|pdf|svg] ANALYSIS PREFIX   (e.g. transient results/moon_shaw_10p5hz)\n' >&2
    exit 2
 fi
 analysis=$1
@@ -87,13 +110,15 @@ dat_title() {
    printf '%s' "${line}"
 }
 
-# render SCRIPT PNG GNUPLOT_ASSIGNMENTS: run gnuplot into PNG.part, rename it to PNG on success.
+# render SCRIPT FILE GNUPLOT_ASSIGNMENTS: run gnuplot into FILE.part, rename it to FILE on success.
+# FILE is given with the .png suffix; the suffix of the chosen format replaces it (a .gif stays).
 render() {
    local script=$1 png=$2 assignments=$3
+   if [[ ${png} == *.png ]]; then png="${png%.png}.${fmt}"; fi
    local part="${png}.part"
    local status=0
-   gnuplot -e "${assignments}; outfile=$(gp_quote "${part}")" "${script_dir}/${script}" \
-      || status=$?
+   gnuplot -e "format=$(gp_quote "${fmt}"); ${assignments}; outfile=$(gp_quote "${part}")" \
+      "${script_dir}/${script}" || status=$?
    if [[ ${status} -ne 0 || ! -s ${part} ]]; then
       rm -f -- "${part}"
       printf 'plot: error: gnuplot failed on scripts/%s for %s\n' "${script}" "${png}" >&2
@@ -120,6 +145,13 @@ case ${analysis} in
          render "${script}" "${prefix}.${kind}.png" \
             "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")"
       done
+      # the beam in motion, when the run kept its state history
+      if has_data "${prefix}.shape.dat"; then
+         title=$(dat_title "${prefix}.shape.dat")
+         title=${title%: deflected shape*}
+         render animation.gp "${prefix}.animation.gif" \
+            "datafile=$(gp_quote "${prefix}.shape.dat"); plottitle=$(gp_quote "${title}")"
+      fi
       ;;
    modes)
       shapes="${prefix}.shapes.dat"
@@ -132,8 +164,10 @@ case ${analysis} in
       title=$(dat_title "${shapes}")
       title=${title%: mode shapes (w)}
       if has_data "${modes}"; then modes_arg=${modes}; else modes_arg=""; fi
+      curves="${prefix}.shape_curves.dat"
+      if has_data "${curves}"; then curves_arg=${curves}; else curves_arg=""; fi
       render mode_shapes.gp "${prefix}.shapes.png" \
-         "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); plottitle=$(gp_quote "${title}")"
+         "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); curvesfile=$(gp_quote "${curves_arg}"); plottitle=$(gp_quote "${title}")"
       ;;
    sweep)
       points="${prefix}.sweep.dat"

@@ -190,6 +190,26 @@ contains
             // ' history samples: at most ' // str_int64(max_values))
          return
       end if
+      if (deck%output%state_history .and. deck%job%analysis == 'transient') then
+         if (deck%reduction%kind /= 'none') then
+            call fatal_error(err, "group &output: state_history = .true.: needs the finite " &
+               // "element model, not a modal one (&reduction kind = '" &
+               // trim(deck%reduction%kind) // "'; allowed: 'none')")
+            return
+         end if
+         ! every dof at every history sample, and the deflected shape at its points
+         per_point = 2_int64 * (deck%structure%beam%n_elem + 1) &
+                     + int(deck%structure%beam%n_elem, int64) * deck%output%shape_points + 1
+         if (samples * per_point > max_values) then
+            call fatal_error(err, 'group &output: state_history = .true.: ' &
+               // str_int64(samples) // ' history samples x ' // str_int64(per_point) &
+               // ' values each (2 dofs per node and the shape at n_elem x shape_points + 1 ' &
+               // 'points) = ' // str_int64(samples * per_point) // ': at most ' &
+               // str_int64(max_values) // '; keep fewer history_periods, samples_per_period ' &
+               // 'or shape_points')
+            return
+         end if
+      end if
       if (deck%job%analysis /= 'sweep') return
       ! per point: Poincare strain and rate, the running Lyapunov estimate, the final state
       per_point = 2_int64 * deck%solver%record_periods + deck%diagnostics%lyapunov_periods &
@@ -1169,16 +1189,19 @@ contains
       type(output_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: poincare_phase_deg, filter_cutoff_hz
-      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period
-      logical :: write_text
+      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period, &
+         shape_points
+      logical :: write_text, state_history
       namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
-         filter_cutoff_hz, filter_order, filter_samples_per_period
+         filter_cutoff_hz, filter_order, filter_samples_per_period, state_history, shape_points
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
       filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
       filter_samples_per_period = cfg%filter_samples_per_period
+      state_history = cfg%state_history;  shape_points = cfg%shape_points
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
-         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period', reader, err)
+         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period state_history ' &
+         // 'shape_points', reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
@@ -1191,6 +1214,7 @@ contains
       call require_int('output', 'filter_order', filter_order, 1, 12, err)
       call require_int('output', 'filter_samples_per_period', filter_samples_per_period, 16, &
          1000000, err)
+      call require_int('output', 'shape_points', shape_points, 1, 1000, err)
       if (allocated(err)) return
       if (filter_cutoff_hz > 0.0_dp .and. mod(filter_samples_per_period, samples_per_period) &
           /= 0) then
@@ -1202,7 +1226,8 @@ contains
       cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
          samples_per_period=samples_per_period, history_periods=history_periods, &
          write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
-         filter_samples_per_period=filter_samples_per_period)
+         filter_samples_per_period=filter_samples_per_period, state_history=state_history, &
+         shape_points=shape_points)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
