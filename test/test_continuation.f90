@@ -9,10 +9,18 @@ program test_continuation
    use gapbeam_model_builder, only: build_model
    use gapbeam_periodic, only: orbit_map_t, newton_orbit, transient_orbit, floquet_multipliers, &
       energy_size
+   use gapbeam_continuation, only: run_continuation
+   use gapbeam_continuation_types, only: continuation_result_t
    implicit none
    character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'
+   character(len=*), parameter :: sdof = 'test/decks/sdof_continuation.nml'
+   ! the single dof of sdof_continuation.nml: k = 3 EI / L^3, m = rho A L / 2, c = gamma k
+   real(dp), parameter :: ei1 = 200.0e9_dp * 0.01_dp * 5.0e-4_dp**3 / 12
+   real(dp), parameter :: k1 = 3 * ei1 / 0.2_dp**3, m1 = 7850.0_dp * 0.01_dp * 5.0e-4_dp &
+      * 0.2_dp / 2, c1 = 9.0e-4_dp * k1, ks = 30.0_dp, gap = 2.0e-4_dp, a1 = 3.0e-4_dp
 
    call monodromy_against_differences()
+   call sdof_against_closed_form()
    call finish('test_continuation')
 
 contains
@@ -79,4 +87,240 @@ contains
          // '(max |error| / max |entry|)', e, 1.0e-6_dp)
       call check('monodromy, ' // name // ': same map', maxval(abs(px - px2)) == 0.0_dp)
    end subroutine one
+   ! ---------------------------------------------------------------- SDOF in closed form
+
+   !> The continued branch of the SDOF bilinear oscillator against its closed form: below the
+   !> grazing the linear steady state, above it the orbit with one contact per period (onset
+   !> time, onset velocity and release time solving three equations of closed-form phase maps
+   !> by Newton's method); multipliers the eigenvalues of E_free(T - tau_c) E_contact(tau_c).
+   subroutine sdof_against_closed_form()
+      type(deck_t) :: deck
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      character(len=300) :: ov(0)
+      real(dp) :: xr(2), es, em, ex, om, fg, lo, hi, u_amp
+      complex(dp) :: mr(2), mg(2)
+      integer :: j, n_imp, n_lin, k
+      call read_deck(sdof, ov, deck, err)
+      if (.not. allocated(err)) call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('SDOF continuation runs', .false., err%message)
+         return
+      end if
+      es = 0.0_dp;  em = 0.0_dp;  n_imp = 0;  n_lin = 0
+      do j = 1, res%n
+         om = 2 * pi * res%parameter(j)
+         if (res%located(j)) cycle          ! a grazing point: contact of zero duration
+         if (res%impacts(j) == 0) then
+            call linear_orbit(om, xr, mr)
+            n_lin = n_lin + 1
+         else
+            call impacting_orbit(om, res%state(:, j), xr, mr, err)
+            if (allocated(err)) then
+               call check('SDOF closed form at ' // str(res%parameter(j)) // ' Hz', .false., &
+                          err%message)
+               return
+            end if
+            n_imp = n_imp + 1
+         end if
+         u_amp = max(abs(xr(1)), abs(xr(2)) / om)
+         es = max(es, abs(res%state(1, j) - xr(1)) / u_amp, &
+                  abs(res%state(2, j) - xr(2)) / (om * u_amp))
+         mg = res%multipliers(:, j)
+         ex = min(maxval(abs(mg - mr)), maxval(abs(mg - mr([2, 1]))))
+         em = max(em, ex)
+      end do
+      call note('SDOF: ' // str(n_lin) // ' orbits without impact, ' // str(n_imp) // ' with ' &
+         // 'one impact per period, 3 to 12 Hz')
+      call check('SDOF: both regimes continued', n_lin > 5 .and. n_imp > 20)
+      call check_le('SDOF branch: section state against the closed form (max relative error)', &
+                    es, 1.0e-8_dp)
+      call check_le('SDOF branch: multipliers against the closed form (max error)', em, 1.0e-8_dp)
+      ! grazing: the linear orbit's amplitude |U(Omega)| reaches the gap
+      lo = 2 * pi * 3.0_dp;  hi = 2 * pi * 6.0_dp
+      do k = 1, 200
+         om = 0.5_dp * (lo + hi)
+         if (abs(lin_amplitude(om)) < gap) then
+            lo = om
+         else
+            hi = om
+         end if
+      end do
+      fg = 0.5_dp * (lo + hi) / (2 * pi)
+      do k = 1, res%n_bif
+         if (res%bif_kind(k) == 'grazing') then
+            call check_close('SDOF: grazing frequency against |U(Omega)| = gap [Hz]', &
+                             res%bif_parameter(k), fg, rtol=1.0e-7_dp)
+         end if
+      end do
+      call check('SDOF: one grazing found', count(res%bif_kind == 'grazing') == 1)
+   end subroutine sdof_against_closed_form
+
+   !> Complex amplitude of the forced response of a phase with stiffness ke: u = Re(U e^{i W t}).
+   pure complex(dp) function forced_amplitude(ke, om) result(u)
+      real(dp), intent(in) :: ke, om
+      u = (0.0_dp, -1.0_dp) * a1 * om**2 / cmplx(ke / m1 - om**2, c1 / m1 * om, dp)
+   end function forced_amplitude
+
+   pure real(dp) function lin_amplitude(om)
+      real(dp), intent(in) :: om
+      lin_amplitude = abs(forced_amplitude(k1, om))
+   end function lin_amplitude
+
+   !> Homogeneous propagator e^{A tau} of u'' + (c/m) u' + (ke/m) u = 0 (underdamped).
+   pure function propagator(ke, tau) result(e)
+      real(dp), intent(in) :: ke, tau
+      real(dp) :: e(2, 2), w, z, wd, ex, cs, sn
+      w = sqrt(ke / m1);  z = c1 / (2 * m1 * w);  wd = w * sqrt(1 - z**2)
+      ex = exp(-z * w * tau);  cs = cos(wd * tau);  sn = sin(wd * tau)
+      e(1, 1) = ex * (cs + z * w / wd * sn);  e(1, 2) = ex * sn / wd
+      e(2, 1) = -ex * w**2 / wd * sn;  e(2, 2) = ex * (cs - z * w / wd * sn)
+   end function propagator
+
+   !> Particular solution (u, v) of a phase at t: static part plus the harmonic.
+   pure function particular(contact, om, t) result(x)
+      logical, intent(in) :: contact
+      real(dp), intent(in) :: om, t
+      real(dp) :: x(2), ke, us
+      complex(dp) :: u, e
+      ke = k1;  us = 0.0_dp
+      if (contact) then
+         ke = k1 + ks;  us = ks * gap / (k1 + ks)
+      end if
+      u = forced_amplitude(ke, om)
+      e = exp(cmplx(0.0_dp, om * t, dp))
+      x(1) = us + real(u * e);  x(2) = real((0.0_dp, 1.0_dp) * om * u * e)
+   end function particular
+
+   !> The state at tb of a phase started from x at ta.
+   pure function phase(contact, om, ta, x, tb) result(y)
+      logical, intent(in) :: contact
+      real(dp), intent(in) :: om, ta, x(2), tb
+      real(dp) :: y(2), ke
+      ke = k1
+      if (contact) ke = k1 + ks
+      y = particular(contact, om, tb) + matmul(propagator(ke, tb - ta), &
+                                               x - particular(contact, om, ta))
+   end function phase
+
+   !> Linear steady state at the section (t = 0) and its multipliers.
+   subroutine linear_orbit(om, x, mu)
+      real(dp), intent(in) :: om
+      real(dp), intent(out) :: x(2)
+      complex(dp), intent(out) :: mu(2)
+      x = particular(.false., om, 0.0_dp)
+      call eig2(propagator(k1, 2 * pi / om), mu)
+   end subroutine linear_orbit
+
+   !> Eigenvalues of a 2 x 2 matrix.
+   subroutine eig2(a, mu)
+      real(dp), intent(in) :: a(2, 2)
+      complex(dp), intent(out) :: mu(2)
+      complex(dp) :: tr, dt, sq
+      tr = a(1, 1) + a(2, 2);  dt = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
+      sq = sqrt(tr**2 / 4 - dt)
+      mu = [tr / 2 + sq, tr / 2 - sq]
+   end subroutine eig2
+
+   !> The orbit with one contact per period near the given section state: onset time t_on,
+   !> onset velocity v_on and release time t_off from closed-form phase maps (Newton), then
+   !> the section state and the multipliers.
+   subroutine impacting_orbit(om, x0, x, mu, err)
+      real(dp), intent(in) :: om, x0(2)
+      real(dp), intent(out) :: x(2)
+      complex(dp), intent(out) :: mu(2)
+      type(error_t), allocatable, intent(out) :: err
+      real(dp) :: per, z(3), f(3), jz(3, 3), zp(3), fp(3), h, y(2), t, tn, tb
+      integer :: it, j, info, ipiv(3)
+      logical :: inc, inc_n
+      per = 2 * pi / om
+      ! a guess from the given state: sample one period with the phase maps, find u = gap
+      t = 0.0_dp;  y = x0;  inc = y(1) > gap
+      z = -1.0_dp
+      do j = 1, 40000
+         tn = t + per / 20000
+         y = phase(inc, om, t, y, tn)
+         inc_n = y(1) > gap
+         if (inc_n .neqv. inc) then
+            if (inc_n .and. z(1) < 0.0_dp) then
+               z(1) = tn;  z(2) = y(2)
+            else if (.not. inc_n .and. z(1) >= 0.0_dp) then
+               z(3) = tn;  exit
+            end if
+            inc = inc_n
+         end if
+         t = tn
+      end do
+      if (z(3) < 0.0_dp) then
+         allocate(err);  err%message = 'no onset and release found'
+         return
+      end if
+      do it = 1, 30
+         call residual(om, z, f)
+         if (maxval(abs(f / [gap, gap, abs(z(2))])) < 1.0e-15_dp) exit
+         do j = 1, 3
+            h = 1.0e-7_dp * max(abs(z(j)), merge(per, abs(z(2)), j /= 2))
+            zp = z;  zp(j) = z(j) + h
+            call residual(om, zp, fp)
+            jz(:, j) = (fp - f) / h
+         end do
+         f = -f
+         call dgesv3(jz, f, ipiv, info)
+         z = z + f
+      end do
+      call residual(om, z, f)
+      if (maxval(abs(f / [gap, gap, abs(z(2))])) > 1.0e-12_dp) then
+         allocate(err);  err%message = 'closed form: no convergence'
+         return
+      end if
+      ! section state: from the release, free flight to the next multiple of the period (or
+      ! through the next contact when the section falls inside one)
+      tb = per * real(ceiling(z(3) / per), dp)
+      if (tb < z(1) + per) then
+         x = phase(.false., om, z(3), [gap, phase_v(om, z)], tb)
+      else
+         x = phase(.true., om, z(1) + per, [gap, z(2)], tb)
+      end if
+      call eig2(matmul(propagator(k1, z(1) + per - z(3)), propagator(k1 + ks, z(3) - z(1))), mu)
+   end subroutine impacting_orbit
+
+   !> Velocity at the release of the contact phase started at onset (z(1), gap, z(2)).
+   real(dp) function phase_v(om, zz)
+      real(dp), intent(in) :: om, zz(3)
+      real(dp) :: w(2)
+      w = phase(.true., om, zz(1), [gap, zz(2)], zz(3))
+      phase_v = w(2)
+   end function phase_v
+
+   !> Residual of the one-contact orbit: release at gap, next onset at gap with v_on.
+   subroutine residual(om, zz, ff)
+      real(dp), intent(in) :: om, zz(3)
+      real(dp), intent(out) :: ff(3)
+      real(dp) :: w1(2), w2(2)
+      w1 = phase(.true., om, zz(1), [gap, zz(2)], zz(3))
+      w2 = phase(.false., om, zz(3), [gap, w1(2)], zz(1) + 2 * pi / om)
+      ff = [w1(1) - gap, w2(1) - gap, w2(2) - zz(2)]
+   end subroutine residual
+
+   !> 3 x 3 Gaussian elimination with partial pivoting.
+   subroutine dgesv3(a, b, ipiv, info)
+      real(dp), intent(inout) :: a(3, 3), b(3)
+      integer, intent(out) :: ipiv(3), info
+      integer :: i, k, p
+      real(dp) :: f, r(3), t
+      info = 0
+      do k = 1, 3
+         p = k - 1 + maxloc(abs(a(k:, k)), dim=1)
+         ipiv(k) = p
+         r = a(k, :);  a(k, :) = a(p, :);  a(p, :) = r
+         t = b(k);  b(k) = b(p);  b(p) = t
+         do i = k + 1, 3
+            f = a(i, k) / a(k, k)
+            a(i, :) = a(i, :) - f * a(k, :);  b(i) = b(i) - f * b(k)
+         end do
+      end do
+      do k = 3, 1, -1
+         b(k) = (b(k) - dot_product(a(k, k + 1:), b(k + 1:))) / a(k, k)
+      end do
+   end subroutine dgesv3
 end program test_continuation

@@ -16,8 +16,10 @@
 !> Derivatives of phi in x and lambda and of P in lambda are forward differences (steps 1e-6
 !> of each component's scale); P_x is the monodromy.
 !>
-!> A curve starts at every located bifurcation of a kind listed in &continuation curves (not
-!> at one already on a curve of its kind and period), is followed both ways from it, and
+!> A curve starts at every located bifurcation of a kind listed in &continuation curves where
+!> the orbit is stable on one side (a period doubling or fold where it loses stability, a
+!> grazing of a stable orbit: the boundaries of what a sweep observes), not at one already on
+!> a curve of its kind and period; it is followed both ways from it, and
 !> ends outside [parameter_min, parameter_max] x [parameter2_min, parameter2_max], after
 !> curve_max_points, or when a step below 1e-6 fails.
 module gapbeam_bifurcation_curves
@@ -70,6 +72,7 @@ contains
       if (.not. allocated(curves)) allocate(curves(0))
       do i = 1, size(bifs)
          if (.not. any(pb%cfg%curves == bifs(i)%kind)) cycle
+         if (.not. bifs(i)%primary) cycle
          if (on_a_curve(pb, curves, bifs(i))) cycle
          call follow_curve(pb, bifs(i), cv)
          allocate(tmp(size(curves) + 1))
@@ -128,6 +131,7 @@ contains
       cs%c = cs%c / norm2(cs%c);  cs%b = cs%b / norm2(cs%b)
       cs%t_graze = bf%t_graze;  cs%c_graze = bf%c_graze
       z0 = [bf%y(1:n), bf%parameter, pb%lam2]
+      pb%e_ref = max(energy_size(pb%lp0, z0(1:n)), tiny(1.0_dp))
       ! the tangent at the start, towards increasing lambda_2
       bt = [spread(0.0_dp, 1, n + 1), pb%scale(2)]
       call curve_tangent(pb, cs, z0, bt / sqrt(wdot(pb, bt, bt)), t0, err)
@@ -160,8 +164,8 @@ contains
       type(curve_state_t) :: cs
       real(dp), allocatable :: za(:), ta(:), z(:), t(:), tmp(:, :), jx(:, :)
       type(error_t), allocatable :: err
-      real(dp) :: ds, ds_max
-      integer :: its, n
+      real(dp) :: ds, ds_max, e_start
+      integer :: its, n, k
       n = pb%n
       cs = cs0
       ds_max = pb%cfg%curve_step
@@ -169,7 +173,10 @@ contains
       ds = 0.25_dp * ds_max
       allocate(zs(n + 2, 32))
       nz = 1;  zs(:, 1) = z0
-      za = z0;  ta = t0
+      za = z0
+      e_start = max(energy_size(pb%lp0, z0(1:n)), tiny(1.0_dp))
+      pb%e_ref = e_start
+      ta = t0 / sqrt(wdot(pb, t0, t0))
       ended = 'curve_max_points reached'
       do while (nz < pb%cfg%curve_max_points)
          call curve_correct(pb, cs, za, ta, ds, z, jx, its, err)
@@ -195,18 +202,29 @@ contains
          end if
          nz = nz + 1
          zs(:, nz) = z
+         if (nz > 6) then
+            if (minval([(sqrt(max(0.0_dp, wdot(pb, zs(:, k) - z, zs(:, k) - z))), &
+                         k = 1, nz - 5)]) < 0.5_dp * ds) then
+               ended = 'closed: the curve is back at an earlier point'
+               exit
+            end if
+         end if
          if (z(n + 1) < pb%cfg%parameter_min .or. z(n + 1) > pb%cfg%parameter_max .or. &
              z(n + 2) < pb%cfg%parameter2_min .or. z(n + 2) > pb%cfg%parameter2_max) then
             ended = 'left the range at (' // str(z(n + 1)) // ', ' // str(z(n + 2)) // ')'
             exit
          end if
-         if (its <= 2) then
+         if (its <= 4) then              ! chord iterations converge linearly
             ds = min(1.5_dp * ds, ds_max)
-         else if (its >= 4) then
+         else if (its <= 7) then
+            ds = min(1.2_dp * ds, ds_max)
+         else if (its >= 10) then
             ds = 0.7_dp * ds
          end if
          call update_state(pb, cs, z)
-         za = z;  ta = t
+         ! the metric follows the size of the orbit (see gapbeam_continuation_problem)
+         pb%e_ref = max(energy_size(pb%lp0, z(1:n)), 1.0e-2_dp * e_start)
+         za = z;  ta = t / sqrt(wdot(pb, t, t))
       end do
    end subroutine follow_one
 
@@ -313,7 +331,8 @@ contains
       type(problem_t), intent(inout) :: pb                !! problem
       type(curve_state_t), intent(in) :: cs               !! curve state
       real(dp), intent(in) :: z(:)                        !! point
-      real(dp), allocatable, intent(inout) :: jx(:, :)    !! Jacobian (kept if residual_only)
+      real(dp), allocatable, intent(inout) :: jx(:, :)    !! Jacobian (residual_only: only
+                                                          !! its orbit block P_x - I anew)
       real(dp), allocatable, intent(out) :: r(:)          !! residual (P(x) - x, phi)
       type(error_t), allocatable, intent(out) :: err      !! failure
       logical, intent(in), optional :: residual_only      !! only r
@@ -325,7 +344,15 @@ contains
       call curve_phi(pb, cs, z, phi, err, px, jac);  if (allocated(err)) return
       r = [px - z(1:n), phi]
       if (present(residual_only)) then
-         if (residual_only) return
+         if (residual_only) then
+            if (allocated(jx)) then
+               jx(1:n, 1:n) = jac
+               do j = 1, n
+                  jx(j, j) = jx(j, j) - 1.0_dp
+               end do
+            end if
+            return
+         end if
       end if
       if (allocated(jx)) deallocate(jx)
       allocate(jx(n + 1, n + 2))
@@ -372,15 +399,16 @@ contains
       z = za + sigma * t
       wt = wvec(pb, t)
       allocate(a(n + 2, n + 2), b(n + 2))
-      do its = 0, pb%cfg%max_iterations
-         call extended_jacobian(pb, cs, z, jx, r, err, residual_only=.true.)
+      do its = 0, 2 * pb%cfg%max_iterations
+         ! chord iterations: the whole extended Jacobian at the predictor, then only its orbit
+         ! block (the monodromy) anew
+         call extended_jacobian(pb, cs, z, jx, r, err, residual_only=its > 0)
          if (allocated(err)) return
          sz = max(energy_size(pb%lp0, z(1:n)), 1.0e-3_dp * pb%e_ref)
          con = dot_product(wt, z - za) - sigma
          if (energy_size(pb%lp0, r(1:n)) <= pb%cfg%tolerance * sz .and. &
              abs(r(n + 1)) <= tiny_phi(cs, pb) .and. its > 0) return
-         if (its == pb%cfg%max_iterations) exit
-         call extended_jacobian(pb, cs, z, jx, r, err);  if (allocated(err)) return
+         if (its == 2 * pb%cfg%max_iterations) exit
          a(1:n + 1, :) = jx
          a(n + 2, :) = wt
          b = [-r, -con]
@@ -396,7 +424,7 @@ contains
          z = z + b
       end do
       call fatal_error(err, 'curve corrector: no convergence in ' &
-         // str(pb%cfg%max_iterations) // ' iterations')
+         // str(2 * pb%cfg%max_iterations) // ' chord iterations')
    end subroutine curve_correct
 
    !> Size below which phi counts as zero: 1e-9 (bordered g, dimensionless) or 1e-9 of the

@@ -118,6 +118,7 @@ contains
          call parse_deck_variable(pb%cfg%parameter2, pb%var(2), err)
          if (.not. allocated(err)) call check_deck_variable(deck, pb%var(2), err)
          if (allocated(err)) return
+         pb%nvar = 2
          pb%lam2 = get_deck_value(deck, pb%var(2))
          pb%scale(2) = pb%cfg%parameter2_max - pb%cfg%parameter2_min
          if (.not. (pb%scale(2) > 0.0_dp)) pb%scale(2) = max(abs(pb%lam2), 1.0e-12_dp)
@@ -234,8 +235,8 @@ contains
       type(point_t), allocatable :: found(:)
       type(error_t), allocatable :: err
       real(dp), allocatable :: dprev(:), dcur(:)
-      real(dp) :: ds, ds_min, ds_max, lam, dmerge
-      integer :: nf, k, n
+      real(dp) :: ds, ds_min, ds_max, lam, dmerge, e_start
+      integer :: nf, k, n, n_unstable
       n = pb%n
       ds_max = step_scaled(pb, pb%cfg%step_max, 1.0_dp / 50.0_dp)
       ds_min = step_scaled(pb, pb%cfg%step_min, 1.0e-7_dp)
@@ -244,6 +245,10 @@ contains
       np = 1;  pts(1) = p0
       pa = p0
       if (half > 0) dprev = p0%iterates(:, p0%p / 2) - p0%y(1:n)
+      n_unstable = 0
+      e_start = pb%e_ref
+      pb%e_ref = max(energy_size(pb%lp0, p0%y(1:n)), 1.0e-2_dp * e_start)
+      pa%t = pa%t / sqrt(wdot(pb, pa%t, pa%t))
       ended = 'max_points reached'
       do while (np < pb%cfg%max_points)
          call correct_point(pb, pa%p, pa%y, pa%t, ds, pn, err)
@@ -307,6 +312,23 @@ contains
             ended = 'left the parameter range at ' // str(lam)
             exit
          end if
+         if (half > 0 .and. pb%cfg%unstable_points > 0) then
+            if (maxval(abs(pn%mu)) > 1.0_dp) then
+               n_unstable = n_unstable + 1
+            else
+               n_unstable = 0
+            end if
+            if (n_unstable >= pb%cfg%unstable_points) then
+               ended = str(n_unstable) // ' unstable points in a row (unstable_points) at ' &
+                  // str(lam)
+               exit
+            end if
+         end if
+         ! the metric follows the size of the orbit (an orbit that grows tenfold towards a
+         ! resonance would otherwise shrink the steps in the variable tenfold); the tangent is
+         ! normalised again in the new metric
+         pb%e_ref = max(energy_size(pb%lp0, pn%y(1:n)), 1.0e-2_dp * e_start)
+         pn%t = pn%t / sqrt(wdot(pb, pn%t, pn%t))
          if (pn%iterations <= 2) then
             ds = min(1.5_dp * ds, ds_max)
          else if (pn%iterations >= 4) then
@@ -604,8 +626,9 @@ contains
             bf%y = pt%y
             bf%jac = pt%jac
             ! the orbit is stable on one side: every other multiplier inside the unit circle
+            ! (grazing: the orbit is stable there)
             bf%primary = count(abs(pt%mu) > 1.0_dp + 1.0e-6_dp) == 0 .or. &
-                         (count(abs(pt%mu) > 1.0_dp + 1.0e-6_dp) == 1 .and. &
+                         (count(abs(pt%mu) > 1.0_dp + 1.0e-6_dp) == 1 .and. k /= 5 .and. &
                           abs(bf%multiplier) > 1.0_dp + 1.0e-6_dp)
          end associate
       end do

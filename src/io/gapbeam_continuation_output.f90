@@ -23,9 +23,9 @@
 !>                                      point, multiplier_real, multiplier_imag, grazing, note
 !>   /continuation/curves/kind, period, ended (per curve); curve_NNN/parameter, parameter2
 !>   /continuation/seconds, map_evaluations, periods_integrated
-!> Text: PREFIX.branches.dat (one block per branch and section point: parameter, strain,
-!> strain rate, tip, stable (1 stable, 0 unstable, 0.5 a located bifurcation), branch,
-!> period), PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per
+!> Text: PREFIX.branches.dat (blocks per branch and section point, a new block wherever the
+!> stability changes, a located bifurcation point ending one block and starting the next:
+!> parameter, strain, strain rate, tip, stable (1 stable, 0 unstable), branch, period), PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per
 !> curve). Their first comment lines name the overlay sweep for scripts/plot.sh.
 module gapbeam_continuation_output
    use, intrinsic :: iso_fortran_env, only: int64
@@ -196,7 +196,7 @@ contains
       character(len=:), allocatable :: t, head
       integer :: nt
       integer :: b, j, k, m
-      real(dp) :: s
+      real(dp) :: s, last
       head = '# ' // title // new_line('a') // '# overlay: ' // trim(overlay) // new_line('a') &
          // '# parameter: ' // res%parameter_name // ' [' // res%parameter_units // ']' &
          // new_line('a')
@@ -204,15 +204,29 @@ contains
       nt = 0
       call append(t, nt, head)
       call append(t, nt, '# columns: parameter [' // res%parameter_units // '], strain [-], ' &
-         // 'strain_rate [1/s], tip [m], stable [1 stable, 0 unstable, 0.5 bifurcation], ' &
+         // 'strain_rate [1/s], tip [m], stable [1 stable, 0 unstable], ' &
          // 'branch [-], period [forcing periods]' // new_line('a'))
       do b = 1, size(res%branches)
          do k = 1, res%branches(b)%period
+            ! a new block wherever the stability changes: a located point ends the block
+            ! before it (with that block's flag) and starts the next (with the next's), so that
+            ! gnuplot draws each block in one style
+            last = -1.0_dp
             do j = res%branches(b)%first, res%branches(b)%last
                s = merge(1.0_dp, 0.0_dp, res%stable(j))
-               if (res%located(j)) s = 0.5_dp
+               if (res%located(j) .and. j < res%branches(b)%last) &
+                  s = merge(1.0_dp, 0.0_dp, res%stable(j + 1))
+               if (res%located(j) .and. last >= 0.0_dp) then
+                  call append(t, nt, row([res%parameter(j), res%p_strain(k, j), &
+                     res%p_rate(k, j), res%p_tip(k, j), last, real(b, dp), &
+                     real(res%period(j), dp)]))
+                  call append(t, nt, new_line('a'))
+               else if (last >= 0.0_dp .and. s /= last) then
+                  call append(t, nt, new_line('a'))
+               end if
                call append(t, nt, row([res%parameter(j), res%p_strain(k, j), res%p_rate(k, j), &
                   res%p_tip(k, j), s, real(b, dp), real(res%period(j), dp)]))
+               last = s
             end do
             call append(t, nt, new_line('a') // new_line('a'))
          end do

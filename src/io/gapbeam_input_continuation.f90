@@ -25,13 +25,13 @@ contains
       real(dp) :: parameter_min, parameter_max, step, step_min, step_max, tolerance, fd_step, &
          locate_tolerance, parameter2_min, parameter2_max, curve_step
       integer :: period, transient_periods, max_points, max_iterations, max_period, &
-         grazing_samples, curve_max_points, k
+         grazing_samples, curve_max_points, k, unstable_points
       logical :: switch_period_doubling
       namelist /continuation/ parameter, parameter_min, parameter_max, direction, start, &
          period, transient_periods, step, step_min, step_max, max_points, tolerance, &
          max_iterations, jacobian, fd_step, locate_tolerance, switch_period_doubling, &
          max_period, grazing_samples, parameter2, parameter2_min, parameter2_max, curves, &
-         curve_max_points, curve_step, overlay
+         curve_max_points, curve_step, overlay, unstable_points
       if (.not. present_group) then
          if (deck%job%analysis == 'continuation') call fatal_error(err, 'group &continuation ' &
             // "is missing: analysis='continuation' needs at least parameter, parameter_min " &
@@ -46,6 +46,7 @@ contains
       max_iterations = c%max_iterations;  jacobian = c%jacobian;  fd_step = c%fd_step
       locate_tolerance = c%locate_tolerance;  switch_period_doubling = c%switch_period_doubling
       max_period = c%max_period;  grazing_samples = c%grazing_samples
+      unstable_points = c%unstable_points
       parameter2 = c%parameter2;  parameter2_min = c%parameter2_min
       parameter2_max = c%parameter2_max;  curves = c%curves
       curve_max_points = c%curve_max_points;  curve_step = c%curve_step;  overlay = c%overlay
@@ -53,7 +54,8 @@ contains
          // 'direction start period transient_periods step step_min step_max max_points ' &
          // 'tolerance max_iterations jacobian fd_step locate_tolerance ' &
          // 'switch_period_doubling max_period grazing_samples parameter2 parameter2_min ' &
-         // 'parameter2_max curves curve_max_points curve_step overlay', reader, err)
+         // 'parameter2_max curves curve_max_points curve_step overlay unstable_points', &
+         reader, err)
       if (allocated(err)) return
       call check_variable(deck, 'parameter', parameter, parameter_min, parameter_max, &
                           'parameter_min', 'parameter_max', err)
@@ -76,6 +78,8 @@ contains
       call require_range('continuation', 'fd_step', fd_step, 1.0e-12_dp, 1.0e-2_dp, err)
       call require_nonnegative('continuation', 'locate_tolerance', locate_tolerance, err)
       call require_int('continuation', 'grazing_samples', grazing_samples, 8, 1000000, err)
+      call require_int('continuation', 'unstable_points', unstable_points, 0, 1000000, err, &
+                       '0: doubled branches are followed however unstable')
       call require_int('continuation', 'curve_max_points', curve_max_points, 2, 1000000, err)
       call require_range('continuation', 'curve_step', curve_step, 0.0_dp, 1.0_dp, err)
       if (allocated(err)) return
@@ -127,7 +131,8 @@ contains
          locate_tolerance=locate_tolerance, switch_period_doubling=switch_period_doubling, &
          max_period=max_period, grazing_samples=grazing_samples, parameter2=parameter2, &
          parameter2_min=parameter2_min, parameter2_max=parameter2_max, curves=curves, &
-         curve_max_points=curve_max_points, curve_step=curve_step, overlay=overlay)
+         curve_max_points=curve_max_points, curve_step=curve_step, overlay=overlay, &
+         unstable_points=unstable_points)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
