@@ -165,7 +165,7 @@ contains
       real(dp), allocatable :: za(:), ta(:), z(:), t(:), tmp(:, :), jx(:, :)
       type(error_t), allocatable :: err
       real(dp) :: ds, ds_max, e_start
-      integer :: its, n, k
+      integer :: its, n, k, n_fail
       n = pb%n
       cs = cs0
       ds_max = pb%cfg%curve_step
@@ -178,6 +178,7 @@ contains
       pb%e_ref = e_start
       ta = t0 / sqrt(wdot(pb, t0, t0))
       ended = 'curve_max_points reached'
+      n_fail = 0
       do while (nz < pb%cfg%curve_max_points)
          call curve_correct(pb, cs, za, ta, ds, z, jx, its, err)
          if (.not. allocated(err)) call tangent_from(pb, jx, ta, t, err)
@@ -187,6 +188,13 @@ contains
          end if
          if (allocated(err)) then
             ds = 0.5_dp * ds
+            n_fail = n_fail + 1
+            if (n_fail > 5) then
+               ended = 'crawling at (' // str(za(n + 1)) // ', ' // str(za(n + 2)) // '): more ' &
+                  // 'than 5 failed steps in 20 points (the test function is not smooth here: ' &
+                  // 'a grazing nearby?); last: ' // err%message
+               exit
+            end if
             if (ds < 1.0e-6_dp) then
                ended = 'step below 1e-6 at (' // str(za(n + 1)) // ', ' // str(za(n + 2)) &
                   // '): ' // err%message
@@ -202,10 +210,21 @@ contains
          end if
          nz = nz + 1
          zs(:, nz) = z
+         if (mod(nz, 20) == 0) n_fail = 0
          if (nz > 6) then
             if (minval([(sqrt(max(0.0_dp, wdot(pb, zs(:, k) - z, zs(:, k) - z))), &
                          k = 1, nz - 5)]) < 0.5_dp * ds) then
                ended = 'closed: the curve is back at an earlier point'
+               exit
+            end if
+         end if
+         ! stalled: 40 points that move less than 1e-3 of the plane (a non-smooth point of
+         ! the test function, e.g. where the orbit grazes)
+         if (nz > 40) then
+            if (maxval(abs((zs(n + 1:n + 2, nz) - zs(n + 1:n + 2, nz - 40)) / pb%scale)) &
+                < 1.0e-3_dp) then
+               ended = 'stalled at (' // str(z(n + 1)) // ', ' // str(z(n + 2)) // '): 40 ' &
+                  // 'points within 1e-3 of the ranges (a non-smooth point, e.g. grazing?)'
                exit
             end if
          end if
@@ -214,7 +233,7 @@ contains
             ended = 'left the range at (' // str(z(n + 1)) // ', ' // str(z(n + 2)) // ')'
             exit
          end if
-         if (its <= 4) then              ! chord iterations converge linearly
+         if (its <= 4) then              ! quasi-Newton iterations
             ds = min(1.5_dp * ds, ds_max)
          else if (its <= 7) then
             ds = min(1.2_dp * ds, ds_max)
@@ -392,7 +411,7 @@ contains
       real(dp), allocatable, intent(out) :: jx(:, :)    !! Jacobian of the last iteration
       integer, intent(out) :: its                       !! iterations
       type(error_t), allocatable, intent(out) :: err    !! no convergence
-      real(dp), allocatable :: r(:), a(:, :), b(:), wt(:)
+      real(dp), allocatable :: r(:), a(:, :), b(:), wt(:), r_prev(:), jstep(:, :), u(:)
       real(dp) :: sz, con
       integer :: n, info
       n = pb%n
@@ -400,10 +419,18 @@ contains
       wt = wvec(pb, t)
       allocate(a(n + 2, n + 2), b(n + 2))
       do its = 0, 2 * pb%cfg%max_iterations
-         ! chord iterations: the whole extended Jacobian at the predictor, then only its orbit
-         ! block (the monodromy) anew
+         ! the whole extended Jacobian at the predictor; then its orbit block (the monodromy)
+         ! anew at every iterate and the rest (the test function's row, the columns of the
+         ! variables) by Broyden's rank-one update
          call extended_jacobian(pb, cs, z, jx, r, err, residual_only=its > 0)
          if (allocated(err)) return
+         if (its > 0) then
+            u = (r - r_prev - matmul(jstep, b)) / dot_product(b, b)
+            jx(n + 1, :) = jstep(n + 1, :) + u(n + 1) * b
+            jx(1:n, n + 1:n + 2) = jstep(1:n, n + 1:n + 2) + &
+               matmul(reshape(u(1:n), [n, 1]), reshape(b(n + 1:n + 2), [1, 2]))
+         end if
+         r_prev = r
          sz = max(energy_size(pb%lp0, z(1:n)), 1.0e-3_dp * pb%e_ref)
          con = dot_product(wt, z - za) - sigma
          if (energy_size(pb%lp0, r(1:n)) <= pb%cfg%tolerance * sz .and. &
@@ -411,6 +438,7 @@ contains
          if (its == 2 * pb%cfg%max_iterations) exit
          a(1:n + 1, :) = jx
          a(n + 2, :) = wt
+         jstep = jx
          b = [-r, -con]
          call solve_linear(a, b, info)
          if (info /= 0) then

@@ -118,7 +118,9 @@ contains
             // "parameter2 = '" // trim(parameter2) // "' needs curves, e.g. curves = " &
             // "'period_doubling', 'grazing' (allowed: " // curve_kind_words // ')')
       else if (any(len_trim(curves) > 0)) then
-         call fatal_error(err, "group &continuation: curves = '" // trim(curves(1)) &
+         k = findloc(len_trim(curves) > 0, .true., dim=1)
+         call fatal_error(err, "group &continuation: curves(" // str(k) // ") = '" &
+            // trim(curves(k)) &
             // "': two-parameter curves need parameter2 (the second variable, e.g. " &
             // "'&forcing amplitude_pp') with parameter2_min and parameter2_max")
       end if
