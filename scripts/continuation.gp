@@ -9,7 +9,8 @@
 # Variables: datafile (PREFIX.branches.dat, required), bifile (PREFIX.bifurcations.dat,
 #   optional), sweepfile (a sweep's PREFIX.bifurcation.dat, optional: x = its column 1 [Hz],
 #   or column 2 in mm when xcol=2), xcol (1 or 2, default 1), outfile (PNG, required),
-#   plottitle (optional), xlabel_text (optional, default from the file's parameter line).
+#   plottitle (optional), xlabel_text (optional, default from the file's parameter line),
+#   sweep_amp (optional: only the sweep points of this amplitude_pp [m], for a grid sweep).
 # PREFIX.branches.dat columns: 1 parameter, 2 strain [-], 3 strain rate [1/s], 4 tip [m],
 #   5 stable (1 stable, 0 unstable; a new block wherever it changes), 6 branch,
 #   7 period; one block (blank lines) per branch and section point.
@@ -25,6 +26,7 @@ if (!exists("datafile") || !exists("outfile")) {
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: continuation" }
 if (!exists("xcol")) { xcol = 1 }
+if (!exists("sweep_amp")) { sweep_amp = -1.0 }
 if (!exists("xlabel_text") || strlen(xlabel_text) == 0) {
    xlabel_text = system(sprintf("sed -n 's/^# parameter: //p' '%s' | head -n 1", datafile))
 }
@@ -50,7 +52,8 @@ set datafile missing "NaN"
 pc(p) = (p == 1) ? 0x1f4e9c : (p == 2) ? 0x2ca02c : (p == 4) ? 0xff7f0e : (p == 8) ? 0x8c4fbf : (p == 16) ? 0xd62728 : 0x8c564b
 sx(x) = (xcol == 2) ? x*1.0e3 : x
 
-s_sweep = "sweepfile using (sx(column(xcol))):($3*1.0e6) with points pt 7 ps 0.2 lc rgb '#b0b0b0' title 'brute-force sweep', "
+keep_amp(a) = (sweep_amp < 0 || abs(a - sweep_amp) <= 1.0e-6*abs(sweep_amp)) ? 1 : 0
+s_sweep = "sweepfile using (keep_amp($2) ? sx(column(xcol)) : 1/0):($3*1.0e6) with points pt 7 ps 0.2 lc rgb '#b0b0b0' title 'brute-force sweep', "
 s_bif = "bifile using 2:($9 == 1 ? $3*1.0e6 : 1/0) with points pt 6 ps 1.3 lc rgb 'black' title 'period doubling', " . \
    "bifile using 2:((strcol(1) eq 'saddle_node') ? $3*1.0e6 : 1/0) with points pt 8 ps 1.3 lc rgb 'black' title 'saddle-node', " . \
    "bifile using 2:((strcol(1) eq 'neimark_sacker') ? $3*1.0e6 : 1/0) with points pt 12 ps 1.4 lc rgb '#d62728' title 'Neimark-Sacker', " . \

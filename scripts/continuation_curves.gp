@@ -36,6 +36,9 @@ if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
 hf = 0.005;  ha = 0.05
 if (have_sweep) {
    # tile half-sizes from the grid spacing (as in chaos_map.gp)
+   set format x "%.12g"
+   set xrange [-1.0e30 : 1.0e30]
+   set yrange [-1.0e30 : 1.0e30]
    set table $cc_f
    plot sweepfile using 1:(1) smooth frequency
    set table $cc_a
@@ -47,6 +50,7 @@ if (have_sweep) {
    na = STATS_records;  amin = STATS_min;  amax = STATS_max
    hf = (nf > 1) ? 0.5*(fmax - fmin)/(nf - 1) : 0.01
    ha = (na > 1) ? 0.5*(amax - amin)/(na - 1) : 0.01
+   set format x "%g"
 }
 # frame: the curves' extent, or the sweep's
 stats datafile using 1:($2*yscale) nooutput

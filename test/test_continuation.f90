@@ -11,6 +11,11 @@ program test_continuation
       energy_size
    use gapbeam_continuation, only: run_continuation
    use gapbeam_continuation_types, only: continuation_result_t
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
+   use gapbeam_results, only: point_result_t
+   use gapbeam_sweep, only: run_point
+   use gapbeam_state, only: state_t
+   use gapbeam_transition, only: reduce_state
    implicit none
    character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_continuation.nml'
@@ -19,8 +24,11 @@ program test_continuation
    real(dp), parameter :: k1 = 3 * ei1 / 0.2_dp**3, m1 = 7850.0_dp * 0.01_dp * 5.0e-4_dp &
       * 0.2_dp / 2, c1 = 9.0e-4_dp * k1, ks = 30.0_dp, gap = 2.0e-4_dp, a1 = 3.0e-4_dp
 
+   call deck_errors()
    call monodromy_against_differences()
    call sdof_against_closed_form()
+   call reference_line_against_sweep()
+   call folds_against_up_down_sweeps()
    call finish('test_continuation')
 
 contains
@@ -40,6 +48,70 @@ contains
          call finish('test_continuation')
       end if
    end subroutine load
+
+   !> Bad &continuation groups are rejected with one line naming the deck, the group, the
+   !> variable, the value and what is allowed.
+   subroutine deck_errors()
+      character(len=*), parameter :: job = "&job analysis = 'continuation' /"
+      character(len=*), parameter :: ex = "&solver method = 'exact' /"
+      call bad('unknown variable name', [character(len=200) :: job, ex, &
+         "&continuation parameter = '&forcing freq', parameter_min = 8, parameter_max = 11 /"], &
+         [character(len=40) :: 'sweep_line_4mm.nml', '&continuation', 'parameter', 'freq', &
+         'frequency_hz'])
+      call bad('empty range', [character(len=200) :: job, ex, &
+         "&continuation parameter_min = 11.0, parameter_max = 8.0 /"], &
+         [character(len=40) :: '&continuation', 'parameter_min', 'parameter_max', '11', '8'])
+      call bad('start value outside the range', [character(len=200) :: job, ex, &
+         "&continuation parameter_min = 10.5, parameter_max = 11.0 /"], &
+         [character(len=40) :: '&continuation', 'parameter', '10', '10.5'])
+      call bad('exact Jacobian with Newmark', [character(len=200) :: job, &
+         "&continuation parameter_min = 8.0, parameter_max = 11.0 /"], &
+         [character(len=40) :: '&continuation', 'jacobian', 'exact', 'newmark'])
+      call bad('curves without parameter2', [character(len=200) :: job, ex, &
+         "&continuation parameter_min = 8, parameter_max = 11, curves = 'grazing' /"], &
+         [character(len=40) :: '&continuation', 'curves', 'parameter2'])
+      call bad('stop entry beyond the list', [character(len=200) :: job, ex, &
+         "&continuation parameter = '&stops gap(3)', parameter_min = 0, parameter_max = 1e-3 /"],&
+         [character(len=40) :: '&continuation', 'parameter', '&stops gap(3)', '1 &stops'])
+      call bad('tolerance out of range', [character(len=200) :: job, ex, &
+         "&continuation parameter_min = 8, parameter_max = 11, tolerance = 0.5 /"], &
+         [character(len=40) :: '&continuation', 'tolerance', '0.5', '1E-015'])
+      call bad('unknown word for direction', [character(len=200) :: job, ex, &
+         "&continuation parameter_min = 8, parameter_max = 11, direction = 'sideways' /"], &
+         [character(len=40) :: '&continuation', 'direction', 'sideways', "'both'"])
+      call bad('group missing', [character(len=200) :: job, ex], &
+         [character(len=40) :: '&continuation', 'missing', 'parameter_min'])
+   end subroutine deck_errors
+
+   subroutine bad(name, overrides, words)
+      character(len=*), intent(in) :: name, overrides(:), words(:)
+      type(deck_t) :: deck
+      type(error_t), allocatable :: err
+      integer :: k
+      logical :: ok
+      call read_deck(ref, overrides, deck, err)
+      if (.not. allocated(err)) then
+         call check('deck error, ' // name // ': rejected', .false.)
+         return
+      end if
+      ok = index(err%message, new_line('a')) == 0
+      do k = 1, size(words)
+         ok = ok .and. index(err%message, trim(words(k))) > 0
+      end do
+      call check('deck error, ' // name // ': one line naming ' // join_words(words), ok, &
+                 err%message)
+   end subroutine bad
+
+   pure function join_words(w) result(t)
+      character(len=*), intent(in) :: w(:)
+      character(len=:), allocatable :: t
+      integer :: j
+      t = ''
+      do j = 1, size(w)
+         if (j > 1) t = t // ', '
+         t = t // trim(w(j))
+      end do
+   end function join_words
 
    !> The exact monodromy (transition and saltation matrices) against central differences of
    !> the exact map: no impact, impacts at a zero gap, impacts on a damped stop (the saltation
@@ -87,6 +159,201 @@ contains
          // '(max |error| / max |entry|)', e, 1.0e-6_dp)
       call check('monodromy, ' // name // ': same map', maxval(abs(px - px2)) == 0.0_dp)
    end subroutine one
+   ! ---------------------------------------------------------------- the 4 mm line
+
+   !> Labels (period, impacts per recorded period) of an up or down sweep along frequencies fs
+   !> of the deck's model, each point from the last point's final state (the first from rest
+   !> with a longer transient), exact integrator.
+   subroutine line_sweep(deck, model, fs, period, impacts)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      real(dp), intent(in) :: fs(:)
+      integer, intent(out) :: period(:), impacts(:)
+      type(solver_settings_t) :: cfg
+      type(diagnostics_settings_t) :: dg
+      type(point_result_t) :: pr
+      real(dp), allocatable :: u(:), v(:)
+      integer :: j
+      cfg = deck%solver
+      cfg%method = 'exact';  cfg%record_periods = 40
+      dg = deck%diagnostics
+      dg%lyapunov_periods = 0;  dg%period_max = 8
+      allocate(u(model%n), v(model%n), source=0.0_dp)
+      do j = 1, size(fs)
+         cfg%transient_periods = merge(300, 100, j == 1)
+         call run_point(model, cfg, deck%output, dg, fs(j), deck%forcing%amplitude_pp, u, v, pr)
+         period(j) = pr%period
+         impacts(j) = pr%n_impacts(1)
+         u = pr%u_end;  v = pr%v_end
+      end do
+   end subroutine line_sweep
+
+   !> On the 4 mm line (zero gap) from 8.40 to 8.62 Hz: the period doublings (and the
+   !> Neimark-Sacker point) of the continued branch lie in the 0.01 Hz step of an up sweep
+   !> where its period changes; a direct simulation started on a continued stable orbit (of
+   !> period 2) stays on it.
+   subroutine reference_line_against_sweep()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:), fs(:)
+      integer, allocatable :: per(:), imp(:)
+      integer :: k, j, i, nf
+      real(dp) :: f
+      character(len=:), allocatable :: name
+      call load(ref, [character(len=300) :: "&solver method = 'exact' /", &
+         '&forcing frequency_hz = 8.40 /', "&job analysis = 'continuation' /", &
+         "&continuation parameter = '&forcing frequency_hz', parameter_min = 8.40, " &
+         // "parameter_max = 8.62, direction = 'up', step_max = 0.02, max_period = 2 /"], &
+         deck, model, u0, v0)
+      call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('4 mm line: continuation runs', .false., err%message)
+         return
+      end if
+      nf = 23
+      fs = [(8.40_dp + 0.01_dp * real(j - 1, dp), j = 1, nf)]
+      allocate(per(nf), imp(nf))
+      call line_sweep(deck, model, fs, per, imp)
+      call note('4 mm up sweep 8.40-8.62 Hz, periods: ' // join_int(per))
+      call check('4 mm line: two period doublings and a Neimark-Sacker point', &
+         count(res%bif_kind == 'period_doubling' .and. res%bif_period == 1) == 2 .and. &
+         count(res%bif_kind == 'neimark_sacker') == 1)
+      do k = 1, res%n_bif
+         if (res%bif_kind(k) /= 'period_doubling' .and. res%bif_kind(k) /= 'neimark_sacker') &
+            cycle
+         if (res%bif_period(k) /= 1) cycle
+         ! the nearest step of the sweep where the period changes: within one step (a sweep
+         ! point a hair past a doubling keeps the old period over its transient, the
+         ! multiplier being close to -1 there)
+         f = res%bif_parameter(k)
+         i = 0
+         do j = 1, nf - 1
+            if (per(j) == per(j + 1)) cycle
+            if (i == 0) then
+               i = j
+            else if (abs(f - 0.5_dp * (fs(j) + fs(j + 1))) < &
+                     abs(f - 0.5_dp * (fs(i) + fs(i + 1)))) then
+               i = j
+            end if
+         end do
+         name = trim(res%bif_kind(k)) // ' at ' // str(f) // ' Hz'
+         if (i == 0) then
+            call check('4 mm line: ' // name // ': the sweep changes period', .false.)
+            cycle
+         end if
+         call check_le('4 mm line: ' // name // ' against the nearest period change of the ' &
+            // 'sweep (' // str(fs(i)) // ': ' // str(per(i)) // ', ' // str(fs(i + 1)) // ': ' &
+            // str(per(i + 1)) // '), distance to its midpoint [Hz]', &
+            abs(f - 0.5_dp * (fs(i) + fs(i + 1))), 0.0105_dp)
+      end do
+      call stays_on_orbit(deck, model, res)
+   end subroutine reference_line_against_sweep
+
+   !> A direct simulation (exact integrator, 60 periods) from the section state of the stable
+   !> period-2 orbit nearest 8.50 Hz returns to the orbit's two section points every period.
+   subroutine stays_on_orbit(deck, model, res)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      type(continuation_result_t), intent(in) :: res
+      type(orbit_map_t) :: m
+      type(model_t) :: mdl
+      type(state_t) :: st
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: x(:), px(:), xs(:, :)
+      real(dp) :: dev, sz
+      integer :: j, best, k
+      best = 0
+      do j = 1, res%n
+         if (res%period(j) /= 2 .or. .not. res%stable(j)) cycle
+         if (best == 0) then
+            best = j
+         else if (abs(res%parameter(j) - 8.50_dp) < abs(res%parameter(best) - 8.50_dp)) then
+            best = j
+         end if
+      end do
+      if (best == 0) then
+         call check('4 mm line: a stable period-2 orbit was continued', .false.)
+         return
+      end if
+      mdl = model
+      mdl%omega = 2 * pi * res%parameter(best)
+      call m%setup(mdl, deck%solver, 1, 0.0_dp, .false., 1.0e-5_dp, err)
+      x = res%state(:, best)
+      allocate(px(size(x)), xs(size(x), 0:1))
+      xs(:, 0) = x
+      call m%evaluate(x, px, err);  xs(:, 1) = px
+      sz = energy_size(m%lp, x)
+      dev = 0.0_dp
+      call m%section_state(x, st)          ! one run of 60 periods from the section state
+      do k = 1, 60
+         call m%integ%advance(st, real(k, dp) * m%period, err=err)
+         if (allocated(err)) exit
+         x = reduce_state(m%lp, st%u, st%v)
+         dev = max(dev, energy_size(m%lp, x - xs(:, mod(k, 2))) / sz)
+      end do
+      call check_le('4 mm line: 60 periods of direct simulation from the continued period-2 ' &
+         // 'orbit at ' // str(res%parameter(best)) // ' Hz stay on it (energy distance / size)', &
+         dev, 1.0e-8_dp)
+   end subroutine stays_on_orbit
+
+   !> The folds of the period-1 branch near 8.78 Hz against the jumps of up and down sweeps:
+   !> the up sweep reaches the one-impact orbit just above the upper fold, the down sweep
+   !> leaves it just below the lower fold: the hysteresis interval.
+   subroutine folds_against_up_down_sweeps()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:), fs(:), folds(:)
+      integer, allocatable :: per(:), imp(:)
+      integer :: j, nf, i_up, i_down
+      call load(ref, [character(len=300) :: "&solver method = 'exact' /", &
+         '&forcing frequency_hz = 8.82 /', "&job analysis = 'continuation' /", &
+         "&continuation parameter = '&forcing frequency_hz', parameter_min = 8.74, " &
+         // "parameter_max = 8.82, direction = 'down', step_max = 0.01, " &
+         // 'switch_period_doubling = .false. /'], deck, model, u0, v0)
+      call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('hysteresis: continuation runs', .false., err%message)
+         return
+      end if
+      folds = pack(res%bif_parameter, res%bif_kind == 'saddle_node')
+      call check('hysteresis: two folds', size(folds) == 2)
+      if (size(folds) /= 2) return
+      call note('folds at ' // str(minval(folds)) // ' and ' // str(maxval(folds)) // ' Hz')
+      nf = 9
+      allocate(per(nf), imp(nf))
+      ! up: the first point on the one-impact period-1 orbit
+      fs = [(8.74_dp + 0.01_dp * real(j - 1, dp), j = 1, nf)]
+      call line_sweep(deck, model, fs, per, imp)
+      call note('up sweep 8.74-8.82 Hz, periods: ' // join_int(per) // '; impacts: ' &
+         // join_int(imp))
+      i_up = findloc(per == 1 .and. imp == 40, .true., dim=1)
+      call check('hysteresis: the up sweep jumps onto the branch in the step of the upper fold',&
+         i_up > 1 .and. fs(max(i_up, 2) - 1) < maxval(folds) .and. fs(max(i_up, 1)) > maxval(folds))
+      ! down: the last point on it
+      fs = fs(nf:1:-1)
+      call line_sweep(deck, model, fs, per, imp)
+      call note('down sweep 8.82-8.74 Hz, periods: ' // join_int(per) // '; impacts: ' &
+         // join_int(imp))
+      i_down = findloc(per == 1 .and. imp == 40, .false., dim=1) - 1
+      call check('hysteresis: the down sweep leaves the branch in the step of the lower fold', &
+         i_down >= 1 .and. i_down < nf .and. fs(max(i_down, 1)) > minval(folds) .and. &
+         fs(min(i_down + 1, nf)) < minval(folds))
+   end subroutine folds_against_up_down_sweeps
+
+   pure function join_int(v) result(t)
+      integer, intent(in) :: v(:)
+      character(len=:), allocatable :: t
+      integer :: j
+      t = ''
+      do j = 1, size(v)
+         t = t // ' ' // str(v(j))
+      end do
+   end function join_int
+
    ! ---------------------------------------------------------------- SDOF in closed form
 
    !> The continued branch of the SDOF bilinear oscillator against its closed form: below the

@@ -200,6 +200,9 @@ contains
       head = '# ' // title // new_line('a') // '# overlay: ' // trim(overlay) // new_line('a') &
          // '# parameter: ' // res%parameter_name // ' [' // res%parameter_units // ']' &
          // new_line('a')
+      if (len(res%parameter2_name) > 0) head = head // '# branches at: ' &
+         // res%parameter2_name // ' = ' // trim(adjustl(real_text(res%parameter2_value))) &
+         // new_line('a')
       ! branches: one block per (branch, section point)
       nt = 0
       call append(t, nt, head)
@@ -293,6 +296,12 @@ contains
       t(nt + 1:nt + len(x)) = x
       nt = nt + len(x)
    end subroutine append
+
+   pure function real_text(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=26) :: s
+      write(s, '(es26.16e3)') x
+   end function real_text
 
    !> One table row.
    pure function row(v) result(s)
