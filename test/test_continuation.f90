@@ -27,6 +27,7 @@ program test_continuation
    call deck_errors()
    call monodromy_against_differences()
    call sdof_against_closed_form()
+   call sdof_grazing_curve()
    call reference_line_against_sweep()
    call folds_against_up_down_sweeps()
    call finish('test_continuation')
@@ -422,6 +423,44 @@ contains
       end do
       call check('SDOF: one grazing found', count(res%bif_kind == 'grazing') == 1)
    end subroutine sdof_against_closed_form
+
+   !> The grazing point continued in (frequency, amplitude): the SDOF's linear orbit touches the
+   !> stop where |U(Omega)| = gap, i.e. on A_pp(Omega) = 2 gap |k/m - Omega^2 + i c Omega / m|
+   !> / Omega^2; every point of the curve against it.
+   subroutine sdof_grazing_curve()
+      type(deck_t) :: deck
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp) :: e, om, ac
+      integer :: j, k, n
+      call read_deck(sdof, [character(len=200) :: "&continuation parameter2 = '&forcing " &
+         // "amplitude_pp', parameter2_min = 3.0e-4, parameter2_max = 1.2e-3, curves = " &
+         // "'grazing', parameter_max = 6.0, curve_step = 0.05 /"], deck, err)
+      if (.not. allocated(err)) call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('SDOF grazing curve: runs', .false., err%message)
+         return
+      end if
+      call check('SDOF grazing curve: one curve', size(res%curves) == 1)
+      if (size(res%curves) /= 1) return
+      e = 0.0_dp;  n = 0
+      do k = 1, size(res%curves)
+         do j = 1, size(res%curves(k)%parameter)
+            om = 2 * pi * res%curves(k)%parameter(j)
+            ac = 2 * gap * abs(cmplx(k1 / m1 - om**2, c1 / m1 * om, dp)) / om**2
+            e = max(e, abs(res%curves(k)%parameter2(j) - ac) / ac)
+            n = n + 1
+         end do
+      end do
+      call note('SDOF grazing curve: ' // str(n) // ' points, ' &
+         // str(minval(res%curves(1)%parameter)) // ' to ' // str(maxval(res%curves(1)%parameter)) &
+         // ' Hz; ' // trim(res%curves(1)%ended))
+      call check('SDOF grazing curve: spans the amplitude range', &
+         minval(res%curves(1)%parameter2) < 3.1e-4_dp .and. &
+         maxval(res%curves(1)%parameter2) > 1.19e-3_dp)
+      call check_le('SDOF grazing curve: amplitude against the closed form (max relative ' &
+         // 'error)', e, 1.0e-8_dp)
+   end subroutine sdof_grazing_curve
 
    !> Complex amplitude of the forced response of a phase with stiffness ke: u = Re(U e^{i W t}).
    pure complex(dp) function forced_amplitude(ke, om) result(u)
