@@ -25,8 +25,9 @@
 !>   /continuation/seconds, map_evaluations, periods_integrated
 !> Text: PREFIX.branches.dat (blocks per branch and section point, a new block wherever the
 !> stability changes, a located bifurcation point ending one block and starting the next:
-!> parameter, strain, strain rate, tip, stable (1 stable, 0 unstable), branch, period), PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per
-!> curve). Their first comment lines name the overlay sweep for scripts/plot.sh.
+!> parameter, strain, strain rate, tip, stable (1 stable, 0 unstable), branch, period),
+!> PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per curve).
+!> Their first comment lines name the overlay sweep for scripts/plot.sh.
 module gapbeam_continuation_output
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
@@ -244,8 +245,8 @@ contains
          // 'other]' // new_line('a'))
       do j = 1, res%n_bif
          m = res%bif_point(j)
-         call append(t, nt, trim(res%bif_kind(j)) // row([res%bif_parameter(j), res%p_strain(1, m), &
-            real(res%bif_period(j), dp), real(res%bif_branch(j), dp), &
+         call append(t, nt, trim(res%bif_kind(j)) // row([res%bif_parameter(j), &
+            res%p_strain(1, m), real(res%bif_period(j), dp), real(res%bif_branch(j), dp), &
             real(res%bif_multiplier(j), dp), aimag(res%bif_multiplier(j)), res%bif_grazing(j), &
             real(curve_kind_code(res%bif_kind(j)), dp)]))
       end do
@@ -253,8 +254,8 @@ contains
       ! multipliers
       nt = 0
       call append(t, nt, head)
-      call append(t, nt, '# columns: parameter [' // res%parameter_units // '], real [-], imag [-], ' &
-         // 'modulus [-], branch [-], period [forcing periods]' // new_line('a'))
+      call append(t, nt, '# columns: parameter [' // res%parameter_units // '], real [-], ' &
+         // 'imag [-], modulus [-], branch [-], period [forcing periods]' // new_line('a'))
       do j = 1, res%n
          do k = 1, res%n_state
             call append(t, nt, row([res%parameter(j), real(res%multipliers(k, j), dp), &

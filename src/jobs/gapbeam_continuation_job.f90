@@ -63,7 +63,7 @@ contains
                // trim(cv%ended)
          end associate
       end do
-      write(output_unit, '(a)') 'cpu: ' // str(res%seconds) // ' s, ' &
+      write(output_unit, '(a)') 'elapsed: ' // str(res%seconds) // ' s, ' &
          // str(res%map_evaluations) // ' map evaluations, ' // str(res%periods_integrated) &
          // ' forcing periods integrated'
       call write_continuation(trim(deck%job%output), trim(deck%job%title), deck%text, &
