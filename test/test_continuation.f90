@@ -16,6 +16,9 @@ program test_continuation
    use gapbeam_sweep, only: run_point
    use gapbeam_state, only: state_t
    use gapbeam_transition, only: reduce_state
+   use gapbeam_continuation_output, only: write_continuation
+   use gapbeam_hdf5_output, only: h5_reader_t
+   use gapbeam_files, only: remove_file, file_exists
    implicit none
    character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_continuation.nml'
@@ -28,6 +31,7 @@ program test_continuation
    call monodromy_against_differences()
    call sdof_against_closed_form()
    call sdof_grazing_curve()
+   call sdof_given_start_and_differences()
    call reference_line_against_sweep()
    call folds_against_up_down_sweeps()
    call finish('test_continuation')
@@ -422,7 +426,51 @@ contains
          end if
       end do
       call check('SDOF: one grazing found', count(res%bif_kind == 'grazing') == 1)
+      call written_and_read_back(res)
    end subroutine sdof_against_closed_form
+
+   !> The result files: PREFIX.h5 read back (parameter with its unit, multipliers, stable,
+   !> bifurcation kinds) and the four tables written; then deleted.
+   subroutine written_and_read_back(res)
+      type(continuation_result_t), intent(in) :: res
+      character(len=*), parameter :: prefix = 'test_continuation_output'
+      character(len=*), parameter :: tables(4) = [character(len=17) :: '.branches.dat', &
+         '.bifurcations.dat', '.multipliers.dat', '.curves.dat']
+      type(h5_reader_t) :: h5
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: par(:), mre(:, :)
+      integer, allocatable :: stab(:)
+      character(len=:), allocatable :: kinds(:), units
+      integer :: k
+      call write_continuation(prefix, 'test', 'deck text', '', res, .true., err)
+      if (allocated(err)) then
+         call check('output: written', .false., err%message)
+         return
+      end if
+      call h5%open(prefix // '.h5', err)
+      if (.not. allocated(err)) call h5%read('/continuation/parameter', par, err)
+      if (.not. allocated(err)) call h5%read_units('/continuation/parameter', units, err)
+      if (.not. allocated(err)) call h5%read('/continuation/multipliers/real', mre, err)
+      if (.not. allocated(err)) call h5%read('/continuation/stable', stab, err)
+      if (.not. allocated(err)) call h5%read('/continuation/bifurcations/kind', kinds, err)
+      call h5%close()
+      if (allocated(err)) then
+         call check('output: read back', .false., err%message)
+      else
+         call check('output: /continuation/parameter in Hz, as computed', units == 'Hz' .and. &
+            size(par) == res%n .and. all(par == res%parameter))
+         call check('output: multipliers (real parts) and stable flags', &
+            all(mre == real(res%multipliers, dp)) .and. all((stab == 1) .eqv. res%stable))
+         call check('output: bifurcation kinds', size(kinds) == res%n_bif .and. &
+            all(kinds == res%bif_kind))
+      end if
+      do k = 1, 4
+         call check('output: ' // prefix // trim(tables(k)) // ' written', &
+                    file_exists(prefix // trim(tables(k))))
+         call remove_file(prefix // trim(tables(k)))
+      end do
+      call remove_file(prefix // '.h5')
+   end subroutine written_and_read_back
 
    !> The grazing point continued in (frequency, amplitude): the SDOF's linear orbit touches the
    !> stop where |U(Omega)| = gap, i.e. on A_pp(Omega) = 2 gap |k/m - Omega^2 + i c Omega / m|
@@ -461,6 +509,49 @@ contains
       call check_le('SDOF grazing curve: amplitude against the closed form (max relative ' &
          // 'error)', e, 1.0e-8_dp)
    end subroutine sdof_grazing_curve
+
+   !> The SDOF's orbit at 3 Hz (no impact) started from a given section state (&initial, the
+   !> closed form's x 1.2) instead of a transient, and the branch to 5 Hz with the monodromy by
+   !> finite differences instead of the exact one: the same orbits and multipliers.
+   subroutine sdof_given_start_and_differences()
+      type(deck_t) :: deck
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp) :: xr(2), es, em, om
+      complex(dp) :: mr(2), mg(2)
+      character(len=200) :: ov(2)
+      integer :: j
+      om = 2 * pi * 3.0_dp
+      call linear_orbit(om, xr, mr)
+      write(ov(1), '(a, es24.16, a, es24.16, a)') "&initial kind = 'given', node = 2, dof = " &
+         // "'w', displacement = ", 1.2_dp * xr(1), ', velocity = ', 1.2_dp * xr(2), ' /'
+      ov(2) = "&continuation start = 'given', period = 1, jacobian = 'finite_difference', " &
+         // 'parameter_max = 5.0, tolerance = 1.0e-11 /'
+      call read_deck(sdof, ov, deck, err)
+      if (.not. allocated(err)) call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('SDOF given start, differences: runs', .false., err%message)
+         return
+      end if
+      es = 0.0_dp;  em = 0.0_dp
+      do j = 1, res%n
+         if (res%located(j) .or. res%impacts(j) > 0) cycle
+         om = 2 * pi * res%parameter(j)
+         call linear_orbit(om, xr, mr)
+         es = max(es, maxval(abs(res%state(:, j) - xr) / [abs(xr(1)) + abs(xr(2)) / om, &
+                                                          om * abs(xr(1)) + abs(xr(2))]))
+         mg = res%multipliers(:, j)
+         em = max(em, min(maxval(abs(mg - mr)), maxval(abs(mg - mr([2, 1])))))
+      end do
+      call check_close('SDOF given start: the branch starts at the deck''s 3 Hz', &
+                       res%parameter(1), 3.0_dp, rtol=1.0e-14_dp)
+      call check_le('SDOF, finite-difference monodromy: states against the closed form', es, &
+                    1.0e-8_dp)
+      call check_le('SDOF, finite-difference monodromy: multipliers against the closed form', &
+                    em, 1.0e-7_dp)
+      call check('SDOF, finite-difference monodromy: the grazing found', &
+                 count(res%bif_kind == 'grazing') == 1)
+   end subroutine sdof_given_start_and_differences
 
    !> Complex amplitude of the forced response of a phase with stiffness ke: u = Re(U e^{i W t}).
    pure complex(dp) function forced_amplitude(ke, om) result(u)
