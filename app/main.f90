@@ -1,6 +1,10 @@
 !> gapbeam: finite element simulation of vibro-impact and chaotic vibration of beams with gap
 !> supports. Usage: gapbeam DECK [OVERRIDE ...], each OVERRIDE a namelist fragment applied
 !> after the deck file, e.g. gapbeam inputs/x.nml "&forcing frequency_hz=10.2 /".
+!>
+!> Exit status: 0 done; 1 error (one line `error: ...` on standard error); 2 usage; 3 a sweep
+!> stopped by --time-limit (its checkpoint kept); 4 the output prefix is locked by another run.
+!> No backtrace is printed unless GAPBEAM_BACKTRACE=1 is set in the environment.
 program main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use gapbeam_kinds, only: dp
@@ -8,6 +12,8 @@ program main
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
+   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal
+   use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
       run_stability, run_model_size
    use gapbeam_sweep_job, only: run_sweep_job, sweep_prefix, status_interrupted
@@ -15,67 +21,81 @@ program main
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
    implicit none
+   integer, parameter :: status_error = 1, status_usage = 2, status_locked = 4
    type(deck_t) :: deck
    type(error_t), allocatable :: err
-   character(len=:), allocatable :: path, arg
+   type(lock_t) :: lock
+   character(len=:), allocatable :: path, arg, prefix
    character(len=:), allocatable :: overrides(:)
    type(batch_options_t) :: batch
-   integer :: i, n_args, ios
+   integer :: i, n_args, n_over, ios
    logical :: complete
 
    if (serial_blas()) continue     ! results must not depend on BLAS threads
+   call ignore_file_size_signal()  ! past `ulimit -f` a write fails (and is reported), no kill
    n_args = command_argument_count()
    if (n_args < 1) then
       write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'
       write(error_unit, '(a)') '       gapbeam merge OUT.h5 SHARD.h5 ...'
       write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. ' &
          // '"&forcing frequency_hz=10.2 /"'
-      error stop 2
+      call finish(status_usage)
    end if
-   allocate(character(len=4096) :: overrides(0))
-   i = 0
+   path = argument(1)
+   ! overrides (or merge files) of any length: one array as long as the longest
+   i = longest_argument()
+   allocate(character(len=i) :: overrides(n_args))
+   n_over = 0
+   i = 1
    do while (i < n_args)
       i = i + 1
       arg = argument(i)
-      if (i == 1) then
-         path = arg
-      else if (path == 'merge') then
-         overrides = [character(len=4096) :: overrides, arg]
+      if (path == 'merge') then
+         n_over = n_over + 1;  overrides(n_over) = arg
       else if (arg == '--shard' .or. index(arg, '--shard=') == 1) then
          if (arg == '--shard') then
             i = i + 1
-            if (i > n_args) call fail_text('--shard needs I/N, e.g. --shard 3/16')
+            if (i > n_args) call fail(path, '--shard needs I/N, e.g. --shard 3/16', lock)
             arg = argument(i)
          else
             arg = arg(9:)
          end if
-         call parse_shard(arg, batch%shard_index, batch%shard_count)
+         call parse_shard(path, arg, batch%shard_index, batch%shard_count, lock)
       else if (arg == '--time-limit' .or. index(arg, '--time-limit=') == 1) then
          if (arg == '--time-limit') then
             i = i + 1
-            if (i > n_args) call fail_text('--time-limit needs a number of seconds')
+            if (i > n_args) call fail(path, '--time-limit needs a number of seconds', lock)
             arg = argument(i)
          else
             arg = arg(14:)
          end if
          read(arg, *, iostat=ios) batch%time_limit_s
-         if (ios /= 0 .or. .not. (batch%time_limit_s > 0.0_dp)) call fail_text("--time-limit '" &
-            // arg // "': expected a positive number of seconds")
+         if (ios /= 0 .or. .not. (batch%time_limit_s > 0.0_dp)) call fail(path, "--time-limit '" &
+            // arg // "': expected a positive number of seconds", lock)
       else
-         overrides = [character(len=4096) :: overrides, arg]
+         n_over = n_over + 1;  overrides(n_over) = arg
       end if
    end do
    if (path == 'merge') then
-      call run_merge(overrides)
-      stop
+      call run_merge(overrides(1:n_over), lock)
+      call finish(0)
    end if
 
-   call read_deck(path, overrides, deck, err)
-   if (allocated(err)) call fail(err)
+   call read_deck(path, overrides(1:n_over), deck, err)
+   if (allocated(err)) call fail(path, err%message, lock)
    if ((batch%shard_count > 1 .or. batch%time_limit_s > 0.0_dp) .and. &
        deck%job%analysis /= 'sweep') &
-      call fail_text(path // ": --shard and --time-limit apply to analysis='sweep' only " &
-      // "(this deck runs '" // trim(deck%job%analysis) // "')")
+      call fail(path, path // ": --shard and --time-limit apply to analysis='sweep' only " &
+      // "(this deck runs '" // trim(deck%job%analysis) // "')", lock)
+
+   ! one writer per output prefix: the lock is taken before anything is computed
+   if (deck%job%analysis == 'sweep') then
+      prefix = sweep_prefix(deck, batch)
+   else
+      prefix = trim(deck%job%output)
+   end if
+   call take_lock(path, prefix, lock)
+
    write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
    write(output_unit, '(a)') 'analysis: ' // trim(deck%job%analysis)
    select case (deck%job%analysis)
@@ -95,28 +115,45 @@ program main
       call run_continuation_job(deck, err)
    case ('sweep')
       call run_sweep_job(deck, batch, complete, err)
-      if (allocated(err)) call fail(err)
-      write(output_unit, '(a)') 'output: ' // sweep_prefix(deck, batch)
-      if (.not. complete) error stop status_interrupted
-      stop
+      if (allocated(err)) call fail(path, err%message, lock)
+      write(output_unit, '(a)') 'output: ' // prefix
+      call release_lock(lock)
+      if (.not. complete) call finish(status_interrupted)
+      call finish(0)
    end select
-   if (allocated(err)) call fail(err)
-   write(output_unit, '(a)') 'output: ' // trim(deck%job%output)
+   if (allocated(err)) call fail(path, err%message, lock)
+   write(output_unit, '(a)') 'output: ' // prefix
+   call release_lock(lock)
+   call finish(0)
 
 contains
 
+   !> Command-line argument k, whole.
    function argument(k) result(a)
-      integer, intent(in) :: k
+      integer, intent(in) :: k                     !! argument number
       character(len=:), allocatable :: a
       integer :: l
       call get_command_argument(k, length=l)
       allocate(character(len=l) :: a)
-      call get_command_argument(k, a)
+      if (l > 0) call get_command_argument(k, a)
    end function argument
 
-   subroutine parse_shard(text, si, sc)
-      character(len=*), intent(in) :: text
-      integer, intent(out) :: si, sc
+   !> Length of the longest command-line argument (at least 1).
+   integer function longest_argument()
+      integer :: k, l
+      longest_argument = 1
+      do k = 1, command_argument_count()
+         call get_command_argument(k, length=l)
+         longest_argument = max(longest_argument, l)
+      end do
+   end function longest_argument
+
+   !> Read '--shard I/N'.
+   subroutine parse_shard(deck_path, text, si, sc, held)
+      character(len=*), intent(in) :: deck_path    !! deck path, for messages
+      character(len=*), intent(in) :: text         !! 'I/N'
+      integer, intent(out) :: si, sc               !! shard index and count
+      type(lock_t), intent(inout) :: held          !! lock (none held yet)
       integer :: slash, ios1, ios2
       slash = index(text, '/')
       ios1 = 1;  ios2 = 1
@@ -124,54 +161,100 @@ contains
          read(text(1:slash - 1), *, iostat=ios1) si
          read(text(slash + 1:), *, iostat=ios2) sc
       end if
-      if (ios1 /= 0 .or. ios2 /= 0) call fail_text("--shard '" // text // "': expected I/N " &
-         // 'with whole numbers, e.g. --shard 3/16')
-      if (sc < 1 .or. si < 1 .or. si > sc) call fail_text("--shard '" // text // "': need " &
-         // '1 <= I <= N')
+      if (ios1 /= 0 .or. ios2 /= 0) call fail(deck_path, "--shard '" // text // "': expected " &
+         // 'I/N with whole numbers, e.g. --shard 3/16', held)
+      if (sc < 1 .or. si < 1 .or. si > sc) call fail(deck_path, "--shard '" // text // "': " &
+         // 'need 1 <= I <= N', held)
    end subroutine parse_shard
 
-   subroutine run_merge(args)
-      character(len=*), intent(in) :: args(:)
+   !> Take the lock of the output prefix (creating its directory); exit with status 4 when
+   !> another run holds it.
+   subroutine take_lock(deck_path, out_prefix, held)
+      character(len=*), intent(in) :: deck_path    !! deck path, for messages
+      character(len=*), intent(in) :: out_prefix   !! output prefix
+      type(lock_t), intent(inout) :: held          !! the lock, held on return
+      type(error_t), allocatable :: e
+      call make_parent_directory(out_prefix, e)
+      if (allocated(e)) call fail(deck_path, e%message, held)
+      call acquire_lock(held, out_prefix, e)
+      if (allocated(e)) call fail(deck_path, e%message, held, status_locked)
+      if (allocated(held%note)) then
+         write(error_unit, '(a)') 'gapbeam: note: ' // held%note
+         flush(error_unit)
+      end if
+   end subroutine take_lock
+
+   !> gapbeam merge OUT.h5 SHARD.h5 ...
+   subroutine run_merge(args, held)
+      character(len=*), intent(in) :: args(:)      !! OUT.h5, then the shard files
+      type(lock_t), intent(inout) :: held          !! lock of OUT, taken here
       character(len=:), allocatable :: out
+      type(error_t), allocatable :: e
       integer :: k
-      if (size(args) < 2) call fail_text('usage: gapbeam merge OUT.h5 SHARD.h5 ...')
+      if (size(args) < 2) then
+         write(error_unit, '(a)') 'usage: gapbeam merge OUT.h5 SHARD.h5 ...'
+         call finish(status_usage)
+      end if
       out = trim(args(1))
       k = len(out)
       if (k > 3) then
          if (out(k - 2:) == '.h5') out = out(1:k - 3)
       end if
-      call merge_sweep(out, args(2:), .true., err)
-      if (allocated(err)) call fail(err)
+      call take_lock('merge', out, held)
+      call merge_sweep(out, args(2:), .true., e)
+      if (allocated(e)) then
+         if (index(e%message, 'gapbeam merge: ') /= 1) e%message = 'gapbeam merge: ' // e%message
+         call fail('merge', e%message, held)
+      end if
+      call release_lock(held)
       write(output_unit, '(a)') 'merged ' // str(size(args) - 1) // ' shard files into ' &
          // out // '.h5'
    end subroutine run_merge
 
-   subroutine fail_text(text)
-      character(len=*), intent(in) :: text
-      if (allocated(path)) then
-         if (path /= 'merge' .and. index(text, path // ': ') /= 1) then
-            write(error_unit, '(a)') 'error: ' // path // ': ' // text
-            flush(error_unit)
-            error stop 1
-         end if
+   !> Write one error line, give the lock back, and end with `status` (default 1). The deck
+   !> path starts the line unless the message starts with it already.
+   subroutine fail(deck_path, message, held, status)
+      character(len=*), intent(in) :: deck_path    !! deck path as given ('merge' for merge)
+      character(len=*), intent(in) :: message      !! what went wrong
+      type(lock_t), intent(inout) :: held          !! lock, released here
+      integer, intent(in), optional :: status      !! exit status (1 when absent)
+      character(len=:), allocatable :: line
+      line = message
+      if (deck_path /= 'merge' .and. len(deck_path) > 0) then
+         if (index(message, deck_path // ': ') /= 1) line = deck_path // ': ' // message
       end if
-      write(error_unit, '(a)') 'error: ' // text
-      flush(error_unit)
-      error stop 1
-   end subroutine fail_text
-
-   subroutine fail(e)
-      type(error_t), intent(in) :: e
-      if (allocated(path)) then
-         if (index(e%message, path // ': ') /= 1 .and. path /= 'merge') then
-            write(error_unit, '(a)') 'error: ' // path // ': ' // e%message
-            flush(error_unit)
-            error stop 1
-         end if
-      end if
-      write(error_unit, '(a)') 'error: ' // e%message
-      flush(error_unit)
-      error stop 1
+      flush(output_unit)
+      write(error_unit, '(a)') 'error: ' // one_line(line)
+      call release_lock(held)
+      if (present(status)) call finish(status)
+      call finish(status_error)
    end subroutine fail
+
+   !> `text` on one line: line feeds and carriage returns become blanks.
+   function one_line(text) result(s)
+      character(len=*), intent(in) :: text         !! message
+      character(len=len(text)) :: s
+      integer :: k
+      s = text
+      do k = 1, len(s)
+         if (s(k:k) == achar(10) .or. s(k:k) == achar(13)) s(k:k) = ' '
+      end do
+   end function one_line
+
+   !> End the program with `status`, printing nothing more: STOP with QUIET (ERROR STOP would
+   !> print a backtrace and gfortran's summary of floating-point exceptions). With
+   !> GAPBEAM_BACKTRACE=1 a non-zero status ends with ERROR STOP instead, for debugging.
+   subroutine finish(status)
+      integer, intent(in) :: status                !! exit status
+      character(len=8) :: value
+      integer :: l, st
+      flush(output_unit)
+      flush(error_unit)
+      if (status /= 0) then
+         call get_environment_variable('GAPBEAM_BACKTRACE', value, l, st)
+         if (st == 0 .and. trim(value) == '1') error stop status
+      end if
+      stop status, quiet=.true.
+   end subroutine finish
 
 end program main

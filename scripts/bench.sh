@@ -14,6 +14,12 @@
 # point, half-step control with the deck's defaults and with the paper's fixed point, and a
 # hand-written ceiling loop doing the arithmetic of the fixed-step condensed case; best of 3 runs
 # each. Progress lines go to stderr, the table to stdout and the file.
+# Then the model-size ladder (scripts/model_size_ladder.py): the same case at 4, 15, 30, 60, 120,
+# 240 and 480 elements, 5 forcing periods from rest, with the exact integrator (the default for
+# this piecewise-linear stop) and Newmark under error control at tolerance 1e-4 (the default for a
+# Hertz stop): steps per period, CPU per simulated second, set-up CPU and the output error against
+# the exact run, to bench_results/model_size_ladder.txt (.dat for plotting).
+# BENCH_LADDER=0 skips the ladder; BENCH_ELEMENTS="4 15 30" sets its element counts.
 # OPENBLAS_NUM_THREADS=1 and OMP_NUM_THREADS=1: the benchmark is serial (no BLAS in the step loop).
 # Exit status: the benchmark's (1 when the ceiling loop does not reproduce the fixed-step run or a
 # run fails); or 1 when the build fails.
@@ -59,3 +65,17 @@ rm -f "${build_log}"
 
 mkdir -p bench_results
 GFORTRAN_UNBUFFERED_PRECONNECTED=y "${exe}" | tee bench_results/bench.txt
+
+if [[ ${BENCH_LADDER:-1} != 0 ]]; then
+   if ! python3 -c 'import numpy, h5py' >/dev/null 2>&1; then
+      python3 -m pip install -q numpy h5py >&2
+   fi
+   gapbeam_exe=""
+   while IFS= read -r line; do
+      [[ ${line} == /* ]] || line=${root}/${line}
+      if [[ -f ${line} && -x ${line} ]]; then gapbeam_exe=${line}; fi
+   done < <(fpm run --profile release --runner echo gapbeam 2>/dev/null)
+   # shellcheck disable=SC2086
+   python3 scripts/model_size_ladder.py "${gapbeam_exe}" --elements ${BENCH_ELEMENTS:-4 15 30 60 120 240 480} \
+      --out bench_results/model_size_ladder
+fi

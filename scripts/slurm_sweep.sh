@@ -18,8 +18,9 @@
 #   scripts/slurm_sweep.sh [--shards N] [--time-limit S] DECK [OVERRIDE ...]   (an array task)
 #   scripts/slurm_sweep.sh --merge [--shards N] [--prefix PREFIX] DECK [OVERRIDE ...]
 #
-# Sweep (an array task): runs `gapbeam DECK --shard I/N [--time-limit S] [OVERRIDE ...]` in the
-# submission directory and exits with the program's status. The program writes PREFIX.shard_I_of_N.h5 (and
+# Sweep (an array task): creates the directory of the output prefix (below) when missing, runs
+# `gapbeam DECK --shard I/N [--time-limit S] [OVERRIDE ...]` in the submission directory and
+# exits with the program's status. The program writes PREFIX.shard_I_of_N.h5 (and
 # .sweep.dat, .bifurcation.dat), PREFIX being the deck's `&job output`; points are dealt to the
 # shards round robin (work items: a point in mode 'independent', a whole line in mode
 # 'continuation', so a continuation sweep has at most as many useful shards as lines).
@@ -65,8 +66,11 @@
 #   GAPBEAM_TIME_LIMIT, GAPBEAM_TIME_MARGIN, GAPBEAM_AUTO_REQUEUE, GAPBEAM_MAX_REQUEUE: see above.
 #   OMP_NUM_THREADS       set to SLURM_CPUS_PER_TASK (1 if unset): threads over sweep points.
 #   OPENBLAS_NUM_THREADS  set to 1 (with threaded BLAS the results change with the thread count).
-# Exit status: the program's (0 done; 1 error; 3 time limit reached, checkpoint kept); 2 on bad
+# Exit status: the program's (0 done; 1 error; 3 time limit reached, checkpoint kept; 4 the
+# output prefix is locked by another run: two tasks were given the same shard); 2 on bad
 # usage or when the executable or shard files are missing.
+# Slurm opens the log file (--output=logs/...) before the script runs and does not create its
+# directory: make logs/ in the submission directory before sbatch.
 #
 # Defaults of the array tasks (options given to sbatch on its command line take precedence):
 #SBATCH --job-name=gapbeam-sweep
@@ -292,6 +296,7 @@ if [[ ${merge} -eq 1 ]]; then
       exit 2
    fi
    exe=$(find_gapbeam)
+   mkdir -p -- "$(dirname -- "${prefix}")" || die "cannot create the directory of ${prefix}"
    printf 'slurm_sweep: %s merge %s.h5 (%d shard files)\n' "${exe}" "${prefix}" "${shards}"
    status=0
    "${exe}" merge "${prefix}.h5" "${files[@]}" || status=$?
@@ -322,6 +327,10 @@ if ! [[ ${count} =~ ^[1-9][0-9]*$ && ${index} =~ ^[0-9]+$ ]] || ((index < 1 || i
 fi
 
 exe=$(find_gapbeam)
+# the output directory, before the program opens its checkpoint there (gapbeam makes it too;
+# made here so that a deck whose prefix cannot be created fails with a clear line in the log)
+out_dir=$(dirname -- "$(deck_prefix)")
+mkdir -p -- "${out_dir}" || die "cannot create the output directory ${out_dir}"
 args=(--shard "${index}/${count}")
 limit=$(task_time_limit)
 if [[ -n ${limit} ]]; then args+=(--time-limit "${limit}"); fi

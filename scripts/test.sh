@@ -9,10 +9,12 @@
 # (`fpm build --tests --flag "$FLAGS"`); list the test programs (`fpm test --runner echo` with the
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
-# scripts/test_cli.sh and scripts/test_sweep_kill.sh on the debug-built `gapbeam` (found with
-# `fpm run --runner echo gapbeam`), and python/tests/test_reader.py (the Python reader in python/
-# against h5py on every analysis's output of that `gapbeam`; PYTHONPATH=python, nothing is
-# pip-installed). Everything goes to the terminal.
+# scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
+# concurrent runs, corrupted checkpoints: issue 12) and scripts/test_fuzz.sh (378 mutated decks,
+# under 60 s) on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
+# python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
+# output of that `gapbeam`; PYTHONPATH=python, nothing is pip-installed). Everything goes to the
+# terminal.
 #
 # Counting: every line starting with `PASS  ` or `FAIL  ` (two spaces) is one check. A program that
 # exits non-zero without printing a FAIL line (a crash, a runtime check, a time-out) adds
@@ -23,7 +25,9 @@
 #   GAPBEAM_TEST_FLAGS    compiler flags (default below); the same string must be given to every
 #                         fpm command, or fpm builds into another folder
 #   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh,
-#                         test_sweep_kill.sh and test_reader.py (default 900)
+#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh and test_reader.py
+#                         (default 900)
+#   GAPBEAM_FUZZ_JOBS     parallel runs of the fuzz test (default 2)
 #   OMP_NUM_THREADS       passed through untouched; OPENBLAS_NUM_THREADS is set to 1
 set -euo pipefail
 
@@ -137,6 +141,19 @@ if [[ -n ${gapbeam_exe} ]]; then
       | tee "${log}" || status=$?
 fi
 count test_sweep_kill.sh "${log}" "${status}"
+
+for script in test_faults.sh test_fuzz.sh; do
+   printf '\n== scripts/%s\n' "${script}"
+   log=${work}/${script%.sh}.log
+   status=0
+   if [[ -z ${gapbeam_exe} ]]; then
+      printf 'FAIL  %s: cannot find the debug-built gapbeam executable\n' "${script}" | tee "${log}"
+   else
+      "${runner[@]}" bash "${root}/scripts/${script}" "${gapbeam_exe}" </dev/null 2>&1 \
+         | tee "${log}" || status=$?
+   fi
+   count "${script}" "${log}" "${status}"
+done
 
 printf '\n== python/tests/test_reader.py\n'
 log=${work}/test_reader.log

@@ -232,7 +232,7 @@ bad_case "zero root spring k_theta=0.0"   -r 'k_theta=0.0912' 'k_theta=0.0'     
 # numerical failures and the sweep's command line
 bad_case "step below the minimum (transient)" -r "analysis='modes'" "analysis='transient'" \
    -a '&forcing frequency_hz=10.5, amplitude_pp=3.7e-3 /' \
-   -a '&solver half_step_tolerance=1.0e-8, max_halvings=0, transient_periods=0, record_periods=2 /' \
+   -a '&solver step_control="half_step", half_step_tolerance=1.0e-8, max_halvings=0, transient_periods=0, record_periods=2 /' \
    -- 'step below the minimum' 'dt' 't ='
 bad_case "bad --shard value"                  -o '--shard' -o '4/3'                  -- '--shard' '4/3'
 bad_case "--shard on a modes deck"            -o '--shard' -o '1/2'                  -- 'sweep'

@@ -7,7 +7,7 @@ program test_eigen
    use gapbeam_model, only: system_t
    use gapbeam_assembly, only: assemble
    use gapbeam_results, only: modes_t
-   use gapbeam_eigen, only: solve_modes
+   use gapbeam_eigen, only: solve_modes, band_frequencies, lowest_frequency, count_below
    use gapbeam_calibration, only: calibrate_parameter, calibrate_spring, first_frequency
    implicit none
    real(dp), parameter :: beta_l(4) = [1.87510407_dp, 4.69409113_dp, 7.85475744_dp, &
@@ -19,7 +19,8 @@ program test_eigen
    type(modes_t) :: modes
    type(error_t), allocatable :: err
    real(dp) :: ei, rho_a, w_exact(4), e2, e4, order, kappa, lam, f_ref, f1, k, h, b, f_open
-   real(dp) :: ratio, mr(20)
+   real(dp) :: ratio, mr(20), acc
+   real(dp), allocatable :: omega2(:)
    integer :: i, j, n
    real(dp), parameter :: kappas(3) = [1.0_dp, 7.457_dp, 100.0_dp]
 
@@ -136,6 +137,8 @@ program test_eigen
       call check('the message says out of reach', index(err%message, 'out of reach') > 0)
    end if
 
+   call stiff_springs_and_large_models()
+
    ! massless rotations: the turned-round pencil drops the infinite modes
    st%beam%rotary_inertia = 'none'
    call assemble(st, sys)
@@ -149,6 +152,68 @@ program test_eigen
    call finish('test_eigen')
 
 contains
+
+   !> Issue 12 item 13: stiff root springs beside soft elements (the K-M form gave 0 Hz and
+   !> NaN at k_theta = 1.16e11), a calibration target out of reach (26.86 Hz was reported
+   !> for 25 Hz), the Sturm count, and the band solver against the dense one at 200 elements.
+   subroutine stiff_springs_and_large_models()
+      type(structure_t) :: s
+      type(system_t) :: sy
+      type(modes_t) :: md
+      real(dp) :: f_clamped, f, v, kt
+      integer :: q
+      s%beam = beam_t(length=len_, n_elem=20, youngs_modulus=e_mod, density=rho, &
+         width=6.6477523e-3_dp, thickness=2.6196352e-4_dp, mass_matrix='consistent')
+      allocate(s%springs(0), s%masses(0))
+      s%root = root_t(condition='clamped')
+      call first_frequency(s, f_clamped, err)
+      do q = 1, 2
+         kt = merge(1.16e11_dp, 1.0e12_dp, q == 1)
+         s%root = root_t(condition='spring', k_theta=kt)
+         call assemble(s, sy)
+         call solve_modes(sy, md, err)
+         call check('k_theta = ' // str(kt) // ': modes solved', .not. allocated(err))
+         if (allocated(err)) cycle
+         call check_close('k_theta = ' // str(kt) // ': f1 of the modes analysis is the ' &
+            // 'clamped one', md%frequency_hz(1), f_clamped, rtol=1.0e-6_dp)
+         call check('k_theta = ' // str(kt) // ': every frequency finite and ascending', &
+            all(md%frequency_hz > 0.0_dp .and. md%frequency_hz < huge(1.0_dp)) .and. &
+            all(md%frequency_hz(2:) >= md%frequency_hz(:md%n_modes - 1)))
+         call first_frequency(s, f, err)
+         call check_close('k_theta = ' // str(kt) // ': certified f1 is the clamped one', f, &
+            f_clamped, rtol=1.0e-6_dp)
+      end do
+      s%root = root_t(condition='spring', k_theta=0.0912_dp)
+      call calibrate_parameter(s, 'root_k_theta', 1, 25.0_dp, v, err)
+      call check('20 consistent elements, root spring, f1 = 25 Hz (above the clamped ' &
+         // str(f_clamped) // ' Hz) is refused', allocated(err))
+      if (allocated(err)) call note('message: ' // err%message)
+      ! Sturm count: the number of eigenvalues below a shift between modes 3 and 4
+      call assemble(s, sy)
+      call solve_modes(sy, md, err)
+      n = count_below(sy, 0.5_dp * (md%omega2(3) + md%omega2(4)))
+      call check('Sturm count between modes 3 and 4 is 3', n == 3, str(n))
+      n = count_below(sy, 0.5_dp * md%omega2(1))
+      call check('Sturm count below mode 1 is 0', n == 0, str(n))
+      ! band solver against the dense one, 200 lumped elements with and without rotary inertia
+      ! (round-off of the discrete problem: about 1e-8 relative at this size, cond(K) ~ 1e13)
+      do q = 1, 2
+         s%beam%n_elem = 200;  s%beam%mass_matrix = 'lumped'
+         s%beam%rotary_inertia = merge('half_element', 'none        ', q == 1)
+         call assemble(s, sy)
+         call solve_modes(sy, md, err)
+         call band_frequencies(sy, omega2, err)
+         call check('200 elements (' // trim(s%beam%rotary_inertia) // '): band and dense ' &
+            // 'solvers find the same number of modes', size(omega2) == md%n_modes)
+         if (size(omega2) == md%n_modes) call check_le('200 elements (' &
+            // trim(s%beam%rotary_inertia) // '): lowest 5 frequencies of band and dense ' &
+            // 'solvers agree', maxval(abs(sqrt(omega2(:5)) / (2 * pi) &
+            - md%frequency_hz(:5)) / md%frequency_hz(:5)), 1.0e-7_dp)
+         call lowest_frequency(sy, f, err, accuracy=acc)
+         call check_close('200 elements: certified f1 equals the dense f1', f, &
+            md%frequency_hz(1), rtol=max(acc, 1.0e-12_dp))
+      end do
+   end subroutine stiff_springs_and_large_models
 
    function identity(n) result(a)
       integer, intent(in) :: n

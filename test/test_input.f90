@@ -278,6 +278,23 @@ contains
       call read_deck(tmp, ov(1:1), deck, err)
       call check('validation runs after the overrides (file n_elem = 0, override 2)', &
          .not. allocated(err) .and. deck%structure%beam%n_elem == 2, message(err))
+      ! a list given whole in an override replaces the file's list whole; an element
+      ! assignment (stiffness(2) = ...) changes that element only
+      call write_deck(tmp, base // '&stops node = 3, 5, stiffness = 1.0, 2.0 /')
+      ov(1) = '&stops node = 4 /'
+      call read_deck(tmp, ov(1:1), deck, err)
+      call check('override node = 4 replaces the list node = 3, 5', .not. allocated(err), &
+         message(err))
+      if (.not. allocated(err)) call check('... one stop, at node 4, stiffness 1', &
+         size(deck%stops) == 1 .and. deck%stops(1)%node == 4 &
+         .and. near(deck%stops(1)%stiffness, 1.0_dp))
+      ov(1) = '&stops stiffness(2) = 7.0 /'
+      call read_deck(tmp, ov(1:1), deck, err)
+      call check('override stiffness(2) = 7 keeps the list node = 3, 5', .not. allocated(err) &
+         .and. size(deck%stops) == 2, message(err))
+      if (.not. allocated(err)) call check('... stiffness (1, 7)', size(deck%stops) == 2 &
+         .and. near(deck%stops(1)%stiffness, 1.0_dp) .and. near(deck%stops(2)%stiffness, 7.0_dp))
+      call remove(tmp)
    end subroutine overrides
 
    !> Quoted '/' and '&' and comments do not open or close groups.
@@ -400,7 +417,11 @@ contains
          [character(len=60) :: '&stops', 'stiffness(1) = 0', 'must be > 0'])
       call expect_error('stop stiffness rule without a target', base &
          // '&stops node = 5, rule_factor = 2.0 /', &
-         [character(len=60) :: '&stops', 'rule_f1_hz(1) = 0', 'must be > 0'])
+         [character(len=60) :: '&stops', 'rule_factor(1) = 2', 'rule_f1_ratio(1) > 1', &
+         'rule_f1_hz(1) > 0'])
+      call expect_error('stop stiffness rule with rule_f1_ratio = NaN', base &
+         // '&stops node = 5, rule_factor = 2.0, rule_f1_ratio = NaN /', &
+         [character(len=60) :: '&stops', 'rule_f1_ratio(1) = NaN'])
       call expect_error("initial kind = 'given' without entries", base &
          // "&initial kind = 'given' /", [character(len=60) :: '&initial', "kind = 'given'"])
       call expect_error('negative spring stiffness(2)', base &
@@ -429,7 +450,51 @@ contains
          [character(len=60) :: '&initial', 'node(1) = 7', '1..5'])
       call expect_error('list entry without a node (node(2) given only)', base &
          // '&springs node(2) = 3, stiffness = 10.0, 10.0 /', &
+         [character(len=60) :: '&springs', 'node(1) is not given', 'node(2) is'])
+      ! -1 is a value like any other, not "not given"
+      call expect_error('stop at node -1', base // '&stops node = -1 /', &
+         [character(len=60) :: '&stops', 'node(1) = -1', '1..5'])
+      call expect_error('stop list ending in -1', base &
+         // '&stops node = 5, -1, stiffness = 1.0 /', &
+         [character(len=60) :: '&stops', 'node(2) = -1', '1..5'])
+      call expect_error('mass at node -1', base // '&masses node = -1, mass = 1.0 /', &
+         [character(len=60) :: '&masses', 'node(1) = -1'])
+      call expect_error('spring at node -1', base // '&springs node = -1, stiffness = 1.0 /', &
          [character(len=60) :: '&springs', 'node(1) = -1'])
+      ! empty (null) values would keep the defaults silently
+      call expect_error('empty value n_elem = ,', job // replace(beam, 'n_elem = 4', &
+         'n_elem = '), [character(len=60) :: '&beam', 'no value for n_elem'])
+      call expect_error('empty list entry node = 5, , 3', base // '&stops node = 5, , 3 /', &
+         [character(len=60) :: '&stops', 'no value for node'])
+      ! over-long character values are refused, naming the variable and its length
+      call expect_error('title of 300 characters', "&job analysis = 'modes', title = '" &
+         // repeat('t', 300) // "' /" // nl // beam, &
+         [character(len=60) :: '&job', 'title is 300 characters long', 'at most 256'])
+      call expect_error("mass_matrix = 'consistent      junk'", job // replace(beam, '/', &
+         ", mass_matrix = 'consistent      junk' /"), [character(len=60) :: '&beam', &
+         'mass_matrix is 20 characters long', 'at most 16'])
+      ! a group without its closing '/'
+      call expect_error('group not closed', base // '&forcing frequency_hz = 5.0', &
+         [character(len=60) :: '&forcing', 'not closed'])
+      ! old-Mac line ends (CR only) read like LF
+      call expect_ok('CR-only line ends', "! comment" // achar(13) // "&job analysis = " &
+         // "'modes' /" // achar(13) // replace(beam, nl, achar(13)))
+      ! sizes, counted in 64 bits before anything is allocated
+      call expect_error('sweep 65536 x 65536 points', "&job analysis = 'sweep' /" // nl // beam &
+         // '&forcing frequency_hz = 5.0 /' // nl // '&sweep n_frequency = 65536, ' &
+         // 'frequency_start_hz = 1.0, frequency_end_hz = 2.0, n_amplitude = 65536, ' &
+         // 'amplitude_start_pp = 1.0e-3, amplitude_end_pp = 2.0e-3 /', &
+         [character(len=60) :: '&sweep', 'n_frequency', '4294967296 points'])
+      call expect_error('sweep n_frequency = 100000000', "&job analysis = 'sweep' /" // nl // beam &
+         // '&forcing frequency_hz = 5.0 /' // nl // '&sweep n_frequency = 100000000, ' &
+         // 'frequency_start_hz = 1.0, frequency_end_hz = 2.0 /', &
+         [character(len=60) :: '&sweep', 'n_frequency = 100000000', 'must be in 0..1000000'])
+      call expect_error('transient_periods + record_periods overflow', base &
+         // '&solver transient_periods = 2147483647, record_periods = 2147483647 /', &
+         [character(len=60) :: '&solver', 'record_periods'])
+      call expect_error('thickness = 1e308 (EI overflows)', job // replace(beam, &
+         'thickness = 5.0e-4', 'thickness = 1.0e308'), [character(len=60) :: '&beam', &
+         'thickness', 'EI = Infinity'])
       ! the root: translation fixed, rotation fixed when clamped
       call expect_error("spring at node 1, dof 'w'", base &
          // "&springs node = 1, dof = 'w', stiffness = 10.0 /", &

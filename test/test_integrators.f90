@@ -85,14 +85,15 @@ contains
       ! RK45 meets its tolerance
       do k = 1, 2
          m = "&solver method = 'rk45', step_control = 'embedded', locate_events = .false., " &
-            // 'steps_per_period = 64, rk_rtol = ' // str(10.0_dp**(-4 - 3 * k)) // ' /'
+            // 'steps_per_period = 64, rk_rtol = ' // str(10.0_dp**(-1 - 3 * k)) // ' /'
          call run([character(len=300) :: linear, short, m], model, r1)
          e_tol(k) = state_error(r1, r_ref)
-         call note('rk45 with rtol ' // str(10.0_dp**(-4 - 3 * k)) // ': error ' // str(e_tol(k)) &
+         call note('rk45 with rtol ' // str(10.0_dp**(-1 - 3 * k)) // ': error ' // str(e_tol(k)) &
             // ' after 2 periods, ' // str(int(r1%steps_accepted)) // ' steps')
       end do
-      call check_le('rk45 with rtol 1e-7 meets its tolerance (global error / 100)', &
-                    e_tol(1), 1.0e-5_dp)
+      ! rk_rtol stands in for &solver tolerance on rk45 decks; the estimate is the embedded
+      ! fourth-order one while the fifth-order solution is kept, so the error is far below
+      call check_le('rk45 with rk_rtol 1e-4 meets its tolerance', e_tol(1), 1.0e-4_dp)
       call check('rk45: a tighter tolerance gives a smaller error', e_tol(2) < 0.1_dp * e_tol(1))
    end subroutine orders_on_a_linear_case
 

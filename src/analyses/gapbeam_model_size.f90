@@ -12,7 +12,6 @@
 !> recommended model is the one with the fewest coordinates (then the least time)
 !> whose frequency error, label, Poincare distance and peak force all meet the tolerances.
 module gapbeam_model_size
-   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck, only: deck_t
@@ -193,7 +192,6 @@ contains
       type(transient_result_t) :: res
       type(modes_t) :: modes
       real(dp), allocatable :: u0(:), v0(:)
-      integer(int64) :: c0, c1, rate
       integer :: j, m
       call build_model(d, model, u0, v0, err);  if (allocated(err)) return
       cand%n_coordinates = model%n
@@ -211,11 +209,9 @@ contains
          if (m < count(ref_modes%frequency_hz <= cutoff_hz)) cand%frequency_error = huge(1.0_dp)
          cand%n_compared = m
       end if
-      call system_clock(c0, rate)
       call integrate(model, d%solver, d%output, u0, v0, res, err)
-      call system_clock(c1)
       if (allocated(err)) return
-      cand%seconds = real(c1 - c0, dp) / real(rate, dp)
+      cand%seconds = res%cpu_seconds
       cand%strain_range = res%strain_max - res%strain_min
       cand%strain_rate_range = res%strain_rate_max - res%strain_rate_min
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate

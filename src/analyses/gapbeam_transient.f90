@@ -8,8 +8,9 @@ module gapbeam_transient
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
    use gapbeam_results, only: transient_result_t
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
    use gapbeam_recorder, only: recorder_t
+   use gapbeam_clock, only: thread_cpu_seconds, wall_seconds
    implicit none
    private
    public :: integrate
@@ -28,11 +29,15 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! numerical failure
       class(integrator_t), intent(inout), optional :: integrator   !! the integrator to use
       class(integrator_t), allocatable :: integ
-      integer(int64) :: count0, count1, rate
-      call system_clock(count0, rate)
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
+      real(dp) :: cpu0, wall0
+      cpu0 = thread_cpu_seconds();  wall0 = wall_seconds()
       if (present(integrator)) then
-         call integrator%init(model, cfg, err)
+         call resolve_method(model, cfg, eff, reason)
+         call integrator%init(model, eff, err)
          if (allocated(err)) return
+         integrator%reason = reason
          call record(model, cfg, out, u0, v0, integrator, res, err)
       else
          call make_integrator(model, cfg, integ, err)
@@ -40,8 +45,8 @@ contains
          call record(model, cfg, out, u0, v0, integ, res, err)
       end if
       if (allocated(err)) return
-      call system_clock(count1)
-      res%cpu_seconds = real(count1 - count0, dp) / real(rate, dp)
+      res%cpu_seconds = thread_cpu_seconds() - cpu0
+      res%wall_seconds = wall_seconds() - wall0
    end subroutine integrate
 
    !> Advance from (u0, v0) at t = 0 with an initialised integrator while a recorder watches.
@@ -74,5 +79,8 @@ contains
       if (res%dt_smallest > res%dt_largest) res%dt_smallest = 0.0_dp
       res%u = state%u;  res%v = state%v;  res%a = state%a
       res%t_end = state%t
+      res%method = integ%method
+      res%method_reason = "method '" // integ%method // "' as asked"
+      if (allocated(integ%reason)) res%method_reason = integ%reason
    end subroutine record
 end module gapbeam_transient

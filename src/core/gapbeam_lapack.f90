@@ -4,7 +4,7 @@ module gapbeam_lapack
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: dsygv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
+   public :: dsygv, dsbgv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
    public :: zgesv
 
    interface
@@ -48,6 +48,17 @@ module gapbeam_lapack
          integer,   intent(out)   :: info
       end subroutine dpotrs
 
+
+      !> Generalized symmetric-definite banded eigenproblem A x = lambda B x (B positive
+      !> definite); eigenvalues ascending in w.
+      subroutine dsbgv(jobz, uplo, n, ka, kb, ab, ldab, bb, ldbb, w, z, ldz, work, info)
+         import :: dp
+         character, intent(in)    :: jobz, uplo
+         integer,   intent(in)    :: n, ka, kb, ldab, ldbb, ldz
+         real(dp),  intent(inout) :: ab(ldab, *), bb(ldbb, *)
+         real(dp),  intent(out)   :: w(*), z(ldz, *), work(*)
+         integer,   intent(out)   :: info
+      end subroutine dsbgv
 
       !> Cholesky factorization of a banded SPD matrix.
       subroutine dpbtrf(uplo, n, kd, ab, ldab, info)

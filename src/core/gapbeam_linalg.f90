@@ -4,7 +4,7 @@ module gapbeam_linalg
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: dense_matvec, band_matvec, band_solve, dense_to_band
+   public :: dense_matvec, band_matvec, band_solve, dense_to_band, band_to_dense
 
 contains
 
@@ -55,6 +55,21 @@ contains
          end do
       end do
    end subroutine dense_to_band
+
+   !> The dense symmetric matrix of LAPACK upper band storage.
+   pure subroutine band_to_dense(ab, a)
+      real(dp), intent(in) :: ab(:, :)                   !! (kd+1, n) upper band storage
+      real(dp), allocatable, intent(out) :: a(:, :)      !! (n, n)
+      integer :: i, j, n, kd
+      kd = size(ab, 1) - 1;  n = size(ab, 2)
+      allocate(a(n, n), source=0.0_dp)
+      do j = 1, n
+         do i = max(1, j - kd), j
+            a(i, j) = ab(kd + 1 + i - j, j)
+            a(j, i) = a(i, j)
+         end do
+      end do
+   end subroutine band_to_dense
 
    !> Banded Cholesky solve written out (LAPACK's dpbtrs is not pure).
    pure subroutine band_solve(n, kd, fab, b)

@@ -37,12 +37,16 @@ module gapbeam_results
       real(dp), allocatable :: p_strain_rate(:)     !! Poincare root strain rate [1/s]
       real(dp), allocatable :: p_tip(:)             !! Poincare tip displacement [m]
       real(dp), allocatable :: p_tip_velocity(:)    !! Poincare tip velocity [m/s]
+      character(len=:), allocatable :: method       !! the method that ran
+      character(len=:), allocatable :: method_reason  !! why ('auto')
       integer(int64) :: steps_accepted = 0          !! Newmark solves accepted (sub-steps too)
       integer(int64) :: steps_rejected = 0          !! steps rejected by the control
       integer(int64) :: events = 0                  !! steps split at a contact event
       integer(int64) :: factorizations = 0          !! Kbar factorizations
       integer(int64) :: fp_iterations = 0           !! fixed-point iterations
-      real(dp) :: cpu_seconds = 0.0_dp              !! elapsed time of the run [s]
+      real(dp) :: cpu_seconds = 0.0_dp              !! CPU time of the run (its thread) [s]
+      real(dp) :: wall_seconds = 0.0_dp             !! elapsed time of the run [s]
+      real(dp) :: setup_seconds = 0.0_dp            !! CPU time of the model's set-up [s]
       real(dp) :: dt_smallest = 0.0_dp              !! smallest step used [s]
       real(dp) :: dt_largest = 0.0_dp               !! largest step used [s]
       integer, allocatable :: n_impacts(:)          !! per stop: contact onsets in the record
@@ -94,9 +98,13 @@ module gapbeam_results
       character(len=:), allocatable :: name          !! series word
       character(len=:), allocatable :: parameter_name  !! what varies
       real(dp), allocatable :: parameter(:)          !! its values
-      real(dp), allocatable :: seconds(:)            !! elapsed time of a run [s]
+      real(dp), allocatable :: seconds(:)            !! CPU time of a run [s]
       real(dp), allocatable :: error(:)              !! final-state error [-]
       real(dp), allocatable :: poincare_error(:)     !! Poincare points error [-]
+      !> largest error over the sampled history of the root strain, its rate and the tip
+      !> displacement, relative to their ranges in the reference [-]
+      real(dp), allocatable :: output_error(:)
+      real(dp), allocatable :: output_errors(:, :)   !! (3, levels): the three separately [-]
       real(dp), allocatable :: steps(:)              !! steps accepted [-]
       integer, allocatable :: status(:)              !! 0 done, 1 failed (e.g. unstable)
    end type series_result_t
@@ -162,21 +170,27 @@ contains
       end if
    end function label_text
 
-   !> Elapsed time for a series to reach an error level (log-log interpolation between the
-   !> runs that bracket it); a negative number when the series never reaches it.
-   pure real(dp) function cpu_to_reach(sr, level) result(t)
+   !> CPU time for a series to reach an error level (log-log interpolation between the runs
+   !> that bracket it); a negative number when the series never reaches it. The error is the
+   !> final-state one, or with `output` the output error (strain, rate, tip over the history).
+   pure real(dp) function cpu_to_reach(sr, level, output) result(t)
       type(series_result_t), intent(in) :: sr      !! series
       real(dp), intent(in) :: level                !! error level [-]
+      logical, intent(in), optional :: output      !! measure the output error
+      real(dp), allocatable :: e(:)
       integer :: k
       real(dp) :: w
       t = -1.0_dp
-      do k = 1, size(sr%error)
+      e = sr%error
+      if (present(output)) then
+         if (output .and. allocated(sr%output_error)) e = sr%output_error
+      end if
+      do k = 1, size(e)
          if (sr%status(k) /= 0) cycle
-         if (sr%error(k) <= level) then
+         if (e(k) <= level) then
             if (k > 1) then
-               if (sr%status(k - 1) == 0 .and. sr%error(k - 1) > level .and. &
-                   sr%error(k) > 0.0_dp) then
-                  w = log(level / sr%error(k - 1)) / log(sr%error(k) / sr%error(k - 1))
+               if (sr%status(k - 1) == 0 .and. e(k - 1) > level .and. e(k) > 0.0_dp) then
+                  w = log(level / e(k - 1)) / log(e(k) / e(k - 1))
                   t = exp(log(sr%seconds(k - 1)) + w * (log(sr%seconds(k)) &
                       - log(sr%seconds(k - 1))))
                   return

@@ -13,10 +13,11 @@ module gapbeam_settings
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words
 
-   character(len=*), parameter :: method_words = "'newmark', 'hht', 'generalized_alpha', " &
+   character(len=*), parameter :: method_words = "'auto', 'newmark', 'hht', 'generalized_alpha', " &
       // "'central_difference', 'rk4', 'rk45', 'exact'"
    character(len=*), parameter :: stop_solution_words = "'condensed', 'fixed_point'"
-   character(len=*), parameter :: step_control_words = "'fixed', 'half_step', 'embedded'"
+   character(len=*), parameter :: step_control_words = "'auto', 'error', 'fixed', 'half_step', " &
+      // "'embedded'"
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
@@ -28,7 +29,8 @@ module gapbeam_settings
    character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
    character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
       // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
-      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
+      // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact', 'newmark_error', " &
+      // "'hht_error', 'generalized_alpha_error', 'auto'"
 
    !> &job: what to run and where the results go.
    type :: job_t
@@ -46,7 +48,12 @@ module gapbeam_settings
 
    !> Time integration settings.
    type :: solver_settings_t
-      character(len=24) :: method = 'newmark'         !! integrator
+      !> integrator: 'auto' takes the exact integrator when every stop is piecewise linear
+      !> (bilinear), else 'newmark' with error control at `tolerance`
+      character(len=24) :: method = 'auto'
+      !> relative accuracy asked of every error-controlled method (local error per forcing
+      !> period of the root strain, the tip and contact displacements, relative to their ranges)
+      real(dp) :: tolerance = 1.0e-4_dp
       real(dp) :: newmark_delta = 0.5_dp              !! Newmark delta (gamma in other texts) [-]
       real(dp) :: newmark_alpha = 0.25_dp             !! Newmark alpha (beta in other texts) [-]
       real(dp) :: hht_alpha = -0.05_dp                !! HHT alpha in [-1/3, 0] [-]
@@ -57,7 +64,10 @@ module gapbeam_settings
       character(len=16) :: stop_solution = 'condensed'   !! 'condensed' or 'fixed_point'
       real(dp) :: fp_tolerance = 1.0e-6_dp            !! fixed point: relative change of F_NL [-]
       integer  :: fp_max_iterations = 50              !! fixed point: iterations before a halving
-      character(len=16) :: step_control = 'half_step' !! 'fixed' or 'half_step'
+      !> 'auto' ('error' for the Newmark family, HHT, generalized-alpha and rk45, 'fixed' for
+      !> central_difference and rk4), 'error' (local error estimate against `tolerance`),
+      !> 'fixed', 'half_step' (the paper's residual rule), 'embedded' (rk45: same as 'error')
+      character(len=16) :: step_control = 'auto'
       integer  :: steps_per_period = 256              !! largest step = T / steps_per_period
       real(dp) :: half_step_tolerance = 0.01_dp       !! residual / largest force term per dof [-]
       real(dp) :: residual_floor = 1.0e-3_dp          !! force scale floor / the largest scale [-]
@@ -136,7 +146,9 @@ module gapbeam_settings
       integer :: periods = 10                       !! horizon from rest [forcing periods]
       integer :: base_steps = 64                    !! coarsest fixed steps per period [-]
       real(dp) :: tolerance_start = 0.1_dp          !! loosest half-step tolerance [-]
-      real(dp) :: rtol_start = 1.0e-2_dp            !! loosest rk45 rtol [-]
+      !> loosest &solver tolerance of the error-controlled series (rk45, newmark_error,
+      !> hht_error, generalized_alpha_error, auto), divided by 10 per level [-]
+      real(dp) :: rtol_start = 1.0e-2_dp
       integer :: repeats = 3                        !! timing repeats of short runs [-]
       real(dp) :: omega_dt_min = 1.0e-2_dp          !! stability chart range [-]
       real(dp) :: omega_dt_max = 1.0e3_dp           !! [-]

@@ -64,6 +64,7 @@ module gapbeam_exact
    public :: exact_integrator_t, exact_piece_t
 
    real(dp), parameter :: peak_tol = 1.0e-13_dp    ! extrema: tolerance / scale of the function
+   real(dp), parameter :: tiny_scale = 1.0e-10_dp  ! margin of the load scale below sqrt(huge)
    real(dp), parameter :: time_tol = 1.0e-14_dp    ! event bracket / forcing period
    integer, parameter :: n_gauss = 16              ! Gauss-Legendre points of the fallback
    integer, parameter :: max_flips = 4             ! switches allowed at one instant
@@ -187,6 +188,15 @@ contains
       end do
       if (nc > 62) then
          call fatal_error(err, 'gapbeam_exact: at most 62 one-sided contacts, got ' // str(nc))
+         return
+      end if
+      ! the closed forms square the state: keep it within sqrt(huge)
+      if (.not. (model%half_amplitude * model%omega**2 * maxval(abs(model%q), &
+          mask=model%q == model%q) < sqrt(huge(1.0_dp)) * tiny_scale)) then
+         call fatal_error(err, 'gapbeam_exact: the base acceleration amplitude ' &
+            // str(model%half_amplitude * model%omega**2) // ' m/s^2 (&forcing amplitude_pp ' &
+            // str(2.0_dp * model%half_amplitude) // ' m) is beyond the range the exact ' &
+            // 'integrator can represent; use a physical amplitude')
          return
       end if
       select case (self%engine)

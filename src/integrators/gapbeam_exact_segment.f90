@@ -1148,7 +1148,12 @@ contains
       nf = nf + 1
       fy(nf) = y0;  fy1(nf) = y1;  fy2(nf) = y2;  fb2(nf) = b2;  fb3(nf) = b3
       q(nf) = hm
-      if (y0 > 0.0_dp) q(nf) = max(hm, quad_root(y0, y1, b2))
+      if (y0 > 0.0_dp) then
+         q(nf) = max(hm, quad_root(y0, y1, b2))
+      else if (y0 == 0.0_dp .and. y1 == 0.0_dp .and. y2 == 0.0_dp .and. b2 == 0.0_dp .and. &
+               b3 == 0.0_dp) then
+         q(nf) = huge(1.0_dp)     ! identically zero on the segment: it cannot change sign
+      end if
    end subroutine add_fn
 
    !> Step on which phi' (value p1, derivative p2, |phi'''| <= b3) keeps its sign.

@@ -23,7 +23,7 @@ module gapbeam_explicit
    !> Central difference: u1 = u + dt v + dt^2/2 a; (M + dt/2 C) a1 = P1 - K u1 - C (v + dt/2 a)
    !> - F(u1, v + dt/2 a); v1 = v + dt/2 (a + a1).
    type, extends(stepper_t) :: central_difference_t
-      real(dp), allocatable :: fac(:, :)      !! Cholesky factor of M + dt/2 C
+      real(dp), allocatable :: fac(:, :)      !! (M + dt/2 C)^-1
       real(dp), allocatable :: w(:), r(:)     !! workspaces
    contains
       procedure :: prepare => cd_prepare
@@ -35,12 +35,14 @@ module gapbeam_explicit
       logical :: embedded = .false.           !! rk45: adaptive with the embedded estimate
       real(dp) :: rtol = 1.0e-6_dp            !! rk45 relative tolerance
       real(dp) :: atol = 1.0e-12_dp           !! rk45 absolute tolerance (SI units of u, v)
-      real(dp), allocatable :: mfac(:, :)     !! Cholesky factor of M
+      real(dp), allocatable :: mfac(:, :)     !! M^-1
       real(dp), allocatable :: ku(:, :), kv(:, :)  !! stage slopes (n, 7)
       real(dp), allocatable :: ut(:), vt(:), r(:)  !! workspaces
+      real(dp), allocatable :: eu(:), ev(:)   !! rk45: embedded errors of the step
    contains
       procedure :: prepare => rk_prepare
       procedure :: step => rk_step
+      procedure :: local_error => rk_local_error
    end type runge_kutta_t
 
    ! Dormand-Prince 5(4) tableau
@@ -59,19 +61,30 @@ module gapbeam_explicit
 
 contains
 
-   !> Factor a mass-like SPD matrix; error naming the method when it is singular.
-   subroutine factor_spd(name, a, fac, err)
+   !> The inverse of a mass-like SPD matrix (Cholesky, then solves on the identity: LAPACK's
+   !> call overhead exceeds a product's work at these sizes); error naming the method when it
+   !> is singular.
+   subroutine factor_spd(name, a, inv, err)
       character(len=*), intent(in) :: name
       real(dp), intent(in) :: a(:, :)
-      real(dp), allocatable, intent(out) :: fac(:, :)
+      real(dp), allocatable, intent(out) :: inv(:, :)
       type(error_t), allocatable, intent(out) :: err
-      integer :: info, n
+      real(dp), allocatable :: fac(:, :)
+      integer :: info, n, j
       n = size(a, 1)
       fac = a
       call dpotrf('U', n, fac, n, info)
-      if (info /= 0) call fatal_error(err, "method '" // name // "': the mass matrix is " &
+      if (info /= 0) then
+         call fatal_error(err, "method '" // name // "': the mass matrix is " &
          // 'singular (dof ' // str(info) // ' has no mass); explicit methods need a mass at ' &
          // "every dof: use &beam rotary_inertia = 'half_element' or 'hrz', or an implicit method")
+         return
+      end if
+      allocate(inv(n, n), source=0.0_dp)
+      do j = 1, n
+         inv(j, j) = 1.0_dp
+      end do
+      call dpotrs('U', n, n, fac, n, inv, n, info)
    end subroutine factor_spd
 
    !> Contact forces from the laws at (u, v); `hold` > 0 is held open.
@@ -125,8 +138,7 @@ contains
       call dense_matvec(n, model%c, self%w, self%r)
       self%r = p1 * model%q - s1%a - self%r
       call contact_forces(model, s1%u, self%w, open_contact, s1%f, self%r)
-      s1%a = self%r
-      call dpotrs('U', n, 1, self%fac, n, s1%a, n, info)
+      call dense_matvec(n, self%fac, self%r, s1%a)
       s1%v = self%w + 0.5_dp * h * s1%a
       self%evaluations = self%evaluations + 1
    end subroutine cd_step
@@ -142,7 +154,8 @@ contains
       call factor_spd(trim(cfg%method), model%sys%m, self%mfac, err)
       if (allocated(err)) return
       if (.not. allocated(self%ku)) allocate(self%ku(model%n, 7), self%kv(model%n, 7), &
-         self%ut(model%n), self%vt(model%n), self%r(model%n))
+         self%ut(model%n), self%vt(model%n), self%r(model%n), self%eu(model%n), &
+         self%ev(model%n))
       self%dt = dt
       self%ready = .true.
    end subroutine rk_prepare
@@ -160,8 +173,7 @@ contains
       call dense_matvec(n, model%c, v, self%r)
       self%r = load_factor(model, t) * model%q - acc - self%r
       call contact_forces(model, u, v, hold, f, self%r)
-      acc = self%r
-      call dpotrs('U', n, 1, self%mfac, n, acc, n, info)
+      call dense_matvec(n, self%mfac, self%r, acc)
       self%evaluations = self%evaluations + 1
    end subroutine rk_accel
 
@@ -215,8 +227,10 @@ contains
             do i = 1, model%n
                eu = h * (e1 * ku(i, 1) + e3 * ku(i, 3) + e4 * ku(i, 4) + e5 * ku(i, 5) &
                     + e6 * ku(i, 6) + e7 * ku(i, 7))
+               self%eu(i) = eu
                ev = h * (e1 * kv(i, 1) + e3 * kv(i, 3) + e4 * kv(i, 4) + e5 * kv(i, 5) &
                     + e6 * kv(i, 6) + e7 * kv(i, 7))
+               self%ev(i) = ev
                sc = self%atol + self%rtol * max(abs(u(i)), abs(u1(i)))
                ratio = max(ratio, abs(eu) / sc)
                sc = self%atol + self%rtol * max(abs(v(i)), abs(v1(i)))
@@ -225,6 +239,24 @@ contains
          end if
       end associate
    end subroutine rk_step
+
+   !> rk45: the embedded (4th against 5th order) estimate of the last step's displacement error.
+   subroutine rk_local_error(self, model, s0, s1, fda, ev, coef, has)
+      class(runge_kutta_t), intent(inout) :: self      !! stepper
+      type(model_t), intent(in) :: model               !! model
+      type(state_t), intent(in) :: s0, s1              !! the step
+      real(dp), intent(out) :: fda(:)                  !! e_u / h^2
+      real(dp), intent(out) :: ev(:)                   !! the embedded velocity error
+      real(dp), intent(out) :: coef(3)                 !! [1, -1, 0]: e_u = h^2 fda, ev given
+      logical, intent(out) :: has                      !! rk45 only
+      has = self%embedded
+      coef = [1.0_dp, -1.0_dp, 0.0_dp]
+      if (has) then
+         fda = self%eu / self%dt**2;  ev = self%ev
+      else
+         fda = 0.0_dp;  ev = 0.0_dp
+      end if
+   end subroutine rk_local_error
 
    !> Stage j of an explicit Runge-Kutta step: state s0 + h sum_m aj(m) k_m at t0 + cj h,
    !> slopes into column j of ku, kv.

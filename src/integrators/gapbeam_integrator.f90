@@ -18,7 +18,7 @@ module gapbeam_integrator
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_model, only: model_t, load_factor
-   use gapbeam_description, only: dof_name
+   use gapbeam_description, only: dof_name, law_bilinear
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
@@ -28,7 +28,7 @@ module gapbeam_integrator
    private
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
-      dof_label
+      dof_label, resolve_method
 
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t
@@ -40,6 +40,7 @@ module gapbeam_integrator
       integer(int64) :: fp_iterations = 0          !! fixed-point iterations on the stop force
       real(dp) :: dt_smallest = huge(1.0_dp)       !! smallest step (segment) [s]
       real(dp) :: dt_largest = 0.0_dp              !! largest step (segment) [s]
+      character(len=:), allocatable :: reason      !! why this method ran ('auto')
    contains
       procedure(init_interface), deferred :: init        !! build for a model
       procedure(advance_interface), deferred :: advance  !! carry a state to a time
@@ -58,6 +59,7 @@ module gapbeam_integrator
    contains
       procedure(prepare_interface), deferred :: prepare   !! factorise / precompute for dt
       procedure(step_interface), deferred :: step         !! advance one step of size dt
+      procedure :: local_error => no_local_error          !! error estimate of the last step
    end type stepper_t
 
    abstract interface
@@ -141,6 +143,67 @@ contains
          // "Jacobian of its flow (use &continuation jacobian = 'finite_difference')"
    end subroutine advance_jacobian_none
    ! --- end of the continuation hook
+
+   !> The settings a run uses: method 'auto' resolved (the exact integrator when every stop is
+   !> piecewise linear, else Newmark with error control) and step_control 'auto' resolved
+   !> ('error' for the methods with an error estimate, 'fixed' for the others; 'embedded' is
+   !> rk45's name for 'error'); `reason` says which method runs and why.
+   subroutine resolve_method(model, cfg, eff, reason)
+      type(model_t), intent(in) :: model                   !! model (its stop laws)
+      type(solver_settings_t), intent(in) :: cfg           !! the deck's settings
+      type(solver_settings_t), intent(out) :: eff         !! the settings that run
+      character(len=:), allocatable, intent(out) :: reason !! one line
+      eff = cfg
+      reason = "method '" // trim(cfg%method) // "' as the deck asks"
+      if (cfg%method == 'auto') then
+         if (cfg%step_control == 'half_step' .or. cfg%step_control == 'fixed' .or. &
+             cfg%stop_solution == 'fixed_point') then
+            ! decks written before 'auto' (whose default was Newmark) keep their method
+            eff%method = 'newmark'
+            reason = "method 'auto': the deck asks for stepping options (step_control = '" &
+               // trim(cfg%step_control) // "', stop_solution = '" // trim(cfg%stop_solution) &
+               // "'), so Newmark"
+         else if (all(model%c_law == law_bilinear)) then
+            eff%method = 'exact'
+            reason = "method 'auto': every stop is piecewise linear, so the exact " &
+               // 'event-driven integrator'
+         else
+            eff%method = 'newmark'
+            reason = "method 'auto': a stop is not piecewise linear (Hertz), so Newmark with " &
+               // 'error control at the tolerance'
+         end if
+      end if
+      select case (eff%step_control)
+      case ('auto')
+         select case (eff%method)
+         case ('newmark', 'hht', 'generalized_alpha', 'rk45')
+            eff%step_control = 'error'
+         case default
+            eff%step_control = 'fixed'
+         end select
+      case ('embedded')
+         eff%step_control = 'error'
+      end select
+   end subroutine resolve_method
+
+   !> The default: a method without a local error estimate.
+   !>
+   !> A method with one returns the change of acceleration over the step, filtered so that
+   !> only the modes the step resolves pass (fda), and coefficients such that the local errors
+   !> of the step are e_u = coef(1) h^2 fda and e_v = coef(2) h fda + coef(3) h^3 a'' (the
+   !> integrator estimates a'' from fda of this and the previous step); coef(2) < 0 means the
+   !> method gives e_v itself (ev).
+   subroutine no_local_error(self, model, s0, s1, fda, ev, coef, has)
+      class(stepper_t), intent(inout) :: self         !! stepper
+      type(model_t), intent(in) :: model              !! model
+      type(state_t), intent(in) :: s0, s1             !! the step just taken
+      real(dp), intent(out) :: fda(:)                 !! filtered a1 - a0 [m/s^2, rad/s^2]
+      real(dp), intent(out) :: ev(:)                  !! velocity error, if coef(2) < 0
+      real(dp), intent(out) :: coef(3)                !! error coefficients
+      logical, intent(out) :: has                     !! false: none
+      fda = 0.0_dp;  ev = 0.0_dp;  coef = 0.0_dp
+      has = .false.
+   end subroutine no_local_error
 
    !> The state at time t from a displacement and a velocity: massless dofs (lumped mass
    !> without rotary inertia) put in equilibrium with the others, contact forces from the

@@ -20,13 +20,17 @@ contains
       type(solver_settings_t), intent(in) :: cfg              !! method and settings
       class(integrator_t), allocatable, intent(out) :: integ  !! ready to advance
       type(error_t), allocatable, intent(out) :: err          !! unknown method, set-up
-      select case (cfg%method)
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
+      call resolve_method(model, cfg, eff, reason)
+      select case (eff%method)
       case ('exact')
          allocate(exact_integrator_t :: integ)
       case default
          allocate(stepping_integrator_t :: integ)
       end select
-      call integ%init(model, cfg, err)
+      call integ%init(model, eff, err)
+      integ%reason = reason
    end subroutine make_integrator
 
    !> An unprepared stepper of a one-step method word.

@@ -37,6 +37,8 @@ module gapbeam_newmark
       real(dp) :: dt = 0.0_dp                    !! step size [s]
       type(newmark_constants_t) :: c             !! step constants
       real(dp), allocatable :: am(:, :)          !! dense: Kbar^-1 M
+      real(dp), allocatable :: kinv(:, :)        !! dense: Kbar^-1 (LAPACK's call overhead
+                                                 !! exceeds the work of a solve at this size)
       real(dp), allocatable :: fac(:, :)         !! dense Cholesky factor of Kbar (upper)
       real(dp), allocatable :: fab(:, :)         !! banded Cholesky factor of Kbar (upper)
       real(dp), allocatable :: gp(:)             !! Kbar^-1 q
@@ -48,12 +50,17 @@ module gapbeam_newmark
    type, extends(stepper_t) :: newmark_stepper_t
       type(step_op_t) :: op                      !! factorized operator for dt
       logical :: fixed_point = .false.           !! the paper's fixed point (else condensed)
+      !> solve for the acceleration (free of the cancellation that bounds the accuracy of the
+      !> displacement form at small steps); used with error control
+      logical :: acceleration_form = .false.
+      real(dp) :: delta = 0.5_dp, alpha = 0.25_dp !! Newmark parameters
       real(dp) :: fp_tolerance = 1.0e-6_dp       !! fixed point: relative change
       integer :: fp_max_iterations = 50          !! fixed point: iteration limit
       real(dp), allocatable :: hm(:), hc(:), rhs(:), y(:)   !! workspaces
    contains
       procedure :: prepare => newmark_prepare
       procedure :: step => newmark_stepper_step
+      procedure :: local_error => newmark_local_error
    end type newmark_stepper_t
 
 contains
@@ -72,6 +79,8 @@ contains
       self%fixed_point = cfg%stop_solution == 'fixed_point'
       self%fp_tolerance = cfg%fp_tolerance
       self%fp_max_iterations = cfg%fp_max_iterations
+      self%acceleration_form = cfg%step_control == 'error'
+      self%delta = cfg%newmark_delta;  self%alpha = cfg%newmark_alpha
       if (.not. allocated(self%hm)) allocate(self%hm(model%n), self%hc(model%n), &
                                              self%rhs(model%n), self%y(model%n))
       self%ready = .true.
@@ -111,11 +120,126 @@ contains
             self%fp_max_iterations, s1%f, s1%u, s1%v, s1%a, it, ok, self%hm, self%hc, &
             self%rhs, self%y, open_contact)
          self%iterations = self%iterations + it
+      else if (self%acceleration_form) then
+         call acceleration_step(model, self%op, self%alpha, self%delta, load, s0, s1, &
+                                self%hm, self%hc, self%rhs, self%y, open_contact)
       else
          call condensed_step(model, self%op, load, s0%u, s0%v, s0%a, s0%f, s1%u, s1%v, s1%a, &
                              s1%f, self%hm, self%hc, open_contact)
       end if
    end subroutine newmark_stepper_step
+
+   !> One Newmark step solved for the acceleration, with the exact condensed stop forces:
+   !>    u~ = u + h v + (1/2 - alpha) h^2 a,   v~ = v + (1 - delta) h a,
+   !>    (M + delta h C + alpha h^2 K) a1 = P1 - C v~ - K u~ - E F,
+   !>    u1 = u~ + alpha h^2 a1,   v1 = v~ + delta h a1.
+   !> The residual on the right is formed from quantities of the size of the forces, so the
+   !> acceleration keeps its relative accuracy at any step (the displacement form loses
+   !> eps / (omega h)^2 of it to cancellation: the 1e-6 floor of the trapezoidal rule at T/1e5).
+   !> M + delta h C + alpha h^2 K = alpha h^2 Kbar, so the factorisation of Kbar serves, and the
+   !> contact compliance is the same H = E' Kbar^-1 E.
+   subroutine acceleration_step(model, op, alpha, delta, load, s0, s1, ut, vt, r, w, hold)
+      type(model_t), intent(in) :: model       !! model
+      type(step_op_t), intent(in) :: op        !! step operator (Kbar factorised)
+      real(dp), intent(in) :: alpha, delta     !! Newmark parameters
+      real(dp), intent(in) :: load             !! load factor at the end of the step
+      type(state_t), intent(in) :: s0          !! start
+      type(state_t), intent(inout) :: s1       !! end
+      real(dp), intent(inout) :: ut(:), vt(:), r(:), w(:)   !! workspaces (n)
+      integer, intent(in) :: hold              !! contact held open (0: none)
+      real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts), dstep
+      integer :: n, c, i
+      n = model%n;  h = op%dt;  bh2 = alpha * h**2
+      ut = s0%u + h * s0%v + (0.5_dp - alpha) * h**2 * s0%a
+      vt = s0%v + (1.0_dp - delta) * h * s0%a
+      ! r = P1 - K (u~ + gamma v~) - beta M v~  (C = beta M + gamma K)
+      w = ut + model%gamma * vt
+      call sym_matvec(op%dense, model%sys%kd, model%sys%k, model%sys%k_band, w, r)
+      call sym_matvec(op%dense, model%sys%kd, model%sys%m, model%sys%m_band, vt, w)
+      r = load * model%q - r - model%beta * w
+      call kbar_solve(model, op, r)
+      r = r / bh2                                   ! a1 with no contact force
+      s1%u = ut + bh2 * r
+      s1%v = vt + delta * h * r
+      s1%f = 0.0_dp
+      if (model%n_contacts > 0) then
+         do c = 1, model%n_contacts
+            i = model%c_dof(c)
+            dstar(c) = model%c_sign(c) * s1%u(i) - model%c_gap(c)
+            vstar(c) = model%c_sign(c) * s1%v(i)
+         end do
+         if (model%n_contacts == 1 .and. hold == 0) then
+            s1%f(1) = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), &
+                         model%c_p(1), dstar(1), vstar(1), op%h(1, 1), op%c%a1)
+         else
+            s1%f = s0%f                                ! first guess of the Gauss-Seidel sweep
+            call solve_contacts(model, op%h, 1.0_dp, op%c%a1, dstar, vstar, s1%f, hold)
+         end if
+         do c = 1, model%n_contacts
+            if (s1%f(c) /= 0.0_dp) r = r - op%g(:, model%c_slot(c)) &
+                                           * (model%c_sign(c) * s1%f(c) / bh2)
+         end do
+      end if
+      s1%a = r
+      ! u1 = u + du, v1 = v + dv summed with compensation: over millions of small steps the
+      ! rounding of u + du (eps |u| each) would otherwise bound the accuracy near 1e-8
+      if (.not. allocated(s1%cu)) allocate(s1%cu(n), s1%cv(n))
+      do i = 1, n
+         dstep = h * s0%v(i) + (0.5_dp - alpha) * h**2 * s0%a(i) + bh2 * r(i)
+         if (allocated(s0%cu)) dstep = dstep - s0%cu(i)
+         s1%u(i) = s0%u(i) + dstep
+         s1%cu(i) = (s1%u(i) - s0%u(i)) - dstep
+         dstep = (1.0_dp - delta) * h * s0%a(i) + delta * h * r(i)
+         if (allocated(s0%cv)) dstep = dstep - s0%cv(i)
+         s1%v(i) = s0%v(i) + dstep
+         s1%cv(i) = (s1%v(i) - s0%v(i)) - dstep
+      end do
+   end subroutine acceleration_step
+
+   !> x := Kbar^-1 x with the step operator's factor.
+   subroutine kbar_solve(model, op, x)
+      type(model_t), intent(in) :: model       !! model (band width)
+      type(step_op_t), intent(in) :: op        !! step operator
+      real(dp), intent(inout) :: x(:)          !! right-hand side, then solution
+      integer :: n, info
+      real(dp) :: y(size(x))
+      n = model%n
+      if (op%dense) then
+         y = x
+         call dense_matvec(n, op%kinv, y, x)
+      else
+         call band_solve(n, model%sys%kd, op%fab, x)
+      end if
+   end subroutine kbar_solve
+
+   !> Local error estimate of the last step (see stepper_t%local_error): the displacement error
+   !> (alpha - 1/6) h^2 (a1 - a0) of Zienkiewicz and Xie, the velocity error
+   !> (delta - 1/2) h^2 a' + (delta/2 - 1/6) h^3 a'', with a1 - a0 filtered by the step's own
+   !> operator, Kbar^-1 M / (alpha h^2) = (M + delta h C + alpha h^2 K)^-1 M: modes the step
+   !> resolves (omega h << 1) pass unchanged, modes it does not resolve are damped by
+   !> 1 / (alpha (omega h)^2), so that their ringing (bounded, and harmless to the outputs) does
+   !> not pass for a large error.
+   subroutine newmark_local_error(self, model, s0, s1, fda, ev, coef, has)
+      class(newmark_stepper_t), intent(inout) :: self  !! stepper (its operator)
+      type(model_t), intent(in) :: model               !! model
+      type(state_t), intent(in) :: s0, s1              !! the step
+      real(dp), intent(out) :: fda(:)                  !! filtered a1 - a0
+      real(dp), intent(out) :: ev(:)                   !! unused
+      real(dp), intent(out) :: coef(3)                 !! error coefficients
+      logical, intent(out) :: has                      !! an estimate is given
+      has = .true.
+      self%y = s1%a - s0%a
+      if (self%op%dense) then
+         call dense_matvec(model%n, self%op%am, self%y, fda)     ! Kbar^-1 M (a1 - a0)
+      else
+         call sym_matvec(.false., model%sys%kd, model%sys%m, model%sys%m_band, self%y, fda)
+         call kbar_solve(model, self%op, fda)
+      end if
+      fda = fda / (self%alpha * self%dt**2)
+      ev = 0.0_dp
+      coef = [self%alpha - 1.0_dp / 6.0_dp, self%delta - 0.5_dp, 0.5_dp * self%delta &
+              - 1.0_dp / 6.0_dp]
+   end subroutine newmark_local_error
 
    !> Factorize Kbar for a step size and precompute the predictor and contact influences.
    subroutine build_step_op(model, delta, alpha, dt, dense, op, err)
@@ -161,6 +285,12 @@ contains
          call dpotrs('U', n, 1 + ns, op%fac, n, rhs, n, info)
          op%am = model%sys%m
          call dpotrs('U', n, n, op%fac, n, op%am, n, info)
+         if (allocated(op%kinv)) deallocate(op%kinv)
+         allocate(op%kinv(n, n), source=0.0_dp)
+         do j = 1, n
+            op%kinv(j, j) = 1.0_dp
+         end do
+         call dpotrs('U', n, n, op%fac, n, op%kinv, n, info)
          if (allocated(op%fab)) deallocate(op%fab)
       else
          call dense_to_band(kbar, kd, op%fab)

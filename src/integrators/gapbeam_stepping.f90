@@ -27,11 +27,16 @@ module gapbeam_stepping
    use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, &
       make_stepper, dof_label
    use gapbeam_newmark, only: half_step_ratio, use_dense
+   use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
    private
    public :: stepping_integrator_t, hermite_piece_t, hermite_weights
 
    integer, parameter :: max_sub = 8   ! sub-steps of one step at most (event splits)
+   ! error control: blocks of this fraction of a forcing period keep one step size; the local
+   ! errors accepted in a forcing period add up to at most budget_scale * tolerance
+   real(dp), parameter :: block_fraction = 0.125_dp
+   real(dp), parameter :: budget_scale = 0.2_dp
    real(dp), parameter :: min_split = 1.0e-3_dp   ! no sub-step shorter than this fraction of a step
 
    !> One accepted sub-step: end values and the cubic Hermite interpolant in between.
@@ -50,6 +55,8 @@ module gapbeam_stepping
       type(solver_settings_t) :: cfg                  !! settings
       class(stepper_t), allocatable :: ops(:)         !! one stepper per step level 0..kmax
       class(stepper_t), allocatable :: scratch        !! for the sub-steps of an event split
+      class(stepper_t), allocatable :: scratch_half   !! half steps of a Richardson check
+      type(state_t) :: rich(2)                        !! the two half steps' states
       type(state_t), allocatable :: sub(:)            !! sub-states of a step (storage)
       integer :: ix(0:max_sub) = 0                    !! sub-state k is sub(ix(k))
       type(hermite_piece_t) :: piece                  !! handed to the observer
@@ -68,11 +75,29 @@ module gapbeam_stepping
       integer :: n_since = 0                          !! steps since the last energy check
       integer :: ev_contact = 0                       !! contact of the located event
       logical :: ev_onset = .false.                   !! the event closes it (else opens it)
+      ! error control (step_control = 'error')
+      logical :: controlled = .false.                 !! local error against the tolerance
+      real(dp) :: tolerance = 0.0_dp                  !! relative accuracy asked [-]
+      real(dp) :: h_max = 0.0_dp                      !! largest step [s]
+      integer :: n_levels = 0                         !! step sizes h_max 2^(-L/2), L = 0..
+      real(dp), allocatable :: h_lev(:)               !! (0:n_levels-1) those sizes [s]
+      real(dp) :: t_comp = 0.0_dp                     !! Kahan compensation of the time [s]
+      integer, allocatable :: out_dof(:)              !! outputs watched: tip and contact dofs
+      !> ranges and floors of the watched outputs: root strain, the out_dof displacements,
+      !> then root strain rate and the out_dof velocities
+      real(dp), allocatable :: out_lo(:), out_hi(:), out_floor(:)
+      real(dp), allocatable :: fda(:), ev(:), eu(:)   !! local error data of a step (n)
+      real(dp), allocatable :: fda_prev(:)            !! fda of the previous accepted step
+      real(dp) :: h_prev = 0.0_dp                     !! its length (0: none usable) [s]
+      integer :: order = 2                            !! order of the method
+      real(dp) :: block_start = 0.0_dp                !! current block of the controller [s]
+      real(dp) :: block_sum = 0.0_dp                  !! local errors accepted in it [-]
    contains
       procedure :: init => stepping_init
       procedure :: advance => stepping_advance
       procedure, private :: attempt_step, control_ratio, check_divergence, emit_pieces, &
-         first_event, restart_after_event, one_step
+         first_event, restart_after_event, one_step, advance_controlled, controlled_step, &
+         error_ratio, output_ratio, richardson, track_outputs, init_control
    end type stepping_integrator_t
 
 contains
@@ -97,8 +122,18 @@ contains
       self%half_step = cfg%step_control == 'half_step'
       self%embedded = cfg%step_control == 'embedded'
       self%dense = use_dense(model, cfg%linear_solver)
-      allocate(self%ops(0:self%kmax), mold=proto)
+      self%controlled = cfg%step_control == 'error'
+      self%si = pack([(j, j = 1, model%n)], model%sys%strain_row /= 0.0_dp)
+      self%sw = model%sys%strain_row(self%si)
+      if (self%controlled) then
+         call self%init_control(model, cfg, err)
+         if (allocated(err)) return
+         allocate(self%ops(0:self%n_levels - 1), mold=proto)
+      else
+         allocate(self%ops(0:self%kmax), mold=proto)
+      end if
       allocate(self%scratch, mold=proto)
+      allocate(self%scratch_half, mold=proto)
       allocate(self%sub(0:max_sub))
       self%ix = [(k, k = 0, max_sub)]
       do k = 0, max_sub
@@ -106,8 +141,11 @@ contains
                   self%sub(k)%f(model%n_contacts), self%sub(k)%f_prev(model%n_contacts), &
                   source=0.0_dp)
       end do
-      self%si = pack([(j, j = 1, model%n)], model%sys%strain_row /= 0.0_dp)
-      self%sw = model%sys%strain_row(self%si)
+      do k = 1, 2
+         allocate(self%rich(k)%u(model%n), self%rich(k)%v(model%n), self%rich(k)%a(model%n), &
+                  self%rich(k)%f(model%n_contacts), self%rich(k)%f_prev(model%n_contacts), &
+                  source=0.0_dp)
+      end do
       allocate(self%work6(model%n, 6))
       associate (p => self%piece, nc => model%n_contacts)
          allocate(p%f_a(nc), p%f_b(nc), p%vabs_a(nc), p%vabs_b(nc), p%onset_time(nc), &
@@ -130,6 +168,10 @@ contains
       real(dp) :: t0, t1, ratio, eratio
       logical :: ok
 
+      if (self%controlled) then
+         call self%advance_controlled(state, t_target, obs, err)
+         return
+      end if
       tick = nint(state%t / self%tick_dt, int64)
       end_tick = nint(t_target / self%tick_dt, int64)
       if (abs(real(tick, dp) * self%tick_dt - state%t) > 0.01_dp * self%tick_dt .or. &
@@ -518,28 +560,422 @@ contains
       else
          b%f_prev = a%f
       end if
+      if (allocated(a%cu)) then
+         b%cu = a%cu;  b%cv = a%cv
+      else if (allocated(b%cu)) then
+         deallocate(b%cu, b%cv)
+      end if
       b%dt_prev = a%dt_prev;  b%level = a%level;  b%comfortable = a%comfortable
    end subroutine copy_state
 
-   !> Root strain, its rate, tip displacement and velocity, contact forces at t (cubic Hermite
-   !> interpolation of the sub-step).
+   !> Error control: the step-size ladder h_max 2^(-L/2) (a factorisation per size, cached),
+   !> the watched outputs (root strain, tip and contact displacements) and their floors: the
+   !> quasi-static response to the forcing amplitude, K u = (A_pp/2) Omega^2 q.
+   subroutine init_control(self, model, cfg, err)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      type(solver_settings_t), intent(in) :: cfg            !! settings
+      type(error_t), allocatable, intent(out) :: err        !! singular stiffness
+      real(dp), allocatable :: kf(:, :), uqs(:)
+      integer :: info, c, n_out
+      self%tolerance = cfg%tolerance
+      self%order = merge(4, 2, cfg%method == 'rk45')
+      self%h_max = self%period / 16.0_dp
+      self%n_levels = 2 * cfg%max_halvings + 9
+      if (allocated(self%h_lev)) deallocate(self%h_lev)
+      allocate(self%h_lev(0:self%n_levels - 1))
+      do c = 0, self%n_levels - 1
+         self%h_lev(c) = self%h_max * 2.0_dp**(-0.5_dp * c)
+      end do
+      allocate(self%fda(model%n), self%ev(model%n), self%eu(model%n), self%fda_prev(model%n), &
+               source=0.0_dp)
+      self%out_dof = [integer ::]
+      if (model%sys%tip_dof > 0) self%out_dof = [model%sys%tip_dof]
+      do c = 1, model%n_slots
+         if (.not. any(self%out_dof == model%slot_dof(c))) &
+            self%out_dof = [self%out_dof, model%slot_dof(c)]
+      end do
+      n_out = 1 + size(self%out_dof)       ! the root strain first
+      allocate(self%out_lo(2 * n_out), self%out_hi(2 * n_out), self%out_floor(2 * n_out))
+      kf = model%sys%k
+      uqs = model%half_amplitude * model%omega**2 * model%q
+      call dpotrf('U', model%n, kf, model%n, info)
+      if (info /= 0) then
+         call fatal_error(err, 'gapbeam_stepping: the stiffness matrix is not positive ' &
+            // 'definite (dpotrf info=' // str(info) // ')')
+         return
+      end if
+      call dpotrs('U', model%n, 1, kf, model%n, uqs, model%n, info)
+      self%out_floor(1) = abs(dot_product(self%sw, uqs(self%si)))
+      self%out_floor(2:n_out) = abs(uqs(self%out_dof))
+      self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
+      if (cfg%method == 'rk45') then
+         ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
+         self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
+         self%out_floor(n_out + 2:) = max(self%out_floor(n_out + 2:), cfg%rk_atol / cfg%tolerance)
+      end if
+   end subroutine init_control
+
+   !> Carry `state` to t_target with error control: steps from the ladder, each accepted when
+   !> the estimate of its local error in every watched output is within tolerance * (the
+   !> output's range) * (step / forcing period); a step in which a contact opens or closes ends
+   !> at that instant (its own step size, one factorisation), so no estimate straddles a
+   !> switch; the last step before t_target and the observer's watch instant is cut to land on
+   !> it.
+   subroutine advance_controlled(self, state, t_target, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state                 !! state, at t_target on return
+      real(dp), intent(in) :: t_target                      !! target time [s]
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! numerical failure
+      real(dp) :: t, t_stop, tiny_t
+      integer :: level
+      call copy_state(state, self%sub(self%ix(0)))
+      if (state%dt_prev == 0.0_dp) then
+         ! begin at T / steps_per_period
+         level = min(self%n_levels - 1, max(0, nint(2.0_dp * log(real(self%cfg%steps_per_period, &
+            dp) / 16.0_dp) / log(2.0_dp))))
+         self%sub(self%ix(0))%dt_prev = self%h_max / 16.0_dp
+      else
+         level = min(max(state%level, 0), self%n_levels - 1)
+      end if
+      self%t_begin = state%t;  self%n_since = 0
+      self%energy_ref = 0.5_dp * dot_product(state%u, matmul(self%model%sys%k, state%u)) &
+                        + 0.5_dp * dot_product(state%v, matmul(self%model%sys%m, state%v))
+      self%block_start = state%t;  self%block_sum = 0.0_dp
+      self%h_prev = 0.0_dp;  self%t_comp = 0.0_dp
+      self%piece%model => self%model
+      self%piece%sub => self%sub
+      call self%track_outputs(self%sub(self%ix(0)), .true.)
+      t = state%t
+      tiny_t = 1.0e-12_dp * self%period
+      do while (t < t_target - tiny_t)
+         t_stop = t_target
+         if (present(obs)) then
+            if (obs%t_watch > t + tiny_t .and. obs%t_watch < t_target) t_stop = obs%t_watch
+         end if
+         call self%controlled_step(level, t_stop, obs, err)
+         if (allocated(err)) return
+         t = self%sub(self%ix(0))%t
+      end do
+      call copy_state(self%sub(self%ix(0)), state)
+      state%t = t_target
+      state%level = level
+      self%fp_iterations = self%scratch%iterations + sum([(self%ops(level)%iterations, &
+                                                          level = 0, self%n_levels - 1)])
+   end subroutine advance_controlled
+
+   !> One accepted step from sub-state ix(0) (rejections and smaller sizes inside), ending at
+   !> or before t_stop or at a contact event; the level for the next step on return.
+   subroutine controlled_step(self, level, t_stop, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      integer, intent(inout) :: level                       !! ladder level
+      real(dp), intent(in) :: t_stop                        !! do not step beyond [s]
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
+      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp
+      logical :: ok, event, clipped
+      integer :: worst, dl
+      t0 = self%sub(self%ix(0))%t
+      do
+         r = 0.0_dp
+         h = self%h_lev(level)
+         if (t0 + h > t_stop - 1.0e-9_dp * h) then
+            h = t_stop - t0
+            call self%scratch%prepare(self%model, self%cfg, h, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+            call self%one_step(self%scratch, 0, 0, ok, r)
+         else
+            if (.not. self%ops(level)%ready) then
+               call self%ops(level)%prepare(self%model, self%cfg, h, err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+            end if
+            call self%one_step(self%ops(level), 0, 0, ok, r)
+         end if
+         clipped = h == t_stop - t0
+         call next_time(t0, h, self%t_comp, clipped, t1, comp)
+         self%sub(self%ix(1))%t = t1
+         event = .false.
+         if (ok .and. self%cfg%locate_events .and. self%model%n_contacts > 0) then
+            theta = self%first_event(0, h)
+            if (theta * h > min_split * h .and. (1.0_dp - theta) * h > min_split * h) then
+               ! end the step at the event: one factorisation for its size
+               call self%scratch%prepare(self%model, self%cfg, theta * h, err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+               call self%one_step(self%scratch, 0, merge(self%ev_contact, 0, self%ev_onset), &
+                                  ok, r)
+               h = theta * h
+               call next_time(t0, h, self%t_comp, .false., t1, comp)
+               self%sub(self%ix(1))%t = t1
+               event = .true.
+            end if
+         end if
+         if (ok) then
+            if (event .or. h < self%h_lev(level) * (1.0_dp - 1.0e-9_dp)) then
+               call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
+                  self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+            else
+               call self%ops(level)%local_error(self%model, self%sub(self%ix(0)), &
+                  self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+            end if
+            if (.not. ok) then
+               call fatal_error(err, "gapbeam_stepping: method '" // self%method // "' has " &
+                  // "no local error estimate: use step_control = 'fixed'")
+               return
+            end if
+            q = self%error_ratio(h, coef, worst)
+            if (self%h_prev == 0.0_dp .and. coef(2) >= 0.0_dp .and. coef(3) /= 0.0_dp) then
+               ! the first step from a start or a contact event has no previous step to
+               ! estimate a'' from: its velocity error is measured by two half steps
+               call self%richardson(level, h, event, r, worst, err)
+               if (allocated(err)) return
+               q = max(q, r)
+            end if
+         else
+            q = huge(1.0_dp);  worst = 0
+         end if
+         ! one step may not spend more than the budget of a whole block
+         ratio = q / (block_fraction * budget_scale * self%tolerance)
+         if (ratio <= 1.0_dp) exit
+         ! reject: smaller steps (the local error scales as h^3)
+         self%steps_rejected = self%steps_rejected + 1
+         if (level >= self%n_levels - 1) then
+            call controlled_failure(self, t0, h, ratio, worst, ok, err)
+            return
+         end if
+         dl = 1
+         if (ratio < huge(1.0_dp)) dl = max(1, ceiling(log(ratio) / log(2.0_dp**(0.5_dp &
+                                                 * (self%order + 1)))))
+         level = min(self%n_levels - 1, level + dl)
+      end do
+      ! accept
+      self%t_comp = comp
+      call swap_check_emit(self, t0, h, event, obs, err)
+      if (allocated(err)) return
+      ! a'' of the next step from this one's fda, unless the acceleration jumps here
+      self%fda_prev = self%fda
+      self%h_prev = merge(0.0_dp, h, event)
+      self%block_sum = self%block_sum + q
+      if (t1 - self%block_start >= block_fraction * self%period * (1.0_dp - 1.0e-9_dp)) then
+         ! the step size of the next block: the local errors of a block add up as h^2
+         rho = self%block_sum / (budget_scale * self%tolerance * (t1 - self%block_start) &
+                                 / self%period)
+         if (rho > 1.0_dp) then
+            level = min(self%n_levels - 1, level + ceiling(log(rho) / log(2.0_dp**(0.5_dp &
+                                                           * self%order))))
+         else if (rho < 0.3_dp) then
+            level = max(0, level - min(2, floor(log(0.6_dp / rho) / log(2.0_dp**(0.5_dp &
+                                                                   * self%order)))))
+         end if
+         self%block_start = t1;  self%block_sum = 0.0_dp
+      end if
+   end subroutine controlled_step
+
+   !> The end of a step, t0 + h, summed with Kahan's compensation so that millions of steps
+   !> do not accumulate the rounding of the time (eps t per step: a phase error that bounded
+   !> the accuracy near 1e-7); a step clipped to a target lands on it exactly.
+   pure subroutine next_time(t0, h, comp0, clipped, t1, comp)
+      real(dp), intent(in) :: t0, h       !! start [s], step [s]
+      real(dp), intent(in) :: comp0       !! compensation carried so far [s]
+      logical, intent(in) :: clipped      !! h = t_stop - t0: land on t_stop
+      real(dp), intent(out) :: t1         !! end of the step [s]
+      real(dp), intent(out) :: comp       !! compensation after it [s]
+      real(dp) :: y
+      if (clipped) then
+         t1 = t0 + h;  comp = 0.0_dp
+         return
+      end if
+      y = h - comp0
+      t1 = t0 + y
+      comp = (t1 - t0) - y
+   end subroutine next_time
+
+   !> Accept the step [t0, t0 + h] held in sub-state ix(1): divergence check, restart after an
+   !> event where a damper makes the force jump, hand it to the observer, make it the start.
+   subroutine swap_check_emit(self, t0, h, event, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      real(dp), intent(in) :: t0, h                         !! the step [s]
+      logical, intent(in) :: event                          !! it ends at a contact event
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! divergence
+      call self%check_divergence(t0, t0 + h, 1, err)
+      if (allocated(err)) return
+      if (event) then
+         self%events = self%events + 1
+         if (self%model%c_c(self%ev_contact) > 0.0_dp) call self%restart_after_event(1)
+      end if
+      if (present(obs)) call self%emit_pieces(1, obs)
+      call self%track_outputs(self%sub(self%ix(1)), .false.)
+      self%steps_accepted = self%steps_accepted + 1
+      self%dt_smallest = min(self%dt_smallest, h)
+      self%dt_largest = max(self%dt_largest, h)
+      associate (sl => self%sub(self%ix(1)), sp => self%sub(self%ix(0)))
+         sl%f_prev = sp%f;  sl%dt_prev = h
+      end associate
+      self%ix([0, 1]) = self%ix([1, 0])
+   end subroutine swap_check_emit
+
+   !> The error of a step that fails at the smallest step size under error control.
+   subroutine controlled_failure(self, t0, h, ratio, worst, ok, err)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator
+      real(dp), intent(in) :: t0, h, ratio               !! the step and its error ratio
+      integer, intent(in) :: worst                       !! output of the largest error
+      logical, intent(in) :: ok                          !! false: the stepper failed
+      type(error_t), allocatable, intent(out) :: err     !! the message
+      character(len=:), allocatable :: what
+      if (.not. ok) then
+         what = 'the fixed point on the stop force does not converge'
+      else if (worst == 1) then
+         what = 'the local error of the root strain is ' // str(ratio) // ' times the tolerance'
+      else if (worst == 2 + size(self%out_dof)) then
+         what = 'the local error of the root strain rate is ' // str(ratio) // ' times the ' &
+                // 'tolerance'
+      else
+         what = 'the local error at ' // dof_label(self%model, self%out_dof(mod(worst - 2, &
+                1 + size(self%out_dof)))) // ' is ' // str(ratio) // ' times the tolerance'
+      end if
+      call fatal_error(err, "gapbeam_stepping: method '" // self%method // "': at t = " &
+         // str(t0) // ' s ' // what // ' with the smallest step dt = ' // str(h) // ' s; ' &
+         // 'raise &solver tolerance (now ' // str(self%tolerance) // ') or max_halvings ' &
+         // '(now ' // str(self%kmax) // ')')
+   end subroutine controlled_failure
+
+   !> The local error of a step relative to the watched outputs' ranges: the largest of
+   !> |l' e_u| / max(range, floor) over the root strain and the tip and contact displacements,
+   !> and |l' e_v| / max(range, floor) over the root strain rate and those velocities, with
+   !> e_u = coef(1) h^2 fda, e_v = coef(2) h fda + coef(3) h^3 a'' (a'' from this and the
+   !> previous step's fda; or the method's own e_v). Returns the output (1-based over the
+   !> displacement outputs, then the rates) of the largest.
+   real(dp) function error_ratio(self, h, coef, worst) result(ratio)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      real(dp), intent(in) :: h                          !! step [s]
+      real(dp), intent(in) :: coef(3)                    !! the method's error coefficients
+      integer, intent(out) :: worst                      !! output of the largest ratio
+      self%eu = coef(1) * h**2 * self%fda
+      if (coef(2) >= 0.0_dp) then
+         self%ev = coef(2) * h * self%fda
+         if (self%h_prev > 0.0_dp) self%ev = self%ev + coef(3) * h**3 * 2.0_dp &
+            * (self%fda / h - self%fda_prev / self%h_prev) / (h + self%h_prev)
+      end if
+      ratio = self%output_ratio(worst)
+   end function error_ratio
+
+   !> max over the watched outputs of |l' e| / max(range, floor) for the errors held in
+   !> self%eu (displacement outputs) and self%ev (rates); `worst` as in error_ratio.
+   real(dp) function output_ratio(self, worst) result(ratio)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(out) :: worst                      !! output of the largest ratio
+      real(dp) :: es, r
+      integer :: i, q, no
+      no = 1 + size(self%out_dof)
+      ratio = 0.0_dp;  worst = 1
+      do i = 1, 2 * no
+         if (i == 1 .or. i == no + 1) then
+            es = 0.0_dp
+            do q = 1, size(self%si)
+               if (i == 1) es = es + self%sw(q) * self%eu(self%si(q))
+               if (i > 1) es = es + self%sw(q) * self%ev(self%si(q))
+            end do
+         else if (i <= no) then
+            es = self%eu(self%out_dof(i - 1))
+         else
+            es = self%ev(self%out_dof(i - no - 1))
+         end if
+         r = abs(es) / max(self%out_hi(i) - self%out_lo(i), self%out_floor(i), tiny(1.0_dp))
+         if (r > ratio) then
+            ratio = r;  worst = i
+         end if
+      end do
+   end function output_ratio
+
+   !> Error ratio of the step held in sub(ix(1)) by Richardson extrapolation: the same
+   !> interval in two half steps (local error 1/4 of the whole step's for a method whose local
+   !> error is O(h^3)), e = (4/3) (y_h - y_h/2) for u and v, measured on the watched outputs
+   !> as error_ratio does. For the steps that begin a run or follow a contact event, where the
+   !> method's own estimate lacks a''; they are a few per forcing period.
+   subroutine richardson(self, level, h, event, ratio, worst, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      integer, intent(in) :: level                    !! the step's ladder level
+      real(dp), intent(in) :: h                       !! the step [s]
+      logical, intent(in) :: event                    !! it ends at a located event
+      real(dp), intent(out) :: ratio                  !! error / tolerance share of the step
+      integer, intent(out) :: worst                   !! output of the largest ratio
+      type(error_t), allocatable, intent(out) :: err  !! factorisation failure
+      logical :: ok
+      real(dp) :: r
+      integer :: hold
+      ratio = huge(1.0_dp);  worst = 1
+      hold = 0
+      if (event .and. self%ev_onset) hold = self%ev_contact
+      associate (s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
+         if (.not. event .and. level + 2 < self%n_levels) then
+            if (.not. self%ops(level + 2)%ready) then
+               call self%ops(level + 2)%prepare(self%model, self%cfg, self%h_lev(level + 2), &
+                                                err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+            end if
+            call self%ops(level + 2)%step(self%model, s0, self%rich(1), ok, r, 0)
+            if (ok) call self%ops(level + 2)%step(self%model, self%rich(1), self%rich(2), ok, &
+                                                  r, 0)
+         else
+            call self%scratch_half%prepare(self%model, self%cfg, 0.5_dp * h, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+            call self%scratch_half%step(self%model, s0, self%rich(1), ok, r, hold)
+            if (ok) call self%scratch_half%step(self%model, self%rich(1), self%rich(2), ok, &
+                                                r, hold)
+         end if
+         if (.not. ok) return
+         self%eu = (4.0_dp / 3.0_dp) * (s1%u - self%rich(2)%u)
+         self%ev = (4.0_dp / 3.0_dp) * (s1%v - self%rich(2)%v)
+      end associate
+      ratio = self%output_ratio(worst)
+   end subroutine richardson
+
+   !> Running ranges of the watched outputs (start: from this state).
+   subroutine track_outputs(self, s, first)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(state_t), intent(in) :: s                        !! an accepted state
+      logical, intent(in) :: first                          !! reset the ranges
+      real(dp) :: y(2 * (1 + size(self%out_dof)))
+      integer :: q, no
+      no = 1 + size(self%out_dof)
+      y(1) = 0.0_dp;  y(no + 1) = 0.0_dp
+      do q = 1, size(self%si)
+         y(1) = y(1) + self%sw(q) * s%u(self%si(q))
+         y(no + 1) = y(no + 1) + self%sw(q) * s%v(self%si(q))
+      end do
+      y(2:no) = s%u(self%out_dof);  y(no + 2:) = s%v(self%out_dof)
+      if (first) then
+         self%out_lo = y;  self%out_hi = y
+      else
+         self%out_lo = min(self%out_lo, y);  self%out_hi = max(self%out_hi, y)
+      end if
+   end subroutine track_outputs
+
+   !> Root strain, its rate, tip displacement and velocity, contact forces at t: quintic
+   !> Hermite interpolation of the sub-step from (u, v, a) at both ends (error O(h^6) in u,
+   !> O(h^5) in v, below the method's own in both).
    subroutine hermite_sample(self, t, strain, rate, tip, tip_velocity, force)
       class(hermite_piece_t), intent(in) :: self        !! piece
       real(dp), intent(in) :: t                         !! instant [s]
       real(dp), intent(out) :: strain, rate, tip, tip_velocity   !! outputs
       real(dp), intent(out) :: force(:)                 !! contact force magnitudes [N]
-      real(dp) :: h, x, h00, h10, h01, h11, g00, g10, g01, g11, ui, vi
+      real(dp) :: h, w(6), g(6), ui, vi
       integer :: i, c
       h = self%tb - self%ta
-      x = min(1.0_dp, max(0.0_dp, (t - self%ta) / h))
-      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      call quintic_weights(min(1.0_dp, max(0.0_dp, (t - self%ta) / h)), h, w, g)
       strain = 0.0_dp;  rate = 0.0_dp;  tip = 0.0_dp;  tip_velocity = 0.0_dp
-      associate (m => self%model, ua => self%sub(self%ja)%u, va => self%sub(self%ja)%v, &
-                 ub => self%sub(self%jb)%u, vb => self%sub(self%jb)%v)
+      associate (m => self%model, sa => self%sub(self%ja), sb => self%sub(self%jb))
          do i = 1, m%n
-            ui = h00 * ua(i) + h10 * h * va(i) + h01 * ub(i) + h11 * h * vb(i)
-            vi = (g00 * ua(i) + g10 * h * va(i) + g01 * ub(i) &
-                  + g11 * h * vb(i)) / h
+            ui = w(1) * sa%u(i) + w(2) * sa%v(i) + w(3) * sa%a(i) + w(4) * sb%u(i) &
+                 + w(5) * sb%v(i) + w(6) * sb%a(i)
+            vi = g(1) * sa%u(i) + g(2) * sa%v(i) + g(3) * sa%a(i) + g(4) * sb%u(i) &
+                 + g(5) * sb%v(i) + g(6) * sb%a(i)
             strain = strain + m%sys%strain_row(i) * ui
             rate = rate + m%sys%strain_row(i) * vi
             if (i == m%sys%tip_dof) then
@@ -548,30 +984,50 @@ contains
          end do
          do c = 1, m%n_contacts
             i = m%c_dof(c)
-            ui = h00 * ua(i) + h10 * h * va(i) + h01 * ub(i) + h11 * h * vb(i)
-            vi = (g00 * ua(i) + g10 * h * va(i) + g01 * ub(i) &
-                  + g11 * h * vb(i)) / h
+            ui = w(1) * sa%u(i) + w(2) * sa%v(i) + w(3) * sa%a(i) + w(4) * sb%u(i) &
+                 + w(5) * sb%v(i) + w(6) * sb%a(i)
+            vi = g(1) * sa%u(i) + g(2) * sa%v(i) + g(3) * sa%a(i) + g(4) * sb%u(i) &
+                 + g(5) * sb%v(i) + g(6) * sb%a(i)
             force(c) = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), &
                                      m%c_sign(c) * ui - m%c_gap(c), m%c_sign(c) * vi)
          end do
       end associate
    end subroutine hermite_sample
 
-   !> Displacement and velocity of every dof at t (cubic Hermite interpolation).
+   !> Displacement and velocity of every dof at t (quintic Hermite interpolation).
    subroutine hermite_state(self, t, u, v)
       class(hermite_piece_t), intent(in) :: self        !! piece
       real(dp), intent(in) :: t                         !! instant [s]
       real(dp), intent(out) :: u(:), v(:)               !! state
-      real(dp) :: h, x, h00, h10, h01, h11, g00, g10, g01, g11
+      real(dp) :: h, w(6), g(6)
       h = self%tb - self%ta
-      x = min(1.0_dp, max(0.0_dp, (t - self%ta) / h))
-      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
-      associate (ua => self%sub(self%ja)%u, va => self%sub(self%ja)%v, &
-                 ub => self%sub(self%jb)%u, vb => self%sub(self%jb)%v)
-         u = h00 * ua + h10 * h * va + h01 * ub + h11 * h * vb
-         v = (g00 * ua + g10 * h * va + g01 * ub + g11 * h * vb) / h
+      call quintic_weights(min(1.0_dp, max(0.0_dp, (t - self%ta) / h)), h, w, g)
+      associate (sa => self%sub(self%ja), sb => self%sub(self%jb))
+         u = w(1) * sa%u + w(2) * sa%v + w(3) * sa%a + w(4) * sb%u + w(5) * sb%v + w(6) * sb%a
+         v = g(1) * sa%u + g(2) * sa%v + g(3) * sa%a + g(4) * sb%u + g(5) * sb%v + g(6) * sb%a
       end associate
    end subroutine hermite_state
+
+   !> Weights of the quintic Hermite interpolant at fraction x of a step of h: the value is
+   !> w . (u0, v0, a0, u1, v1, a1), its time derivative g . (the same).
+   pure subroutine quintic_weights(x, h, w, g)
+      real(dp), intent(in) :: x, h             !! fraction [-], step [s]
+      real(dp), intent(out) :: w(6), g(6)      !! weights of value and derivative
+      real(dp) :: x2, x3, x4, x5
+      x2 = x * x;  x3 = x2 * x;  x4 = x3 * x;  x5 = x4 * x
+      w(1) = 1.0_dp - 10.0_dp * x3 + 15.0_dp * x4 - 6.0_dp * x5
+      w(2) = h * (x - 6.0_dp * x3 + 8.0_dp * x4 - 3.0_dp * x5)
+      w(3) = h**2 * 0.5_dp * (x2 - 3.0_dp * x3 + 3.0_dp * x4 - x5)
+      w(4) = 10.0_dp * x3 - 15.0_dp * x4 + 6.0_dp * x5
+      w(5) = h * (-4.0_dp * x3 + 7.0_dp * x4 - 3.0_dp * x5)
+      w(6) = h**2 * 0.5_dp * (x3 - 2.0_dp * x4 + x5)
+      g(1) = (-30.0_dp * x2 + 60.0_dp * x3 - 30.0_dp * x4) / h
+      g(2) = 1.0_dp - 18.0_dp * x2 + 32.0_dp * x3 - 15.0_dp * x4
+      g(3) = h * 0.5_dp * (2.0_dp * x - 9.0_dp * x2 + 12.0_dp * x3 - 5.0_dp * x4)
+      g(4) = (30.0_dp * x2 - 60.0_dp * x3 + 30.0_dp * x4) / h
+      g(5) = -12.0_dp * x2 + 28.0_dp * x3 - 15.0_dp * x4
+      g(6) = h * 0.5_dp * (3.0_dp * x2 - 8.0_dp * x3 + 5.0_dp * x4)
+   end subroutine quintic_weights
 
    !> Weights of the cubic Hermite interpolant (h..) and of its derivative times h (g..).
    pure subroutine hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)

@@ -2,24 +2,30 @@
 !> so a sweep killed at any moment and started again with the same deck runs only the points
 !> not yet recorded, and ends with the same results as an uninterrupted run.
 !>
-!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-1', the
-!> signature length (int64) and the signature (the effective deck text and the shard), then
-!> records: begin mark (int32), point index (int32), payload length m (int32), m reals
-!> (pack_point), end mark (int32). A record cut short by a kill fails the marks and ends the
-!> reading; the next record is written over it. A checkpoint whose signature differs from the
-!> run's is refused, never mixed.
+!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-2', the deck
+!> hash (int64: CRC-32 of the signature), the signature length (int64) and the signature (the
+!> effective deck text and the shard), then records: begin mark (int32), point index (int32),
+!> payload length m (int32), m reals (pack_point), checksum (int64: CRC-32 of the bytes of
+!> the point index, m and the reals), end mark (int32).
+!>
+!> Nothing read back is trusted without its checksum. A record that fails it (a flipped byte),
+!> is not a well-formed point, or disagrees with another record of the same point is reported
+!> and its point computed again; a record cut short (a kill while writing) ends the reading,
+!> and the next record is written over it. A checkpoint whose hash or signature differs from
+!> the run's is refused, never mixed.
 module gapbeam_checkpoint
-   use, intrinsic :: iso_fortran_env, only: int32, int64
+   use, intrinsic :: iso_fortran_env, only: int8, int32, int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_results, only: point_result_t
-   use gapbeam_files, only: remove_file, file_exists
+   use gapbeam_files, only: remove_file, file_exists, file_size
    implicit none
    private
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
-      unpack_point
+      unpack_point, crc32
 
-   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-1'
+   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-2'
+   character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
 
@@ -32,68 +38,26 @@ module gapbeam_checkpoint
 
 contains
 
-   !> Open (or create) the checkpoint; load the points it already holds.
-   subroutine checkpoint_open(ck, path, signature, results, done, n_loaded, err)
+   !> Open (or create) the checkpoint; load the points it already holds. `report` lists what
+   !> was not trusted, one line each ('' when all was well).
+   subroutine checkpoint_open(ck, path, signature, results, done, n_loaded, report, err)
       type(checkpoint_t), intent(out) :: ck              !! checkpoint
       character(len=*), intent(in) :: path               !! file path
       character(len=*), intent(in) :: signature          !! deck text and shard
       type(point_result_t), intent(inout) :: results(:)  !! loaded points land here
       logical, intent(inout) :: done(:)                  !! set for loaded points
       integer, intent(out) :: n_loaded                   !! points loaded
+      character(len=:), allocatable, intent(out) :: report  !! records not trusted
       type(error_t), allocatable, intent(out) :: err     !! I/O error or foreign checkpoint
       character(len=len(magic)) :: head
       character(len=:), allocatable :: sig
-      integer(int64) :: sig_len, pos, fsize
-      integer(int32) :: m1, p, m, m2
-      real(dp), allocatable :: x(:)
-      type(point_result_t) :: pr
+      integer(int64) :: sig_len, hash, fsize
       integer :: ios
-      logical :: ok
       character(len=256) :: msg
       ck%path = path
       n_loaded = 0
-      if (file_exists(path)) then
-         open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='old', &
-              action='readwrite', iostat=ios, iomsg=msg)
-         if (ios /= 0) then
-            call fatal_error(err, 'gapbeam_checkpoint: cannot open ' // path // ': ' // trim(msg))
-            return
-         end if
-         inquire(unit=ck%unit, size=fsize)
-         read(ck%unit, pos=1, iostat=ios) head, sig_len
-         if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
-            close(ck%unit)
-            call fatal_error(err, 'gapbeam_checkpoint: ' // path // ' is not a gapbeam sweep ' &
-               // 'checkpoint; remove it or choose another output')
-            return
-         end if
-         allocate(character(len=sig_len) :: sig)
-         read(ck%unit, iostat=ios) sig
-         if (ios /= 0 .or. sig /= signature) then
-            close(ck%unit)
-            call fatal_error(err, 'gapbeam_checkpoint: ' // path // ' belongs to a different ' &
-               // 'deck or shard; it is not mixed with this run: remove it to start afresh, ' &
-               // 'or run the deck that wrote it')
-            return
-         end if
-         inquire(unit=ck%unit, pos=pos)
-         do
-            read(ck%unit, pos=pos, iostat=ios) m1, p, m
-            if (ios /= 0 .or. m1 /= mark_begin .or. p < 1 .or. p > size(results) .or. m < 0 &
-                .or. pos + 16_int64 + 8_int64 * m > fsize + 1) exit
-            if (allocated(x)) deallocate(x)
-            allocate(x(m))
-            read(ck%unit, iostat=ios) x, m2
-            if (ios /= 0 .or. m2 /= mark_end) exit
-            call unpack_point(x, pr, ok)
-            if (.not. ok) exit
-            results(p) = pr
-            if (.not. done(p)) n_loaded = n_loaded + 1
-            done(p) = .true.
-            inquire(unit=ck%unit, pos=pos)
-         end do
-         ck%next_pos = pos
-      else
+      report = ''
+      if (.not. file_exists(path)) then
          open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='new', &
               action='readwrite', iostat=ios, iomsg=msg)
          if (ios /= 0) then
@@ -101,11 +65,141 @@ contains
                // trim(msg))
             return
          end if
-         write(ck%unit, pos=1) magic, int(len(signature), int64), signature
-         flush(ck%unit)
+         write(ck%unit, pos=1, iostat=ios, iomsg=msg) magic, crc32(text_bytes(signature)), &
+            int(len(signature), int64), signature
+         if (ios == 0) flush(ck%unit, iostat=ios, iomsg=msg)
+         if (ios /= 0) then
+            close(ck%unit, status='delete')
+            ck%unit = -1
+            call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // path // ': ' // trim(msg))
+            return
+         end if
          inquire(unit=ck%unit, pos=ck%next_pos)
+         if (file_size(path) /= ck%next_pos - 1) then
+            close(ck%unit, status='delete')
+            ck%unit = -1
+            call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // path // ' (is the ' &
+               // 'disk full?)')
+         end if
+         return
       end if
+      open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='old', &
+           action='readwrite', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(err, 'gapbeam_checkpoint: cannot open ' // path // ': ' // trim(msg))
+         return
+      end if
+      inquire(unit=ck%unit, size=fsize)
+      head = ''
+      read(ck%unit, pos=1, iostat=ios) head, hash, sig_len
+      if (head == magic_1) then
+         call refuse(ck, 'was written by an older gapbeam, without checksums: remove it (its ' &
+            // 'points are then computed again)', err)
+         return
+      end if
+      if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
+         call refuse(ck, 'is not a gapbeam sweep checkpoint (or its header is damaged); ' &
+            // 'remove it or choose another output', err)
+         return
+      end if
+      allocate(character(len=sig_len) :: sig)
+      read(ck%unit, iostat=ios) sig
+      if (ios /= 0 .or. hash /= crc32(text_bytes(sig))) then
+         call refuse(ck, 'has a damaged header (its deck hash does not match its deck text): ' &
+            // 'remove it to start afresh', err)
+         return
+      end if
+      if (hash /= crc32(text_bytes(signature)) .or. sig /= signature) then
+         call refuse(ck, 'belongs to a different deck or shard; it is not mixed with this run: ' &
+            // 'remove it to start afresh, or run the deck that wrote it', err)
+         return
+      end if
+      call load_records(ck, fsize, results, done, n_loaded, report)
    end subroutine checkpoint_open
+
+   !> Close a checkpoint that is not used, and say why.
+   subroutine refuse(ck, why, err)
+      type(checkpoint_t), intent(inout) :: ck          !! open checkpoint, closed here
+      character(len=*), intent(in) :: why              !! reason, after the file name
+      type(error_t), allocatable, intent(inout) :: err !! set
+      close(ck%unit)
+      ck%unit = -1
+      call fatal_error(err, 'gapbeam_checkpoint: ' // ck%path // ' ' // why)
+   end subroutine refuse
+
+   !> Read the records after the header; set `ck%next_pos` after the last whole record.
+   subroutine load_records(ck, fsize, results, done, n_loaded, report)
+      type(checkpoint_t), intent(inout) :: ck            !! open checkpoint, header read
+      integer(int64), intent(in) :: fsize                !! file size [bytes]
+      type(point_result_t), intent(inout) :: results(:)  !! loaded points land here
+      logical, intent(inout) :: done(:)                  !! set for loaded points
+      integer, intent(out) :: n_loaded                   !! points loaded
+      character(len=:), allocatable, intent(inout) :: report  !! records not trusted
+      integer(int64) :: pos, sum_stored
+      integer(int32) :: m1, p, m, m2
+      real(dp), allocatable :: x(:)
+      integer(int64), allocatable :: crc_of(:)           ! checksum of the record loaded per point
+      logical, allocatable :: conflict(:)
+      type(point_result_t) :: pr
+      character(len=:), allocatable :: at
+      integer :: ios, k
+      logical :: ok
+      allocate(crc_of(size(results)), source=-1_int64)
+      allocate(conflict(size(results)), source=.false.)
+      n_loaded = 0
+      inquire(unit=ck%unit, pos=pos)
+      k = 0
+      do
+         read(ck%unit, pos=pos, iostat=ios) m1, p, m
+         if (ios /= 0 .or. m1 /= mark_begin .or. m < 0 .or. &
+             pos + 24_int64 + 8_int64 * m > fsize + 1) exit
+         if (allocated(x)) deallocate(x)
+         allocate(x(m))
+         read(ck%unit, iostat=ios) x, sum_stored, m2
+         if (ios /= 0 .or. m2 /= mark_end) exit
+         k = k + 1
+         at = ck%path // ': record ' // str(k) // ' (byte ' // str_int64(pos) // ')'
+         if (sum_stored /= record_crc(p, m, x)) then
+            call add_line(report, at // ' fails its checksum: not trusted, its point is ' &
+               // 'computed again')
+         else if (p < 1 .or. p > size(results)) then
+            call add_line(report, at // ' names point ' // str(int(p)) // ', outside 1..' &
+               // str(size(results)) // ': ignored')
+         else
+            call unpack_point(x, pr, ok)
+            if (.not. ok) then
+               call add_line(report, at // ', point ' // str(int(p)) // ', is not a ' &
+                  // 'well-formed point: not trusted, the point is computed again')
+            else if (conflict(p)) then
+               continue
+            else if (crc_of(p) >= 0 .and. crc_of(p) /= sum_stored) then
+               call add_line(report, at // ': point ' // str(int(p)) // ' has two different ' &
+                  // 'records: neither is trusted, the point is computed again')
+               conflict(p) = .true.
+               if (done(p)) n_loaded = n_loaded - 1
+               done(p) = .false.
+            else if (crc_of(p) < 0) then
+               crc_of(p) = sum_stored
+               results(p) = pr
+               if (.not. done(p)) n_loaded = n_loaded + 1
+               done(p) = .true.
+            end if                ! else: an identical copy of a record already loaded
+         end if
+         inquire(unit=ck%unit, pos=pos)
+      end do
+      if (pos <= fsize) call add_line(report, ck%path // ': the last ' &
+         // str_int64(fsize - pos + 1) // ' bytes (from byte ' // str_int64(pos) // ') are not ' &
+         // 'a whole record (a run stopped while writing?): dropped, and written over')
+      ck%next_pos = pos
+   end subroutine load_records
+
+   !> Add a line to a report.
+   subroutine add_line(report, line)
+      character(len=:), allocatable, intent(inout) :: report   !! lines so far
+      character(len=*), intent(in) :: line                     !! new line
+      if (len(report) > 0) report = report // new_line('a')
+      report = report // line
+   end subroutine add_line
 
    !> Append a finished point and flush it to disk.
    subroutine checkpoint_append(ck, p, pr, err)
@@ -115,26 +209,89 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! write failure
       real(dp), allocatable :: x(:)
       integer :: ios
+      character(len=256) :: msg
       x = pack_point(pr)
-      write(ck%unit, pos=ck%next_pos, iostat=ios) mark_begin, int(p, int32), &
-         int(size(x), int32), x, mark_end
+      msg = ''
+      write(ck%unit, pos=ck%next_pos, iostat=ios, iomsg=msg) mark_begin, int(p, int32), &
+         int(size(x), int32), x, record_crc(int(p, int32), int(size(x), int32), x), mark_end
+      if (ios == 0) flush(ck%unit, iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call fatal_error(err, 'gapbeam_checkpoint: cannot write to ' // ck%path // ' (point ' &
-            // str(p) // ')')
+            // str(p) // '): ' // trim(msg) // '; the points recorded before are kept')
          return
       end if
-      flush(ck%unit)
       inquire(unit=ck%unit, pos=ck%next_pos)
+      ! gfortran reports no error when the disk is full: the size on disk tells
+      if (file_size(ck%path) /= ck%next_pos - 1) then
+         call fatal_error(err, 'gapbeam_checkpoint: cannot write to ' // ck%path // ' (point ' &
+            // str(p) // '): only ' // str_int64(file_size(ck%path)) // ' of ' &
+            // str_int64(ck%next_pos - 1) // ' bytes are stored (a full disk?); the ' &
+            // 'points recorded before are kept')
+      end if
    end subroutine checkpoint_append
 
    !> Close the checkpoint, and delete it when the sweep is complete.
    subroutine checkpoint_close(ck, delete)
       type(checkpoint_t), intent(inout) :: ck   !! checkpoint
       logical, intent(in) :: delete             !! remove the file
-      if (ck%unit /= -1) close(ck%unit)
+      integer :: ios
+      if (ck%unit /= -1) close(ck%unit, iostat=ios)
       ck%unit = -1
       if (delete .and. allocated(ck%path)) call remove_file(ck%path)
    end subroutine checkpoint_close
+
+   !> Checksum of a record: CRC-32 of the bytes of its point index, length and reals.
+   pure function record_crc(p, m, x) result(crc)
+      integer(int32), intent(in) :: p, m               !! point index, payload length
+      real(dp), intent(in) :: x(:)                     !! payload
+      integer(int64) :: crc
+      crc = crc32(transfer(x, [0_int8]), crc32(transfer([p, m], [0_int8])))
+   end function record_crc
+
+   !> The bytes of a text.
+   pure function text_bytes(text) result(b)
+      character(len=*), intent(in) :: text             !! text
+      integer(int8), allocatable :: b(:)
+      integer :: i
+      allocate(b(len(text)))
+      do i = 1, len(text)
+         b(i) = int(iachar(text(i:i)) - merge(256, 0, iachar(text(i:i)) > 127), int8)
+      end do
+   end function text_bytes
+
+   !> CRC-32 (the zlib and PNG checksum: reflected polynomial 0xEDB88320) of `bytes`, continuing
+   !> from `previous` (the CRC of the bytes before) when given; a value in 0..2**32-1.
+   pure function crc32(bytes, previous) result(crc)
+      integer(int8), intent(in) :: bytes(:)            !! data
+      integer(int64), intent(in), optional :: previous !! CRC of the preceding data
+      integer(int64) :: crc
+      integer(int64), parameter :: poly = 3988292384_int64     ! 0xEDB88320
+      integer(int64), parameter :: mask = 4294967295_int64     ! 0xFFFFFFFF
+      integer :: i, k
+      crc = 0
+      if (present(previous)) crc = previous
+      crc = ieor(crc, mask)
+      do i = 1, size(bytes)
+         crc = ieor(crc, iand(int(bytes(i), int64), 255_int64))
+         do k = 1, 8
+            if (iand(crc, 1_int64) /= 0) then
+               crc = ieor(ishft(crc, -1), poly)
+            else
+               crc = ishft(crc, -1)
+            end if
+         end do
+      end do
+      crc = ieor(crc, mask)
+   end function crc32
+
+   !> A 64-bit integer as text.
+   pure function str_int64(i) result(s)
+      integer(int64), intent(in) :: i                  !! value
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function str_int64
 
    !> A point's results as one real array (for checkpoints); integers are stored exactly.
    pure function pack_point(pr) result(x)

@@ -8,7 +8,7 @@ module gapbeam_deck_text
    implicit none
    private
    public :: source_t, load_file, make_source, group_names, group_block, split_assignments
-   public :: lower, basename_stem
+   public :: lower, basename_stem, null_value, longest_text_value, assigned_name, quote_left_open
 
    !> One source of namelist text (file or override), as lines.
    type :: source_t
@@ -95,24 +95,29 @@ contains
          call fatal_error(err, path // ': cannot read the deck file: ' // trim(msg))
          return
       end if
-      ! drop carriage returns of DOS line ends
-      text = remove_char(text, achar(13))
+      text = unix_line_ends(text)
    end subroutine load_file
 
-   pure function remove_char(s, c) result(t)
-      character(len=*), intent(in) :: s
-      character(len=1), intent(in) :: c
+   !> Text with every line end as LF: CRLF (DOS) becomes LF, then a lone CR (old Mac) too.
+   pure function unix_line_ends(s) result(t)
+      character(len=*), intent(in) :: s   !! text with any line ends
       character(len=:), allocatable :: t
+      character(len=1), parameter :: cr = achar(13), lf = achar(10)
       integer :: i, k
       allocate(character(len=len(s)) :: t)
       k = 0
       do i = 1, len(s)
-         if (s(i:i) /= c) then
+         if (s(i:i) == cr) then
+            if (i < len(s)) then
+               if (s(i + 1:i + 1) == lf) cycle     ! CR of CRLF: the LF follows
+            end if
+            k = k + 1;  t(k:k) = lf
+         else
             k = k + 1;  t(k:k) = s(i:i)
          end if
       end do
       t = t(1:k)
-   end function remove_char
+   end function unix_line_ends
 
    !> Names (lower case) of all groups opened in a source, in order, with repeats.
    pure subroutine group_names(src, names)
@@ -121,7 +126,8 @@ contains
       integer :: l, i, j, n
       character(len=1) :: q
       character(len=:), allocatable :: line
-      character(len=32) :: buf(200)
+      character(len=32), allocatable :: buf(:)
+      allocate(buf(16))
       n = 0;  q = ' '
       do l = 1, size(src%lines)
          line = src%lines(l)
@@ -139,7 +145,8 @@ contains
                   if (.not. is_name_char(line(j:j))) exit
                   j = j + 1
                end do
-               if (j > i + 1 .and. n < size(buf)) then
+               if (j > i + 1) then
+                  if (n == size(buf)) buf = [buf, buf]     ! no limit on the number of groups
                   n = n + 1;  buf(n) = lower(line(i + 1:j - 1))
                end if
                i = j - 1
@@ -151,10 +158,11 @@ contains
    end subroutine group_names
 
    !> The lines of group `name` (from '&name' to its closing '/'), or an unallocated array.
-   pure subroutine group_block(src, name, block)
+   pure subroutine group_block(src, name, block, closed)
       type(source_t), intent(in) :: src                          !! source
       character(len=*), intent(in) :: name                       !! group name, lower case
       character(len=:), allocatable, intent(out) :: block(:)     !! the group's lines
+      logical, intent(out), optional :: closed                   !! a '/' ends the group
       integer :: l, i, first, last, cstart, cend
       character(len=1) :: q
       character(len=:), allocatable :: line
@@ -188,6 +196,7 @@ contains
             i = i + 1
          end do
       end do outer
+      if (present(closed)) closed = last > 0
       if (first == 0) return
       if (last == 0) last = size(src%lines)
       allocate(character(len=len(src%lines)) :: block(last - first + 1))
@@ -207,7 +216,8 @@ contains
       character(len=*), intent(in) :: block(:)                   !! lines of one group
       character(len=:), allocatable, intent(out) :: items(:)     !! one assignment each
       character(len=:), allocatable :: s
-      integer :: i, j, k, n, starts(400), l, ends
+      integer :: i, j, k, n, l, ends
+      integer, allocatable :: starts(:)
       character(len=1) :: q
       logical :: at_sep
       ! join the lines without comments
@@ -237,6 +247,7 @@ contains
          s = s(j:)
       end if
       ! find the starts of 'name [(...)] =' outside quotes
+      allocate(starts(16))
       n = 0;  q = ' ';  at_sep = .true.
       i = 1
       do while (i <= len(s))
@@ -269,7 +280,8 @@ contains
                   end if
                end if
                if (k <= len(s)) then
-                  if (s(k:k) == '=' .and. n < size(starts)) then
+                  if (s(k:k) == '=') then
+                     if (n == size(starts)) starts = [starts, starts]   ! no limit
                      n = n + 1;  starts(n) = i
                   end if
                end if
@@ -290,6 +302,106 @@ contains
          call trim_tail(items(k))
       end do
    end subroutine split_assignments
+
+   !> Whether a quote opened in `item` is still open at its end (then the rest of the source,
+   !> the closing '/' included, is read as part of the string).
+   pure logical function quote_left_open(item)
+      character(len=*), intent(in) :: item                 !! one assignment
+      integer :: i
+      character(len=1) :: q
+      q = ' '
+      do i = 1, len(item)
+         if (q /= ' ') then
+            if (item(i:i) == q) q = ' '
+         else if (item(i:i) == "'" .or. item(i:i) == '"') then
+            q = item(i:i)
+         end if
+      end do
+      quote_left_open = q /= ' '
+   end function quote_left_open
+
+   !> The variable name of an assignment, lower case: 'Node(2) = 3' -> 'node'.
+   pure function assigned_name(item) result(var)
+      character(len=*), intent(in) :: item                 !! one assignment
+      character(len=:), allocatable :: var
+      integer :: p
+      p = scan(item, '(=')
+      var = trim(lower(adjustl(item(1:max(p - 1, 1)))))
+   end function assigned_name
+
+   !> True if an assignment gives a null value, which namelist input reads as "leave the
+   !> variable as it is": nothing after '=' ('x =', 'x = ,'), an empty entry in a list
+   !> ('x = 1, , 3', 'x = , 2') or a repeat without a value ('x = 3*').
+   pure logical function null_value(item)
+      character(len=*), intent(in) :: item                 !! one assignment, as split
+      integer :: i, eq, n
+      character(len=1) :: q, prev
+      eq = index(item, '=')
+      null_value = .false.
+      if (eq == 0) return
+      q = ' ';  prev = ','          ! as if a separator came right before the value
+      n = len_trim(item)
+      null_value = .true.
+      do i = eq + 1, n
+         if (q /= ' ') then
+            if (item(i:i) == q) q = ' '
+            cycle
+         end if
+         select case (item(i:i))
+         case ("'", '"')
+            q = item(i:i);  prev = 'x'
+         case (' ')
+            cycle
+         case (',')
+            if (prev == ',') return
+            prev = ','
+         case ('*')
+            if (i == n) return
+            if (scan(item(i + 1:i + 1), ', ') > 0) return
+            prev = 'x'
+         case default
+            prev = 'x'
+         end select
+      end do
+      null_value = prev == ','       ! nothing after '=', or after the last separator
+   end function null_value
+
+   !> Length of the longest character constant in the value of an assignment: each quoted
+   !> string ('a doubled '''' quote counts once'), or each blank- or comma-separated token of
+   !> an unquoted value. 0 for an empty value.
+   pure integer function longest_text_value(item) result(longest)
+      character(len=*), intent(in) :: item                 !! one assignment, as split
+      integer :: i, eq, n, run
+      character(len=1) :: q
+      longest = 0
+      eq = index(item, '=')
+      if (eq == 0) return
+      n = len_trim(item)
+      q = ' ';  run = 0;  i = eq + 1
+      do while (i <= n)
+         if (q /= ' ') then
+            if (item(i:i) == q) then
+               if (i < n) then
+                  if (item(i + 1:i + 1) == q) then   ! doubled quote: one character
+                     run = run + 1;  i = i + 2
+                     cycle
+                  end if
+               end if
+               q = ' ';  longest = max(longest, run);  run = 0
+            else
+               run = run + 1
+            end if
+         else if (item(i:i) == "'" .or. item(i:i) == '"') then
+            q = item(i:i);  run = 0
+         else if (item(i:i) == ' ' .or. item(i:i) == ',') then
+            longest = max(longest, run);  run = 0
+         else
+            run = run + 1
+         end if
+         i = i + 1
+      end do
+      longest = max(longest, run)
+   end function longest_text_value
 
    pure subroutine trim_tail(t)
       character(len=*), intent(inout) :: t

@@ -12,22 +12,33 @@
 !> character variables can be passed directly. Tables are meant for gnuplot: '#' lines are
 !> comments, then one row per line with the columns separated by blanks.
 !>
+!> - `process_id`, `host_name`, `real_path`, `directory_exists`: C `getpid`, `gethostname`,
+!>   `realpath` and `access`, for lock files, temporary names unique to a process and the
+!>   comparison of paths.
+!>
+!> With `in_place = .true.` the two writers write `path` itself, with every write and the
+!> close checked, and delete it on failure: for a caller that owns the atomicity, such as an
+!> output set writing under its own temporary names (gapbeam_output_set).
+!>
 !> The `errno` of the calling thread is read through glibc's (and musl's) `__errno_location`.
 !> C `strerror` may share its buffer between threads: call the procedures that report a C
 !> failure from one thread at a time (outside OpenMP parallel regions), like all file output.
 module gapbeam_files
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_f_pointer, &
-      c_associated
+      c_associated, c_size_t, c_long, c_funptr, c_intptr_t
+   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    implicit none
    private
-   public :: rename_file, remove_file, make_parent_directory, file_exists
+   public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
+   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: part_suffix = '.part'      ! temporary name: path // part_suffix
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
+   integer, parameter :: value_width = 25     ! characters per value in a row, separator included
    integer, parameter :: max_c_string = 4096                 ! longest C string read back
    integer(c_int), parameter :: f_ok = 0_c_int               ! access(): existence test (F_OK)
    integer(c_int), parameter :: dir_mode = int(o'777', c_int) ! mkdir(): rwx for all, less umask
@@ -71,6 +82,61 @@ module gapbeam_files
          integer(c_int), value, intent(in) :: errnum         !! errno value
          type(c_ptr) :: text
       end function c_strerror
+
+      !> POSIX `getpid` from <unistd.h> (`pid_t` is an int on Linux).
+      function c_getpid() bind(c, name='getpid') result(pid)
+         import :: c_int
+         integer(c_int) :: pid
+      end function c_getpid
+
+      !> POSIX `gethostname` from <unistd.h>: 0 on success.
+      function c_gethostname(name, length) bind(c, name='gethostname') result(status)
+         import :: c_char, c_int, c_size_t
+         character(kind=c_char), intent(out) :: name(*)       !! buffer
+         integer(c_size_t), value, intent(in) :: length       !! its size
+         integer(c_int) :: status
+      end function c_gethostname
+
+      !> POSIX `realpath` from <stdlib.h>: the canonical absolute path into `resolved`
+      !> (PATH_MAX bytes), or a null pointer with `errno` set.
+      function c_realpath(path, resolved) bind(c, name='realpath') result(p)
+         import :: c_char, c_ptr
+         character(kind=c_char), intent(in) :: path(*)       !! NUL-terminated path
+         character(kind=c_char), intent(out) :: resolved(*)  !! buffer of PATH_MAX bytes
+         type(c_ptr) :: p
+      end function c_realpath
+
+      !> POSIX `open` (read only here: flags O_RDONLY, no mode).
+      function c_open_read(path, flags) bind(c, name='open') result(fd)
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: path(*)       !! NUL-terminated path
+         integer(c_int), value, intent(in) :: flags          !! O_RDONLY = 0
+         integer(c_int) :: fd
+      end function c_open_read
+
+      !> POSIX `lseek` (`off_t` is a long on 64-bit Linux): the new offset, or -1.
+      function c_lseek(fd, offset, whence) bind(c, name='lseek') result(pos)
+         import :: c_int, c_long
+         integer(c_int), value, intent(in) :: fd             !! open file
+         integer(c_long), value, intent(in) :: offset        !! offset
+         integer(c_int), value, intent(in) :: whence         !! SEEK_END = 2
+         integer(c_long) :: pos
+      end function c_lseek
+
+      !> POSIX `close`.
+      function c_close(fd) bind(c, name='close') result(status)
+         import :: c_int
+         integer(c_int), value, intent(in) :: fd             !! open file
+         integer(c_int) :: status
+      end function c_close
+
+      !> C `signal` from <signal.h>: the previous handler.
+      function c_signal(signum, handler) bind(c, name='signal') result(previous)
+         import :: c_int, c_funptr
+         integer(c_int), value, intent(in) :: signum         !! signal number
+         type(c_funptr), value, intent(in) :: handler        !! new handler (SIG_IGN: 1)
+         type(c_funptr) :: previous
+      end function c_signal
 
       !> Address of the calling thread's `errno` (glibc and musl; macOS names it `__error`).
       function c_errno_location() bind(c, name='__errno_location') result(location)
@@ -148,6 +214,87 @@ contains
       file_exists = exists(trim(path))
    end function file_exists
 
+   !> Whether `path` is a directory that can be entered.
+   logical function directory_exists(path)
+      character(len=*), intent(in) :: path               !! path
+      directory_exists = .false.
+      if (len_trim(path) == 0) return
+      directory_exists = is_directory(trim(path))
+   end function directory_exists
+
+   !> Size in bytes of the file at `path` as the file system has it (C `lseek` to its end),
+   !> -1 when it cannot be opened. Unlike INQUIRE on a file that is open in this program, it
+   !> does not count data still buffered, nor data a write failed to store.
+   function file_size(path) result(bytes)
+      character(len=*), intent(in) :: path               !! file
+      integer(int64) :: bytes
+      integer(c_int) :: fd, status
+      bytes = -1
+      if (len_trim(path) == 0) return
+      fd = c_open_read(trim(path) // c_null_char, 0_c_int)
+      if (fd < 0) return
+      bytes = int(c_lseek(fd, 0_c_long, 2_c_int), int64)
+      status = c_close(fd)
+   end function file_size
+
+   !> Ignore SIGXFSZ, so that a write beyond the file size limit (`ulimit -f`) fails with
+   !> EFBIG, which the writers report like a full disk, instead of killing the program (the
+   !> Fortran runtime would print a backtrace). Linux signal number 25.
+   subroutine ignore_file_size_signal()
+      integer(c_int), parameter :: sigxfsz = 25
+      integer(c_intptr_t), parameter :: sig_ign = 1
+      type(c_funptr) :: previous
+      previous = c_signal(sigxfsz, transfer(sig_ign, previous))
+   end subroutine ignore_file_size_signal
+
+   !> The process id of this program.
+   integer function process_id()
+      process_id = int(c_getpid())
+   end function process_id
+
+   !> The name of this host (C `gethostname`), 'unknown-host' if it cannot be had.
+   function host_name() result(name)
+      character(len=:), allocatable :: name
+      character(kind=c_char) :: buf(256)
+      integer :: n
+      buf = c_null_char
+      if (c_gethostname(buf, int(size(buf) - 1, c_size_t)) /= 0) then
+         name = 'unknown-host'
+         return
+      end if
+      n = 0
+      do while (n < size(buf))
+         if (buf(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      allocate(character(len=n) :: name)
+      name = transfer(buf(1:n), name)
+      if (n == 0) name = 'unknown-host'
+   end function host_name
+
+   !> The canonical absolute path of an existing file or directory (C `realpath`: links,
+   !> '.' and '..' resolved), or '' when it does not exist or cannot be resolved.
+   function real_path(path) result(resolved)
+      character(len=*), intent(in) :: path               !! file or directory
+      character(len=:), allocatable :: resolved
+      character(kind=c_char) :: buf(max_c_string + 1)
+      type(c_ptr) :: p
+      integer :: n
+      resolved = ''
+      if (len_trim(path) == 0) return
+      buf = c_null_char
+      p = c_realpath(trim(path) // c_null_char, buf)
+      if (.not. c_associated(p)) return
+      n = 0
+      do while (n < max_c_string)
+         if (buf(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      deallocate(resolved)
+      allocate(character(len=n) :: resolved)
+      resolved = transfer(buf(1:n), resolved)
+   end function real_path
+
    ! ---------------------------------------------------------------------------------------
    ! Atomic text files
    ! ---------------------------------------------------------------------------------------
@@ -167,17 +314,19 @@ contains
    !> Zero rows give the comment lines only. The directory of `path` must exist (see
    !> `make_parent_directory`). `names` and `units` must have one entry per column of
    !> `columns` (`error stop` otherwise: a programming error); names should contain no blanks.
-   subroutine write_table(path, title, names, units, columns, err)
+   subroutine write_table(path, title, names, units, columns, err, in_place)
       character(len=*), intent(in) :: path               !! file to write, e.g. 'results/tip.dat'
       character(len=*), intent(in) :: title              !! first comment line (new lines -> ' ')
       character(len=*), intent(in) :: names(:)           !! column names, e.g. ['t    ', 'w_tip']
       character(len=*), intent(in) :: units(:)           !! column units, e.g. ['s', 'm']
       real(dp), intent(in) :: columns(:, :)              !! values, shape (n_rows, n_cols)
       type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
+      logical, intent(in), optional :: in_place          !! write `path` itself, no rename
       character(len=*), parameter :: proc = 'write_table'
-      character(len=:), allocatable :: p, described, header
+      character(len=:), allocatable :: p, described, header, line, row
       character(len=512) :: msg
-      integer :: unit, ios, i, j
+      integer :: unit, ios, i, j, width
+      integer(int64) :: bytes
 
       if (size(names) /= size(columns, 2) .or. size(units) /= size(columns, 2)) then
          error stop 'gapbeam_files:write_table: size(names) = ' // str(size(names)) &
@@ -197,27 +346,39 @@ contains
          header = header // ' ' // trim(names(j))
       end do
 
-      call open_part(proc, p, .false., unit, err)
+      call open_part(proc, p, .false., direct(in_place), unit, err)
       if (allocated(err)) return
       msg = ''
-      write(unit, '(a)', iostat=ios, iomsg=msg) '# ' // trim(one_line(title))
-      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) '# columns: ' // described
-      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) '#' // header
+      ! every line through a buffer, so that the bytes the file must have are known
+      allocate(character(len=max(1, value_width * size(columns, 2))) :: row)
+      line = '# ' // trim(one_line(title))
+      write(unit, '(a)', iostat=ios, iomsg=msg) line
+      bytes = len(line) + 1
+      line = '# columns: ' // described
+      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) line
+      bytes = bytes + len(line) + 1
+      line = '#' // header
+      if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) line
+      bytes = bytes + len(line) + 1
+      width = max(0, value_width * size(columns, 2) - 1)
       do i = 1, size(columns, 1)
          if (ios /= 0) exit
-         write(unit, value_format, iostat=ios, iomsg=msg) columns(i, :)
+         write(row, value_format, iostat=ios, iomsg=msg) columns(i, :)
+         if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) row(1:width)
+         bytes = bytes + width + 1
       end do
-      call close_part(proc, p, unit, ios, msg, err)
+      call close_part(proc, p, direct(in_place), unit, ios, msg, bytes, err)
    end subroutine write_table
 
    !> Write `text` to `path` byte for byte, atomically (through `path // '.part'`).
    !>
    !> New lines inside `text` are kept; none is added, so end the text with
    !> `new_line('a')` for a conventional last line. The directory of `path` must exist.
-   subroutine write_text_file(path, text, err)
+   subroutine write_text_file(path, text, err, in_place)
       character(len=*), intent(in) :: path               !! file to write, e.g. 'results/report.txt'
       character(len=*), intent(in) :: text               !! whole file content
       type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
+      logical, intent(in), optional :: in_place          !! write `path` itself, no rename
       character(len=*), parameter :: proc = 'write_text_file'
       character(len=:), allocatable :: p
       character(len=512) :: msg
@@ -228,72 +389,122 @@ contains
          return
       end if
       p = trim(path)
-      call open_part(proc, p, .true., unit, err)
+      call open_part(proc, p, .true., direct(in_place), unit, err)
       if (allocated(err)) return
       msg = ''
       write(unit, iostat=ios, iomsg=msg) text
-      call close_part(proc, p, unit, ios, msg, err)
+      call close_part(proc, p, direct(in_place), unit, ios, msg, int(len(text), int64), err)
    end subroutine write_text_file
 
    ! ---------------------------------------------------------------------------------------
    ! Helpers
    ! ---------------------------------------------------------------------------------------
 
-   !> Create (or truncate) `p // '.part'` for writing: formatted sequential, or unformatted
-   !> stream for a byte-for-byte copy.
-   subroutine open_part(proc, p, stream, unit, err)
+   !> Whether a writer was asked to write its path in place.
+   pure logical function direct(in_place)
+      logical, intent(in), optional :: in_place          !! the writer's argument
+      direct = .false.
+      if (present(in_place)) direct = in_place
+   end function direct
+
+   !> The name a writer writes: `p // '.part'`, or `p` itself when `in_place`.
+   pure function written_name(p, in_place) result(name)
+      character(len=*), intent(in) :: p                  !! final file name, trimmed
+      logical, intent(in) :: in_place                    !! no temporary name
+      character(len=:), allocatable :: name
+      if (in_place) then
+         name = p
+      else
+         name = p // part_suffix
+      end if
+   end function written_name
+
+   !> Create (or truncate) `p // '.part'` (or `p` when `in_place`) for writing: formatted
+   !> sequential, or unformatted stream for a byte-for-byte copy.
+   subroutine open_part(proc, p, stream, in_place, unit, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: p                  !! final file name, trimmed
       logical, intent(in) :: stream                      !! unformatted stream access
-      integer, intent(out) :: unit                       !! unit of the open `.part` file
+      logical, intent(in) :: in_place                    !! write `p` itself
+      integer, intent(out) :: unit                       !! unit of the open file
       type(error_t), allocatable, intent(inout) :: err   !! set when the file cannot be created
       character(len=512) :: msg
+      character(len=:), allocatable :: name
       integer :: ios
 
       msg = ''
+      name = written_name(p, in_place)
       if (stream) then
-         open(newunit=unit, file=p // part_suffix, status='replace', action='write', &
+         open(newunit=unit, file=name, status='replace', action='write', &
             access='stream', form='unformatted', iostat=ios, iomsg=msg)
       else
-         open(newunit=unit, file=p // part_suffix, status='replace', action='write', &
+         open(newunit=unit, file=name, status='replace', action='write', &
             form='formatted', iostat=ios, iomsg=msg)
       end if
       if (ios /= 0) then
-         call fatal_error(err, here(proc) // 'cannot create file ' // q(p // part_suffix) &
-            // ' (temporary name of ' // q(p) // '; does the directory exist and is it ' &
-            // 'writable?): ' // trim(msg))
+         if (in_place) then
+            call fatal_error(err, here(proc) // 'cannot create file ' // q(name) &
+               // ' (does the directory exist and is it writable?): ' // trim(msg))
+         else
+            call fatal_error(err, here(proc) // 'cannot create file ' // q(name) &
+               // ' (temporary name of ' // q(p) // '; does the directory exist and is it ' &
+               // 'writable?): ' // trim(msg))
+         end if
       end if
    end subroutine open_part
 
    !> Close the `.part` file of `p` and rename it to `p`; after a write error (`ios /= 0`),
    !> or when closing or renaming fails, delete it and set `err`.
-   subroutine close_part(proc, p, unit, ios, msg, err)
+   !>
+   !> The size of the closed file is compared with the bytes written: gfortran (12) reports
+   !> no error when the disk is full (the data are dropped, the writes, FLUSH and CLOSE
+   !> succeed), so this is the check that catches it.
+   subroutine close_part(proc, p, in_place, unit, ios, msg, expected, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: p                  !! final file name, trimmed
+      logical, intent(in) :: in_place                    !! `p` itself was written: no rename
       integer, intent(in) :: unit                        !! unit of the open `.part` file
       integer, intent(in) :: ios                         !! status of the writes, 0 when all ok
       character(len=*), intent(in) :: msg                !! iomsg of the failed write
+      integer(int64), intent(in) :: expected             !! bytes the file must have
       type(error_t), allocatable, intent(inout) :: err   !! set on failure
       character(len=:), allocatable :: part, reason
       character(len=512) :: close_msg
-      integer :: close_ios
+      integer :: close_ios, ios_ignored
+      integer(int64) :: stored
 
-      part = p // part_suffix
+      part = written_name(p, in_place)
       if (ios /= 0) then
          close(unit, status='delete', iostat=close_ios)
          call remove_file(part)
-         call fatal_error(err, here(proc) // 'cannot write file ' // q(part) &
-            // ' (temporary name of ' // q(p) // '): ' // trim(msg))
+         if (in_place) then
+            call fatal_error(err, here(proc) // 'cannot write file ' // q(part) // ': ' &
+               // trim(msg))
+         else
+            call fatal_error(err, here(proc) // 'cannot write file ' // q(part) &
+               // ' (temporary name of ' // q(p) // '): ' // trim(msg))
+         end if
          return
       end if
       close_msg = ''
-      close(unit, iostat=close_ios, iomsg=close_msg)
+      flush(unit, iostat=close_ios, iomsg=close_msg)      ! a full disk shows here, or in close
+      if (close_ios == 0) close(unit, iostat=close_ios, iomsg=close_msg)
       if (close_ios /= 0) then
+         close(unit, status='delete', iostat=ios_ignored)
          call remove_file(part)
-         call fatal_error(err, here(proc) // 'cannot close file ' // q(part) &
-            // ' (temporary name of ' // q(p) // '): ' // trim(close_msg))
+         call fatal_error(err, here(proc) // 'cannot flush or close file ' // q(part) &
+            // ': ' // trim(close_msg))
          return
       end if
+      stored = file_size(part)
+      if (stored /= expected) then
+         call remove_file(part)
+         call fatal_error(err, here(proc) // 'file ' // q(part) // ' is incomplete: ' &
+            // str_int64(stored) // ' of ' // str_int64(expected) // ' bytes stored (a full ' &
+            // 'disk, or the file size limit?); it was deleted')
+         return
+      end if
+      if (in_place) return
       call rename_path(part, p, reason)
       if (len(reason) > 0) then
          call remove_file(part)
@@ -369,6 +580,15 @@ contains
          if (s(i:i) == achar(10) .or. s(i:i) == achar(13)) s(i:i) = ' '
       end do
    end function one_line
+
+   !> A 64-bit integer as text.
+   pure function str_int64(i) result(s)
+      integer(int64), intent(in) :: i                    !! value
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function str_int64
 
    !> Message prefix 'gapbeam_files:<proc>: '.
    pure function here(proc) result(s)

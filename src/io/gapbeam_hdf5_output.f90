@@ -22,15 +22,16 @@
 !>
 !> Serial HDF5 is not thread-safe: use writers and readers from one thread at a time (outside
 !> OpenMP parallel regions, or inside one named critical section). The library is initialised
-!> on first use and shut down by HDF5 itself at program exit, never by this module, so several
-!> files can be written and read in one program, one after another or at the same time.
+!> on first use, without HDF5's clean-up at program exit (which crashes after a close failed
+!> on a full disk), and never shut down by this module, so several files can be written and
+!> read in one program, one after another or at the same time; every file must be closed.
 module gapbeam_hdf5_output
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_files, only: rename_file, remove_file
-   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5iis_valid_f, &
-      h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
+   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5dont_atexit_f, h5eset_auto_f, &
+      h5iis_valid_f, h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
       h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, &
       h5pcreate_f, h5pclose_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, H5F_CLOSE_STRONG_F, &
       h5gcreate_f, h5gclose_f, h5lexists_f, h5oopen_f, h5oclose_f, &
@@ -44,7 +45,7 @@ module gapbeam_hdf5_output
       h5aget_space_f
    implicit none
    private
-   public :: h5_writer_t, h5_reader_t
+   public :: h5_writer_t, h5_reader_t, write_failed
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an HDF5 identifier not (or no longer) open
@@ -63,6 +64,7 @@ module gapbeam_hdf5_output
       character(len=:), allocatable :: path            !! final file name, written on close
       character(len=:), allocatable :: part_path       !! temporary file name, `path // '.part'`
       logical :: is_open = .false.                     !! whether `file_id` is an open file
+      logical :: in_place = .false.                    !! `path` written directly, no rename
    contains
       procedure :: create => writer_create             !! create `path.part`, remember `path`
       procedure :: write_text => writer_write_text     !! scalar string dataset (whole text)
@@ -113,10 +115,13 @@ contains
    ! ---------------------------------------------------------------------------------------
 
    !> Create (or truncate) `path // '.part'` for writing; `close` renames it to `path`.
-   subroutine writer_create(self, path, err)
+   !> With `in_place = .true.` `path` itself is written and `close` renames nothing (for a
+   !> caller that owns the atomicity, such as an output set writing under temporary names).
+   subroutine writer_create(self, path, err, in_place)
       class(h5_writer_t), intent(inout) :: self          !! writer, not holding an open file
       character(len=*), intent(in) :: path               !! final file name, e.g. 'results/a.h5'
       type(error_t), allocatable, intent(out) :: err     !! set when the file cannot be created
+      logical, intent(in), optional :: in_place          !! write `path` itself
       character(len=*), parameter :: proc = 'create'
       character(len=:), allocatable :: part
       integer(hid_t) :: fapl
@@ -131,7 +136,13 @@ contains
          call fatal_error(err, here(proc) // 'empty file path')
          return
       end if
-      part = trim(path) // '.part'
+      self%in_place = .false.
+      if (present(in_place)) self%in_place = in_place
+      if (self%in_place) then
+         part = trim(path)
+      else
+         part = trim(path) // '.part'
+      end if
       call library_open(status)
       if (status /= 0) then
          call fatal_error(err, here(proc) // 'cannot initialise the HDF5 library to create file ' &
@@ -367,7 +378,9 @@ contains
 
    !> Close the file, then rename `path.part` to `path` (atomically replacing an older `path`).
    !>
-   !> On failure `path.part` is left in place (call `abort` to delete it) and `path` untouched.
+   !> A failed close (HDF5 writes its buffers there: a full disk shows here) deletes the
+   !> incomplete file; a failed rename leaves `path.part` in place (call `abort` to delete it);
+   !> `path` is untouched either way. In place, nothing is renamed.
    subroutine writer_close(self, err)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       type(error_t), allocatable, intent(out) :: err     !! set when closing or renaming fails
@@ -385,8 +398,13 @@ contains
       self%file_id = no_id
       self%is_open = .false.
       if (hdferr /= 0) then
+         call remove_file(self%part_path)
          call fatal_error(err, here(proc) // 'cannot close file ' // q(self%part_path) &
-            // '; it is incomplete and was not renamed to ' // q(self%path))
+            // ' (a full disk?); it is incomplete and was deleted')
+         return
+      end if
+      if (self%in_place) then
+         deallocate(self%part_path, self%path)
          return
       end if
       call rename_file(self%part_path, self%path, rename_err)
@@ -397,6 +415,15 @@ contains
       end if
       deallocate(self%part_path, self%path)
    end subroutine writer_close
+
+   !> True when `err` is set; the writer is then aborted (its file closed and deleted). For
+   !> a writer's error path: `if (write_failed(h5, err)) return`.
+   logical function write_failed(h5, err)
+      type(h5_writer_t), intent(inout) :: h5             !! writer
+      type(error_t), allocatable, intent(in) :: err      !! status of the last write
+      write_failed = allocated(err)
+      if (write_failed) call h5%abort()
+   end function write_failed
 
    !> Close the file, if open, and delete `path.part`; never fails (for error paths).
    subroutine writer_abort(self)
@@ -1212,7 +1239,13 @@ contains
          if (status /= 0) ready = .false.
       end if
       hdferr = 0
-      if (.not. ready) call h5open_f(hdferr)
+      if (.not. ready) then
+         ! no clean-up at exit: after a failed close (a full disk) HDF5's exit handler tries the
+         ! file again and crashes (SIGSEGV after the error message was written). Every file
+         ! is closed (or aborted) by its writer or reader, so there is nothing left to clean.
+         call h5dont_atexit_f(status)        ! fails harmlessly once the library is running
+         call h5open_f(hdferr)
+      end if
       if (hdferr /= 0) return
       call h5eset_auto_f(0, hdferr)
    end subroutine library_open

@@ -6,13 +6,17 @@
 !> validates, and only then copies into the deck: a half-read configuration never escapes.
 !> Messages read `DECK: group &beam: length = -0.2: must be > 0`.
 module gapbeam_input
+   use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck_text, only: source_t, load_file, make_source, group_names, group_block, &
-      split_assignments, lower, basename_stem
+      split_assignments, lower, basename_stem, null_value, longest_text_value, assigned_name, &
+      quote_left_open
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
       stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
-      stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios
+      stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
+      beam_rho_a
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
@@ -33,6 +37,17 @@ module gapbeam_input
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
       'study model_size continuation'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
+   integer, parameter :: max_axis = 1000000     !! most values of a sweep axis range (n_frequency)
+   integer, parameter :: max_points = 1000000   !! most points of a sweep
+   !> Most values kept in memory for one array of results (history samples, Poincare points,
+   !> Lyapunov estimates) or for all the points of a sweep: 5e8 reals are 4 GB.
+   integer(int64), parameter :: max_values = 500000000_int64
+   integer, parameter :: max_periods = 100000000   !! most recorded or Lyapunov periods
+
+   !> Entries given in a list variable read twice (see list_entries_int).
+   interface list_entries
+      module procedure list_entries_int, list_entries_real
+   end interface list_entries
 
    abstract interface
       !> Reads one namelist group from an internal file.
@@ -66,7 +81,9 @@ contains
       type(source_t), allocatable :: srcs(:)
       character(len=:), allocatable :: text
       character(len=32), allocatable :: names(:)
+      character(len=:), allocatable :: block(:)
       integer :: s, i, j
+      logical :: closed
 
       deck%path = path
       call load_file(path, text, err)
@@ -75,8 +92,8 @@ contains
       call make_source(path, text, srcs(1))
       deck%text = text
       do s = 1, size(overrides)
-         call make_source('override ' // str(s) // " '" // trim(overrides(s)) // "'", &
-                          trim(overrides(s)), srcs(1 + s))
+         call make_source('override ' // str(s) // " '" // short_text(trim(overrides(s)), 80) &
+                          // "'", trim(overrides(s)), srcs(1 + s))
          deck%text = deck%text // new_line('a') // '! command-line override ' // str(s) &
             // new_line('a') // trim(overrides(s)) // new_line('a')
       end do
@@ -102,6 +119,13 @@ contains
                   return
                end if
             end do
+            call group_block(srcs(s), trim(names(i)), block, closed)
+            if (.not. closed) then
+               call fatal_error(err, path // ': ' // where(srcs, s) // 'group &' &
+                  // trim(names(i)) // " is not closed: no '/' before the end of the " &
+                  // trim(merge('deck file', 'override ', s == 1)) // open_quote(block))
+               return
+            end if
          end do
       end do
       do i = 1, 2
@@ -113,28 +137,29 @@ contains
          end if
       end do
 
-      call read_job(srcs, deck%job, err);              if (failed()) return
-      call read_beam(srcs, deck%structure%beam, err);  if (failed()) return
-      call read_root(srcs, deck%structure%root, err);  if (failed()) return
+      call read_job(srcs, deck%job, err);              if (failed(err, path)) return
+      call read_beam(srcs, deck%structure%beam, err);  if (failed(err, path)) return
+      call read_root(srcs, deck%structure%root, err);  if (failed(err, path)) return
       call read_springs(srcs, deck%structure%beam%n_elem, deck%structure%root, &
-                        deck%structure%springs, err);  if (failed()) return
+                        deck%structure%springs, err);  if (failed(err, path)) return
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
-      if (failed()) return
-      call read_modes(srcs, deck%n_print_modes, err);  if (failed()) return
-      call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed()) return
-      call read_stops(srcs, deck%structure, deck%stops, err);  if (failed()) return
-      call read_damping(srcs, deck%damping, err);  if (failed()) return
-      call read_forcing(srcs, deck%forcing, err);  if (failed()) return
-      call read_solver(srcs, deck%solver, err);  if (failed()) return
-      call read_initial(srcs, deck%structure, deck%initial, err);  if (failed()) return
-      call read_output(srcs, deck%output, err);  if (failed()) return
-      call read_diagnostics(srcs, deck%diagnostics, err);  if (failed()) return
-      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed()) return
-      call read_study(srcs, deck%study, err);  if (failed()) return
-      call read_model_size(srcs, deck%model_size, err);  if (failed()) return
-      call read_reduction(srcs, deck%reduction, err);  if (failed()) return
+      if (failed(err, path)) return
+      call read_modes(srcs, deck%n_print_modes, err);  if (failed(err, path)) return
+      call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
+      call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
+      call read_damping(srcs, deck%damping, err);  if (failed(err, path)) return
+      call read_forcing(srcs, deck%forcing, err);  if (failed(err, path)) return
+      call read_solver(srcs, deck%solver, err);  if (failed(err, path)) return
+      call read_initial(srcs, deck%structure, deck%initial, err);  if (failed(err, path)) return
+      call read_output(srcs, deck%output, err);  if (failed(err, path)) return
+      call read_diagnostics(srcs, deck%diagnostics, err);  if (failed(err, path)) return
+      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed(err, path)) return
+      call read_study(srcs, deck%study, err);  if (failed(err, path)) return
+      call read_model_size(srcs, deck%model_size, err);  if (failed(err, path)) return
+      call read_reduction(srcs, deck%reduction, err);  if (failed(err, path)) return
       call read_continuation(srcs, deck, group_present(srcs, 'continuation'), err)   ! issue 14
-      if (failed()) return
+      if (failed(err, path)) return
+      call check_sizes(deck, err);  if (failed(err, path)) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
@@ -155,16 +180,71 @@ contains
             // 'the frequencies and amplitudes to sweep')
          return
       end if
-
-   contains
-
-      logical function failed()
-         failed = allocated(err)
-         if (failed) then
-            if (index(err%message, path // ': ') /= 1) err%message = path // ': ' // err%message
-         end if
-      end function failed
    end subroutine read_deck
+
+   !> True when `err` is set; its message then starts with the deck path.
+   logical function failed(err, path)
+      type(error_t), allocatable, intent(inout) :: err   !! status of a group reader
+      character(len=*), intent(in) :: path               !! deck path as given
+      failed = allocated(err)
+      if (failed) then
+         if (index(err%message, path // ': ') /= 1) err%message = path // ': ' // err%message
+      end if
+   end function failed
+
+   !> Sizes of the result arrays, counted in 64-bit integers before anything is allocated:
+   !> the history of a run, and the results a sweep keeps for all its points.
+   subroutine check_sizes(deck, err)
+      type(deck_t), intent(in) :: deck                 !! deck, every group validated
+      type(error_t), allocatable, intent(inout) :: err !! set when an array would be too large
+      integer(int64) :: samples, per_point, points
+      if (allocated(err)) return
+      samples = int(min(deck%output%history_periods, deck%solver%record_periods), int64) &
+                * deck%output%samples_per_period
+      if (samples > max_values) then
+         call fatal_error(err, 'group &output: history_periods = ' &
+            // str(deck%output%history_periods) // ' (at most record_periods = ' &
+            // str(deck%solver%record_periods) // ') x samples_per_period = ' &
+            // str(deck%output%samples_per_period) // ' = ' // str_int64(samples) &
+            // ' history samples: at most ' // str_int64(max_values))
+         return
+      end if
+      if (deck%job%analysis /= 'sweep') return
+      ! per point: Poincare strain and rate, the running Lyapunov estimate, the final state
+      per_point = 2_int64 * deck%solver%record_periods + deck%diagnostics%lyapunov_periods &
+                  + 4_int64 * (deck%structure%beam%n_elem + 1) + 8_int64 * size(deck%stops)
+      points = int(size(deck%sweep%frequency_hz), int64) * size(deck%sweep%amplitude_pp)
+      if (points * per_point > max_values) then
+         call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' points x ' &
+            // str_int64(per_point) // ' values kept per point (2 x &solver record_periods + ' &
+            // '&diagnostics lyapunov_periods + the final state) = ' &
+            // str_int64(points * per_point) // ': at most ' // str_int64(max_values) &
+            // ' values; sweep fewer points (n_frequency, n_amplitude) or record fewer periods')
+      end if
+   end subroutine check_sizes
+
+   !> ' (a quote opened in the value of VAR is never closed)' when the last assignment of an
+   !> unclosed group holds a quote left open (the '/' then belongs to the string), else ''.
+   function open_quote(block) result(t)
+      character(len=*), intent(in) :: block(:)         !! the group's lines, to the end
+      character(len=:), allocatable :: t
+      character(len=:), allocatable :: items(:)
+      t = ''
+      call split_assignments(block, items)
+      if (size(items) == 0) return
+      if (.not. quote_left_open(items(size(items)))) return
+      t = ' (a quote opened in the value of ' // assigned_name(items(size(items))) &
+         // ' is never closed)'
+   end function open_quote
+
+   !> A 64-bit integer as text.
+   pure function str_int64(i) result(s)
+      integer(int64), intent(in) :: i                  !! value
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function str_int64
 
    pure function where(srcs, s) result(w)
       type(source_t), intent(in) :: srcs(:)
@@ -204,21 +284,41 @@ contains
       end do
    end function group_present
 
-   !> Read group `name` from every source that has it; on a read error find the assignment
-   !> at fault and name it.
+   !> Read group `name` from every source that has it. Before a source is read, every
+   !> assignment of the group is checked at the text level: the variable must be one of the
+   !> group's, the value must not be null ('x = ,' would keep the default silently) and a
+   !> character value must fit its variable. On a read error the assignment at fault is found
+   !> and named.
+   !>
+   !> `variables` lists the group's variables, blank separated; a character variable carries
+   !> its length, 'analysis:32 title:256 output:256'.
    subroutine apply_group(srcs, name, variables, reader, err)
       type(source_t), intent(in) :: srcs(:)           !! deck file, then overrides
       character(len=*), intent(in) :: name            !! group name
-      character(len=*), intent(in) :: variables       !! the group's variables, blank separated
+      character(len=*), intent(in) :: variables       !! the group's variables (see above)
       procedure(nml_reader) :: reader                 !! reads the group into the caller's locals
       type(error_t), allocatable, intent(out) :: err  !! set on a read error
       character(len=:), allocatable :: block(:), items(:)
       character(len=512) :: msg, msg2
-      character(len=:), allocatable :: var, one(:)
-      integer :: s, ios, k, p
+      character(len=:), allocatable :: var, one(:), replaced
+      integer :: s, ios, k
       do s = 1, size(srcs)
          call group_block(srcs(s), name, block)
          if (.not. allocated(block)) cycle
+         call split_assignments(block, items)
+         do k = 1, size(items)
+            call check_assignment(name, variables, items(k), err)
+            if (allocated(err)) then
+               err%message = where(srcs, s) // err%message
+               return
+            end if
+         end do
+         ! a list given whole in a later source replaces this source's list whole
+         replaced = later_lists(srcs, s, name, variables)
+         if (len_trim(replaced) > 0) then
+            if (any([(index(replaced, ' ' // assigned_name(items(k)) // ' ') > 0, &
+                      k = 1, size(items))])) call without_lists(name, items, replaced, block)
+         end if
          msg = ''
          call reader(block, ios, msg)
          if (ios == 0) cycle
@@ -228,17 +328,8 @@ contains
          one(1) = '&' // name // ' /'
          call reader(one, ios, msg2)
          deallocate(one)
-         call split_assignments(block, items)
          do k = 1, size(items)
-            p = scan(items(k), '(=')
-            var = lower(adjustl(items(k)(1:max(p - 1, 1))))
-            var = trim(var)
-            if (index(' ' // variables // ' ', ' ' // var // ' ') == 0) then
-               call fatal_error(err, where(srcs, s) // 'group &' // name // ': unknown variable ' &
-                  // var // ' (in "' // trim(items(k)) // '"); the variables of &' // name &
-                  // ' are: ' // variables)
-               return
-            end if
+            var = assigned_name(items(k))
             allocate(character(len=len_trim(items(k)) + len(name) + 4) :: one(1))
             one(1) = '&' // name // ' ' // trim(items(k)) // ' /'
             msg2 = ''
@@ -255,6 +346,148 @@ contains
          return
       end do
    end subroutine apply_group
+
+   !> The list variables of group `name` assigned whole ('node = 2, 3', not 'node(2) = 3') in
+   !> the sources after source `s`, as ' a b ' (blank separated, blanks around), or ''.
+   function later_lists(srcs, s, name, variables) result(names)
+      type(source_t), intent(in) :: srcs(:)           !! deck file, then overrides
+      integer, intent(in) :: s                        !! the source being read
+      character(len=*), intent(in) :: name            !! group name
+      character(len=*), intent(in) :: variables       !! the group's variables
+      character(len=:), allocatable :: names
+      character(len=:), allocatable :: block(:), items(:), var
+      integer :: t, k, max_len, eq, paren
+      logical :: known, is_list
+      names = ''
+      do t = s + 1, size(srcs)
+         call group_block(srcs(t), name, block)
+         if (.not. allocated(block)) cycle
+         call split_assignments(block, items)
+         do k = 1, size(items)
+            var = assigned_name(items(k))
+            call variable_spec(variables, var, known, max_len, is_list)
+            if (.not. (known .and. is_list)) cycle
+            eq = index(items(k), '=');  paren = index(items(k), '(')
+            if (paren > 0 .and. paren < eq) cycle          ! an element, not the whole list
+            if (index(names // ' ', ' ' // var // ' ') == 0) names = names // ' ' // var
+         end do
+      end do
+      if (len(names) > 0) names = names // ' '
+   end function later_lists
+
+   !> The block of group `name` rebuilt from its assignments without those to the variables
+   !> in `replaced` (' a b ').
+   pure subroutine without_lists(name, items, replaced, block)
+      character(len=*), intent(in) :: name            !! group name
+      character(len=*), intent(in) :: items(:)        !! the group's assignments
+      character(len=*), intent(in) :: replaced        !! variables to leave out
+      character(len=:), allocatable, intent(inout) :: block(:)  !! one line on return
+      character(len=:), allocatable :: line
+      integer :: k
+      line = '&' // name
+      do k = 1, size(items)
+         if (index(replaced, ' ' // assigned_name(items(k)) // ' ') > 0) cycle
+         line = line // ' ' // trim(items(k)) // ','
+      end do
+      line = line // ' /'
+      deallocate(block)
+      allocate(character(len=len(line)) :: block(1))
+      block(1) = line
+   end subroutine without_lists
+
+   !> Check one assignment of group `group` at the text level (see apply_group).
+   subroutine check_assignment(group, variables, item, err)
+      character(len=*), intent(in) :: group           !! group name
+      character(len=*), intent(in) :: variables       !! the group's variables, with lengths
+      character(len=*), intent(in) :: item            !! one assignment
+      type(error_t), allocatable, intent(inout) :: err  !! set when the assignment is refused
+      character(len=:), allocatable :: var
+      integer :: max_len, n
+      logical :: known
+      var = assigned_name(item)
+      call variable_spec(variables, var, known, max_len)
+      if (.not. known) then
+         call fatal_error(err, 'group &' // group // ': unknown variable ' // var // ' (in "' &
+            // short_text(trim(item), 200) // '"); the variables of &' // group // ' are: ' &
+            // plain_names(variables))
+      else if (null_value(item)) then
+         call fatal_error(err, 'group &' // group // ': "' // short_text(trim(item), 200) &
+            // '": no value for ' // var // ' (an empty value would keep the default ' &
+            // 'silently: give a value or leave ' // var // ' out)')
+      else if (max_len > 0) then
+         n = longest_text_value(item)
+         if (n > max_len) call fatal_error(err, 'group &' // group // ': ' // var &
+            // ' is ' // str(n) // ' characters long: at most ' // str(max_len) &
+            // ' characters (value "' // short_text(trim(adjustl(item(index(item, '=') + 1:))), &
+            60) // '")')
+      end if
+   end subroutine check_assignment
+
+   !> Whether `var` is in the variable list; for a character variable its length (0 for other
+   !> variables); whether it is an array (a list).
+   pure subroutine variable_spec(variables, var, known, max_len, is_list)
+      character(len=*), intent(in) :: variables       !! 'a b():16 c', blank separated
+      character(len=*), intent(in) :: var             !! variable name, lower case
+      logical, intent(out) :: known                   !! var is in the list
+      integer, intent(out) :: max_len                 !! its length, 0 if not character
+      logical, intent(out), optional :: is_list       !! an array variable ('name()')
+      character(len=:), allocatable :: token
+      integer :: i, j, k, ios
+      known = .false.;  max_len = 0
+      if (present(is_list)) is_list = .false.
+      i = 1
+      do while (i <= len(variables))
+         if (variables(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         j = index(variables(i:), ' ')
+         if (j == 0) then
+            j = len(variables)
+         else
+            j = i + j - 2
+         end if
+         token = variables(i:j)
+         i = j + 1
+         k = scan(token, '(:')
+         if (k == 0) k = len(token) + 1
+         if (token(1:k - 1) /= var) cycle
+         known = .true.
+         if (present(is_list)) is_list = index(token, '()') > 0
+         k = index(token, ':')
+         if (k > 0) then
+            read(token(k + 1:), *, iostat=ios) max_len
+            if (ios /= 0) max_len = 0
+         end if
+         return
+      end do
+   end subroutine variable_spec
+
+   !> The variable list without the markers: 'a b():16 c' -> 'a b c'.
+   pure function plain_names(variables) result(t)
+      character(len=*), intent(in) :: variables       !! variable list
+      character(len=:), allocatable :: t
+      integer :: i
+      logical :: skip
+      t = '';  skip = .false.
+      do i = 1, len(variables)
+         if (variables(i:i) == ':' .or. variables(i:i) == '(') skip = .true.
+         if (variables(i:i) == ' ') skip = .false.
+         if (.not. skip) t = t // variables(i:i)
+      end do
+   end function plain_names
+
+   !> `text`, cut to `n` characters with '...' when longer.
+   pure function short_text(text, n) result(t)
+      character(len=*), intent(in) :: text            !! any text
+      integer, intent(in) :: n                        !! most characters kept
+      character(len=:), allocatable :: t
+      if (len(text) > n) then
+         t = text(1:n) // '...'
+      else
+         t = text
+      end if
+   end function short_text
 
    ! ---------------------------------------------------------------- validation helpers
 
@@ -315,17 +548,47 @@ contains
          // "': allowed: " // allowed)
    end subroutine require_word
 
-   !> Count list entries: the highest index whose node was given (nodes start at -1).
-   integer function list_length(node)
-      integer, intent(in) :: node(:)
+   !> Number of entries given in a list variable that was read twice, each time from entries
+   !> preset to a different marker (`first` from -1, `second` from -2): an entry is given where
+   !> both reads agree, so an explicit -1 counts as given (and is refused later as a value).
+   !> The entries must be given from 1 on, without gaps ('node(3) = 5' alone is an error).
+   subroutine list_entries_int(group, var, first, second, n, err)
+      character(len=*), intent(in) :: group, var      !! group and variable, for messages
+      integer, intent(in) :: first(:), second(:)      !! the two reads
+      integer, intent(out) :: n                       !! entries given
+      type(error_t), allocatable, intent(inout) :: err  !! set on a gap
+      call check_gaps(group, var, first == second, n, err)
+   end subroutine list_entries_int
+
+   !> list_entries_int for a list of reals.
+   subroutine list_entries_real(group, var, first, second, n, err)
+      character(len=*), intent(in) :: group, var      !! group and variable, for messages
+      real(dp), intent(in) :: first(:), second(:)     !! the two reads
+      integer, intent(out) :: n                       !! entries given
+      type(error_t), allocatable, intent(inout) :: err  !! set on a gap
+      ! equal bit patterns: a NaN given in the deck is given (and refused as a value later)
+      call check_gaps(group, var, first == second .or. &
+         transfer(first, 1_int64, size(first)) == transfer(second, 1_int64, size(second)), n, err)
+   end subroutine list_entries_real
+
+   !> Number of the last given entry; an error if an entry before it was not given.
+   subroutine check_gaps(group, var, given, n, err)
+      character(len=*), intent(in) :: group, var      !! group and variable, for messages
+      logical, intent(in) :: given(:)                 !! entry given
+      integer, intent(out) :: n                       !! last given entry (0: none)
+      type(error_t), allocatable, intent(inout) :: err  !! set on a gap
       integer :: i
-      list_length = 0
-      do i = size(node), 1, -1
-         if (node(i) /= -1) then
-            list_length = i;  exit
+      n = findloc(given, .true., dim=1, back=.true.)
+      if (allocated(err)) return
+      do i = 1, n
+         if (.not. given(i)) then
+            call fatal_error(err, 'group &' // group // ': ' // var // '(' // str(i) &
+               // ') is not given, but ' // var // '(' // str(n) // ') is: give the entries ' &
+               // 'from 1 on, without gaps')
+            return
          end if
       end do
-   end function list_length
+   end subroutine check_gaps
 
    subroutine require_node(group, var, i, node, dof, n_elem, root, err)
       character(len=*), intent(in) :: group, var
@@ -357,7 +620,7 @@ contains
       character(len=256) :: title, output
       namelist /job/ analysis, title, output
       analysis = cfg%analysis;  title = cfg%title;  output = cfg%output
-      call apply_group(srcs, 'job', 'analysis title output', reader, err)
+      call apply_group(srcs, 'job', 'analysis:32 title:256 output:256', reader, err)
       if (allocated(err)) return
       call require_word('job', 'analysis', analysis, analysis_words, err)
       if (allocated(err)) return
@@ -379,6 +642,7 @@ contains
          fibre_distance
       integer :: n_elem
       character(len=16) :: mass_matrix, rotary_inertia
+      type(beam_t) :: trial
       namelist /beam/ length, n_elem, youngs_modulus, density, width, thickness, area, &
          second_moment, fibre_distance, mass_matrix, rotary_inertia
       length = cfg%length;  n_elem = cfg%n_elem;  youngs_modulus = cfg%youngs_modulus
@@ -386,7 +650,7 @@ contains
       area = cfg%area;  second_moment = cfg%second_moment;  fibre_distance = cfg%fibre_distance
       mass_matrix = cfg%mass_matrix;  rotary_inertia = cfg%rotary_inertia
       call apply_group(srcs, 'beam', 'length n_elem youngs_modulus density width thickness ' &
-         // 'area second_moment fibre_distance mass_matrix rotary_inertia', reader, err)
+         // 'area second_moment fibre_distance mass_matrix:16 rotary_inertia:16', reader, err)
       if (allocated(err)) return
       call require_positive('beam', 'length', length, err)
       call require_int('beam', 'n_elem', n_elem, 1, 10000, err)
@@ -406,10 +670,13 @@ contains
       call require_word('beam', 'mass_matrix', mass_matrix, "'lumped', 'consistent'", err)
       call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
       if (allocated(err)) return
-      cfg = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
+      trial = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
          density=density, width=width, thickness=thickness, area=area, &
          second_moment=second_moment, fibre_distance=fibre_distance, mass_matrix=mass_matrix, &
          rotary_inertia=rotary_inertia)
+      call check_beam_scales(trial, err)
+      if (allocated(err)) return
+      cfg = trial
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -419,6 +686,43 @@ contains
       end subroutine reader
    end subroutine read_beam
 
+   !> The quantities the model is built from must be usable even when each input is: EI,
+   !> rho A, the mass, and per element EI/le^3 (stiffness) and EI/(rho A le^4) (the square of a
+   !> frequency) must lie between sqrt(tiny) and sqrt(huge) (about 1e-154 and 1e154), so that
+   !> their squares (energies, norms) do not underflow or overflow either. Outside, the run
+   !> would fail later, in an eigen-solve or an integration, far from the deck variables that
+   !> cause it.
+   subroutine check_beam_scales(b, err)
+      type(beam_t), intent(in) :: b                    !! beam, its inputs validated
+      type(error_t), allocatable, intent(inout) :: err !! set when a scale is out of range
+      real(dp) :: ei, rho_a, le, k_el, w2_el
+      character(len=:), allocatable :: inputs
+      if (allocated(err)) return
+      ei = beam_ei(b);  rho_a = beam_rho_a(b)
+      le = b%length / real(b%n_elem, dp)
+      k_el = ei / le / le / le
+      w2_el = ei / rho_a / le / le / le / le
+      if (usable(ei) .and. usable(rho_a) .and. usable(rho_a * b%length) .and. usable(k_el) &
+          .and. usable(w2_el)) return
+      if (b%width > 0.0_dp) then
+         inputs = 'youngs_modulus = ' // str(b%youngs_modulus) // ', width = ' // str(b%width) &
+            // ', thickness = ' // str(b%thickness)
+      else
+         inputs = 'youngs_modulus = ' // str(b%youngs_modulus) // ', area = ' // str(b%area) &
+            // ', second_moment = ' // str(b%second_moment)
+      end if
+      call fatal_error(err, 'group &beam: ' // inputs // ', density = ' // str(b%density) &
+         // ', length = ' // str(b%length) // ' and n_elem = ' // str(b%n_elem) // ' give EI = ' &
+         // str(ei) // ' N m^2, rho A = ' // str(rho_a) // ' kg/m, element stiffness EI/le^3 = ' &
+         // str(k_el) // ' N/m and EI/(rho A le^4) = ' // str(w2_el) // ' 1/s^2: each must be ' &
+         // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
+   contains
+      pure logical function usable(x)
+         real(dp), intent(in) :: x
+         usable = ieee_is_finite(x) .and. x >= sqrt(tiny(1.0_dp)) .and. x <= sqrt(huge(1.0_dp))
+      end function usable
+   end subroutine check_beam_scales
+
    subroutine read_root(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
       type(root_t), intent(inout) :: cfg
@@ -427,7 +731,7 @@ contains
       real(dp) :: k_theta
       namelist / root / condition, k_theta
       condition = cfg%condition;  k_theta = cfg%k_theta
-      call apply_group(srcs, 'root', 'condition k_theta', reader, err)
+      call apply_group(srcs, 'root', 'condition:16 k_theta', reader, err)
       if (allocated(err)) return
       call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
@@ -448,14 +752,18 @@ contains
       type(root_t), intent(in) :: root
       type(spring_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
-      integer :: node(nmax), n, i, code
+      integer :: node(nmax), given(nmax), n, i, code
       character(len=8) :: dof(nmax)
       real(dp) :: stiffness(nmax)
       namelist /springs/ node, dof, stiffness
       node = -1;  dof = 'w';  stiffness = 0.0_dp
-      call apply_group(srcs, 'springs', 'node dof stiffness', reader, err)
+      call apply_group(srcs, 'springs', 'node() dof():8 stiffness()', reader, err)
       if (allocated(err)) return
-      n = list_length(node)
+      given = node
+      node = -2
+      call apply_group(srcs, 'springs', 'node() dof():8 stiffness()', reader, err)
+      call list_entries('springs', 'node', given, node, n, err)
+      if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
          call require_word('springs', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
@@ -479,13 +787,17 @@ contains
       integer, intent(in) :: n_elem
       type(point_mass_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
-      integer :: node(nmax), n, i
+      integer :: node(nmax), given(nmax), n, i
       real(dp) :: mass(nmax), inertia(nmax)
       namelist /masses/ node, mass, inertia
       node = -1;  mass = 0.0_dp;  inertia = 0.0_dp
-      call apply_group(srcs, 'masses', 'node mass inertia', reader, err)
+      call apply_group(srcs, 'masses', 'node() mass() inertia()', reader, err)
       if (allocated(err)) return
-      n = list_length(node)
+      given = node
+      node = -2
+      call apply_group(srcs, 'masses', 'node() mass() inertia()', reader, err)
+      call list_entries('masses', 'node', given, node, n, err)
+      if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
          call require_int('masses', 'node(' // str(i) // ')', node(i), 1, n_elem + 1, err, &
@@ -536,7 +848,7 @@ contains
       namelist /calibrate/ parameter, index, target_f1_hz
       if (.not. group_present(srcs, 'calibrate')) return
       parameter = cfg%parameter;  index = cfg%index;  target_f1_hz = cfg%target_f1_hz
-      call apply_group(srcs, 'calibrate', 'parameter index target_f1_hz', reader, err)
+      call apply_group(srcs, 'calibrate', 'parameter:16 index target_f1_hz', reader, err)
       if (allocated(err)) return
       call require_word('calibrate', 'parameter', parameter, calibration_words, err)
       call require_nonnegative('calibrate', 'target_f1_hz', target_f1_hz, err)
@@ -568,22 +880,27 @@ contains
       type(structure_t), intent(in) :: st
       type(stop_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
-      integer :: node(nmax), n, i, code
+      integer :: node(nmax), given(nmax), n, i, code
       character(len=8) :: dof(nmax)
       character(len=16) :: side(nmax), law(nmax)
       real(dp), dimension(nmax) :: gap, stiffness, damping, exponent, rule_factor, &
          rule_f1_ratio, rule_f1_hz
       character(len=:), allocatable :: ix
       type(stop_t) :: d
+      character(len=*), parameter :: stop_vars = 'node() dof():8 side():16 law():16 gap() ' &
+         // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz()'
       namelist /stops/ node, dof, side, law, gap, stiffness, damping, exponent, rule_factor, &
          rule_f1_ratio, rule_f1_hz
       node = -1;  dof = 'w';  side = d%side;  law = d%law;  gap = d%gap
       stiffness = d%stiffness;  damping = d%damping;  exponent = d%exponent
       rule_factor = d%rule_factor;  rule_f1_ratio = d%rule_f1_ratio;  rule_f1_hz = d%rule_f1_hz
-      call apply_group(srcs, 'stops', 'node dof side law gap stiffness damping exponent ' &
-         // 'rule_factor rule_f1_ratio rule_f1_hz', reader, err)
+      call apply_group(srcs, 'stops', stop_vars, reader, err)
       if (allocated(err)) return
-      n = list_length(node)
+      given = node
+      node = -2
+      call apply_group(srcs, 'stops', stop_vars, reader, err)
+      call list_entries('stops', 'node', given, node, n, err)
+      if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
          ix = '(' // str(i) // ')'
@@ -597,9 +914,13 @@ contains
          call require_nonnegative('stops', 'rule_factor' // ix, rule_factor(i), err)
          if (allocated(err)) return
          if (rule_factor(i) > 0.0_dp) then
-            if (rule_f1_ratio(i) > 0.0_dp) then
+            if (rule_f1_ratio(i) /= 0.0_dp) then      ! given (true for NaN too): check it
                call require_range('stops', 'rule_f1_ratio' // ix, rule_f1_ratio(i), &
                   1.0_dp + 1.0e-9_dp, 1.0e6_dp, err)
+            else if (rule_f1_hz(i) == 0.0_dp) then
+               call fatal_error(err, 'group &stops: rule_factor' // ix // ' = ' &
+                  // str(rule_factor(i)) // ' needs rule_f1_ratio' // ix // ' > 1 or ' &
+                  // 'rule_f1_hz' // ix // ' > 0 (the target of the stiffness rule)')
             else
                call require_positive('stops', 'rule_f1_hz' // ix, rule_f1_hz(i), err)
             end if
@@ -638,7 +959,7 @@ contains
       model = cfg%model;  mass_coefficient = cfg%mass_coefficient
       stiffness_coefficient = cfg%stiffness_coefficient;  frequency1_hz = cfg%frequency1_hz
       ratio1 = cfg%ratio1;  frequency2_hz = cfg%frequency2_hz;  ratio2 = cfg%ratio2
-      call apply_group(srcs, 'damping', 'model mass_coefficient stiffness_coefficient ' &
+      call apply_group(srcs, 'damping', 'model:16 mass_coefficient stiffness_coefficient ' &
          // 'frequency1_hz ratio1 frequency2_hz ratio2', reader, err)
       if (allocated(err)) return
       call require_word('damping', 'model', model, damping_words, err)
@@ -710,17 +1031,20 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=24) :: method, stop_solution, step_control, linear_solver
       real(dp) :: newmark_delta, newmark_alpha, fp_tolerance, half_step_tolerance, &
-         residual_floor, grow_ratio, hht_alpha, rho_infinity, rk_rtol, rk_atol, energy_bound
+         residual_floor, grow_ratio, hht_alpha, rho_infinity, rk_rtol, rk_atol, energy_bound, &
+         tolerance, ticks
+      real(dp), parameter :: unset = -huge(1.0_dp)
       integer :: fp_max_iterations, steps_per_period, max_halvings, grow_after, &
          transient_periods, record_periods
       logical :: locate_events
-      namelist /solver/ method, newmark_delta, newmark_alpha, hht_alpha, rho_infinity, rk_rtol, &
-         rk_atol, energy_bound, stop_solution, fp_tolerance, &
+      namelist /solver/ method, tolerance, newmark_delta, newmark_alpha, hht_alpha, &
+         rho_infinity, rk_rtol, rk_atol, energy_bound, stop_solution, fp_tolerance, &
          fp_max_iterations, step_control, steps_per_period, half_step_tolerance, &
          residual_floor, max_halvings, grow_after, grow_ratio, locate_events, linear_solver, &
          transient_periods, record_periods
       method = cfg%method;  newmark_delta = cfg%newmark_delta;  newmark_alpha = cfg%newmark_alpha
-      hht_alpha = cfg%hht_alpha;  rho_infinity = cfg%rho_infinity;  rk_rtol = cfg%rk_rtol
+      tolerance = unset;  rk_rtol = unset    ! not given (rk_rtol stands in for tolerance)
+      hht_alpha = cfg%hht_alpha;  rho_infinity = cfg%rho_infinity
       rk_atol = cfg%rk_atol;  energy_bound = cfg%energy_bound
       stop_solution = cfg%stop_solution;  fp_tolerance = cfg%fp_tolerance
       fp_max_iterations = cfg%fp_max_iterations;  step_control = cfg%step_control
@@ -729,13 +1053,18 @@ contains
       grow_after = cfg%grow_after;  grow_ratio = cfg%grow_ratio
       locate_events = cfg%locate_events;  linear_solver = cfg%linear_solver
       transient_periods = cfg%transient_periods;  record_periods = cfg%record_periods
-      call apply_group(srcs, 'solver', 'method newmark_delta newmark_alpha hht_alpha ' &
-         // 'rho_infinity rk_rtol rk_atol energy_bound stop_solution ' &
-         // 'fp_tolerance fp_max_iterations step_control steps_per_period ' &
+      call apply_group(srcs, 'solver', 'method:24 tolerance newmark_delta newmark_alpha ' &
+         // 'hht_alpha rho_infinity rk_rtol rk_atol energy_bound stop_solution:24 ' &
+         // 'fp_tolerance fp_max_iterations step_control:24 steps_per_period ' &
          // 'half_step_tolerance residual_floor max_halvings grow_after grow_ratio ' &
-         // 'locate_events linear_solver transient_periods record_periods', reader, err)
+         // 'locate_events linear_solver:24 transient_periods record_periods', reader, err)
       if (allocated(err)) return
+      ! rk_rtol (the rk45 tolerance before `tolerance` existed) sets tolerance for rk45 decks
+      if (tolerance == unset .and. rk_rtol /= unset .and. method == 'rk45') tolerance = rk_rtol
+      if (tolerance == unset) tolerance = cfg%tolerance
+      if (rk_rtol == unset) rk_rtol = cfg%rk_rtol
       call require_word('solver', 'method', method, method_words, err)
+      call require_range('solver', 'tolerance', tolerance, 1.0e-12_dp, 0.5_dp, err)
       call require_range('solver', 'newmark_delta', newmark_delta, 0.5_dp, 1.0_dp, err)
       call require_range('solver', 'newmark_alpha', newmark_alpha, 1.0e-3_dp, 1.0_dp, err)
       call require_range('solver', 'hht_alpha', hht_alpha, -1.0_dp / 3.0_dp, 0.0_dp, err)
@@ -756,37 +1085,45 @@ contains
       call require_range('solver', 'grow_ratio', grow_ratio, 0.0_dp, 1.0_dp, err)
       call require_word('solver', 'linear_solver', linear_solver, linear_solver_words, err)
       call require_int('solver', 'transient_periods', transient_periods, 0, huge(1), err)
-      call require_int('solver', 'record_periods', record_periods, 1, huge(1), err)
+      call require_int('solver', 'record_periods', record_periods, 1, max_periods, err, &
+         'every recorded period keeps its Poincare point')
       if (allocated(err)) return
       ! combinations of method and step control
       select case (method)
-      case ('newmark', 'hht', 'generalized_alpha')
+      case ('auto', 'newmark', 'hht', 'generalized_alpha')
          if (step_control == 'embedded') call fatal_error(err, "group &solver: step_control = " &
-            // "'embedded' needs method = 'rk45' (the implicit methods use 'fixed' or " &
-            // "'half_step')")
-         if (method /= 'newmark' .and. stop_solution == 'fixed_point') call fatal_error(err, &
+            // "'embedded' needs method = 'rk45' (the implicit methods use 'auto', 'error', " &
+            // "'fixed' or 'half_step')")
+         if (method /= 'newmark' .and. method /= 'auto' .and. step_control == 'half_step') &
+            call fatal_error(err, &
+            "group &solver: step_control = 'half_step' is the Newmark residual rule (method = " &
+            // "'newmark'); method = '" // trim(method) // "' uses 'auto', 'error' or 'fixed'")
+         if (method /= 'newmark' .and. method /= 'auto' .and. stop_solution == 'fixed_point') &
+            call fatal_error(err, &
             "group &solver: stop_solution = 'fixed_point' is the Newmark solver's (method = " &
             // "'newmark'); method = '" // trim(method) // "' uses the condensed solution")
       case ('rk45')
-         if (step_control /= 'embedded') call fatal_error(err, "group &solver: method = 'rk45' " &
-            // "needs step_control = 'embedded' (its own error estimate), got '" &
-            // trim(step_control) // "'")
+         if (step_control == 'fixed' .or. step_control == 'half_step') call fatal_error(err, &
+            "group &solver: method = 'rk45' runs with its own error estimate (step_control = " &
+            // "'auto', 'error' or 'embedded'), got '" // trim(step_control) // "'")
       case ('central_difference', 'rk4')
-         if (step_control /= 'fixed') call fatal_error(err, "group &solver: method = '" &
-            // trim(method) // "' runs with step_control = 'fixed', got '" // trim(step_control) &
-            // "'")
+         if (step_control /= 'fixed' .and. step_control /= 'auto') call fatal_error(err, &
+            "group &solver: method = '" // trim(method) // "' runs with step_control = " &
+            // "'fixed' (or 'auto'), got '" // trim(step_control) // "'")
       end select
       if (allocated(err)) return
-      ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings)
-      if (log(real(transient_periods + record_periods, dp)) + log(real(steps_per_period, dp)) &
-          + max_halvings * log(2.0_dp) > 62.0_dp * log(2.0_dp)) then
+      ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings); the sum is
+      ! taken in real arithmetic, as two periods near huge(1) overflow an integer
+      ticks = (real(transient_periods, dp) + real(record_periods, dp)) &
+              * real(steps_per_period, dp) * 2.0_dp**max_halvings
+      if (.not. (ticks < 2.0_dp**62)) then
          call fatal_error(err, 'group &solver: (transient_periods + record_periods) * ' &
-            // 'steps_per_period * 2**max_halvings = ' // str(real(transient_periods &
-            + record_periods, dp) * steps_per_period * 2.0_dp**max_halvings) // ' ticks: must ' &
-            // 'be below 2**62; lower max_halvings or steps_per_period')
+            // 'steps_per_period * 2**max_halvings = ' // str(ticks) // ' ticks: must ' &
+            // 'be below 2**62; lower transient_periods, record_periods, max_halvings or ' &
+            // 'steps_per_period')
          return
       end if
-      cfg = solver_settings_t(method=method, newmark_delta=newmark_delta, &
+      cfg = solver_settings_t(method=method, tolerance=tolerance, newmark_delta=newmark_delta, &
          newmark_alpha=newmark_alpha, hht_alpha=hht_alpha, rho_infinity=rho_infinity, &
          rk_rtol=rk_rtol, rk_atol=rk_atol, energy_bound=energy_bound, &
          stop_solution=stop_solution, fp_tolerance=fp_tolerance, &
@@ -810,15 +1147,21 @@ contains
       type(initial_state_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
       character(len=16) :: kind
-      integer :: node(nmax), n, i, code(nmax)
+      integer :: node(nmax), given(nmax), n, i, code(nmax)
       character(len=8) :: dof(nmax)
       real(dp) :: displacement(nmax), velocity(nmax)
       namelist /initial/ kind, node, dof, displacement, velocity
       kind = cfg%kind;  node = -1;  dof = 'w';  displacement = 0.0_dp;  velocity = 0.0_dp
-      call apply_group(srcs, 'initial', 'kind node dof displacement velocity', reader, err)
+      call apply_group(srcs, 'initial', 'kind:16 node() dof():8 displacement() velocity()', &
+         reader, err)
+      if (allocated(err)) return
+      given = node
+      node = -2
+      call apply_group(srcs, 'initial', 'kind:16 node() dof():8 displacement() velocity()', &
+         reader, err)
+      call list_entries('initial', 'node', given, node, n, err)
       if (allocated(err)) return
       call require_word('initial', 'kind', kind, initial_state_words, err)
-      n = list_length(node)
       code = 0
       do i = 1, n
          call require_word('initial', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
@@ -861,6 +1204,8 @@ contains
       call require_int('output', 'samples_per_period', samples_per_period, 1, 100000, err)
       call require_int('output', 'history_periods', history_periods, 0, huge(1), err)
       if (allocated(err)) return
+      ! history samples: min(history_periods, record_periods) x samples_per_period, checked in
+      ! read_deck once &solver is known
       call require_nonnegative('output', 'filter_cutoff_hz', filter_cutoff_hz, err)
       call require_int('output', 'filter_order', filter_order, 1, 12, err)
       call require_int('output', 'filter_samples_per_period', filter_samples_per_period, 16, &
@@ -904,7 +1249,8 @@ contains
       call require_range('diagnostics', 'period_tolerance', period_tolerance, 1.0e-12_dp, &
          0.5_dp, err)
       call require_int('diagnostics', 'period_points', period_points, 1, huge(1), err)
-      call require_int('diagnostics', 'lyapunov_periods', lyapunov_periods, 0, huge(1), err)
+      call require_int('diagnostics', 'lyapunov_periods', lyapunov_periods, 0, max_periods, err, &
+         'every period keeps its running estimate')
       call require_range('diagnostics', 'lyapunov_perturbation', lyapunov_perturbation, &
          1.0e-14_dp, 1.0e-2_dp, err)
       call require_range('diagnostics', 'chaos_sigmas', chaos_sigmas, 0.0_dp, 100.0_dp, err)
@@ -926,10 +1272,13 @@ contains
       type(forcing_t), intent(in) :: forcing
       type(sweep_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
+      character(len=*), parameter :: vars = 'mode:16 direction:16 axis:16 frequency_hz() ' &
+         // 'amplitude_pp() frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint'
       character(len=16) :: mode, direction, axis
-      real(dp), allocatable :: frequency_hz(:), amplitude_pp(:)
+      real(dp), allocatable :: frequency_hz(:), amplitude_pp(:), f_given(:), a_given(:)
       real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
-      integer :: n_frequency, n_amplitude, chunk
+      integer :: n_frequency, n_amplitude, chunk, nf, na
       logical :: progress, checkpoint
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
@@ -940,23 +1289,37 @@ contains
       frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
       amplitude_start_pp = 0.0_dp;  amplitude_end_pp = 0.0_dp;  n_amplitude = 0
       progress = cfg%progress;  chunk = cfg%chunk;  checkpoint = cfg%checkpoint
-      call apply_group(srcs, 'sweep', 'mode direction axis frequency_hz amplitude_pp ' &
-         // 'frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint', reader, err)
+      call apply_group(srcs, 'sweep', vars, reader, err)
       if (allocated(err)) return
+      ! the lists are read twice, from two markers, to tell the entries given (-1 included)
+      f_given = frequency_hz;  a_given = amplitude_pp
+      frequency_hz = -2.0_dp;  amplitude_pp = -2.0_dp
+      call apply_group(srcs, 'sweep', vars, reader, err)
+      call list_entries('sweep', 'frequency_hz', f_given, frequency_hz, nf, err)
+      call list_entries('sweep', 'amplitude_pp', a_given, amplitude_pp, na, err)
       call require_word('sweep', 'mode', mode, sweep_mode_words, err)
       call require_word('sweep', 'direction', direction, sweep_direction_words, err)
       call require_word('sweep', 'axis', axis, sweep_axis_words, err)
       call require_int('sweep', 'chunk', chunk, 0, huge(1), err)
+      call require_int('sweep', 'n_frequency', n_frequency, 0, max_axis, err)
+      call require_int('sweep', 'n_amplitude', n_amplitude, 0, max_axis, err)
       if (allocated(err)) return
       call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
-         frequency_hz, frequency_start_hz, frequency_end_hz, n_frequency, &
-         forcing%frequency_hz, .true., cfg%frequency_hz)
+         frequency_hz(1:nf), frequency_start_hz, frequency_end_hz, n_frequency, &
+         forcing%frequency_hz, .true., cfg%frequency_hz, err)
       if (allocated(err)) return
       call make_axis('amplitude_pp', 'amplitude_start_pp', 'amplitude_end_pp', 'n_amplitude', &
-         amplitude_pp, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         forcing%amplitude_pp, .false., cfg%amplitude_pp)
+         amplitude_pp(1:na), amplitude_start_pp, amplitude_end_pp, n_amplitude, &
+         forcing%amplitude_pp, .false., cfg%amplitude_pp, err)
       if (allocated(err)) return
+      if (int(size(cfg%frequency_hz), int64) * size(cfg%amplitude_pp) > max_points) then
+         call fatal_error(err, 'group &sweep: ' // str(size(cfg%frequency_hz)) // ' frequencies ' &
+            // '(frequency_hz or n_frequency) x ' // str(size(cfg%amplitude_pp)) // ' amplitudes ' &
+            // '(amplitude_pp or n_amplitude) = ' // str_int64(int(size(cfg%frequency_hz), &
+            int64) * size(cfg%amplitude_pp)) // ' points: at most ' // str(max_points) &
+            // ' points in one sweep (split the map into several decks)')
+         return
+      end if
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
    contains
@@ -966,47 +1329,54 @@ contains
          character(len=*), intent(inout) :: msg
          read(lines, nml=sweep, iostat=ios, iomsg=msg)
       end subroutine reader
-
-      !> An axis from a list, or from start, end and count; the &forcing value if neither.
-      subroutine make_axis(vlist, vstart, vend, vn, list, x0, x1, n, default, positive, axis_out)
-         character(len=*), intent(in) :: vlist, vstart, vend, vn
-         real(dp), intent(in) :: list(:), x0, x1, default
-         integer, intent(in) :: n
-         logical, intent(in) :: positive
-         real(dp), allocatable, intent(out) :: axis_out(:)
-         integer :: m, j
-         m = 0
-         do j = size(list), 1, -1
-            if (list(j) /= -1.0_dp) then
-               m = j;  exit
-            end if
-         end do
-         if (m > 0 .and. n > 0) then
-            call fatal_error(err, 'group &sweep: give either the list ' // vlist // ' or ' &
-               // vstart // ', ' // vend // ' and ' // vn // ', not both')
-            return
-         end if
-         if (m > 0) then
-            axis_out = list(1:m)
-         else if (n > 0) then
-            if (n == 1) then
-               axis_out = [x0]
-            else
-               axis_out = [(x0 + (x1 - x0) * real(j - 1, dp) / real(n - 1, dp), j = 1, n)]
-            end if
-         else
-            axis_out = [default]
-         end if
-         do j = 1, size(axis_out)
-            if (positive) then
-               call require_positive('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
-            else
-               call require_nonnegative('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
-            end if
-         end do
-         if (n < 0) call require_int('sweep', vn, n, 0, huge(1), err)
-      end subroutine make_axis
    end subroutine read_sweep
+
+   !> A sweep axis from the list `list` (the entries given), or from start, end and count
+   !> (`x0`, `x1`, `n`); `default` (the &forcing value) if neither is given.
+   subroutine make_axis(vlist, vstart, vend, vn, list, x0, x1, n, default, positive, axis_out, &
+                        err)
+      character(len=*), intent(in) :: vlist, vstart, vend, vn   !! variable names, for messages
+      real(dp), intent(in) :: list(:)                 !! the list entries given
+      real(dp), intent(in) :: x0, x1                  !! first and last value of a range
+      integer, intent(in) :: n                        !! values of the range (0: no range)
+      real(dp), intent(in) :: default                 !! value when neither is given
+      logical, intent(in) :: positive                 !! values must be > 0 (else >= 0)
+      real(dp), allocatable, intent(out) :: axis_out(:)  !! the axis
+      type(error_t), allocatable, intent(inout) :: err   !! set on a bad axis
+      integer :: j
+      if (allocated(err)) return
+      if (size(list) > 0 .and. n > 0) then
+         call fatal_error(err, 'group &sweep: give either the list ' // vlist // ' or ' &
+            // vstart // ', ' // vend // ' and ' // vn // ', not both')
+         return
+      end if
+      if (size(list) > 0) then
+         axis_out = list
+      else if (n > 0) then
+         if (positive) then
+            call require_positive('sweep', vstart, x0, err)
+            if (n > 1) call require_positive('sweep', vend, x1, err)
+         else
+            call require_nonnegative('sweep', vstart, x0, err)
+            if (n > 1) call require_nonnegative('sweep', vend, x1, err)
+         end if
+         if (allocated(err)) return
+         if (n == 1) then
+            axis_out = [x0]
+         else
+            axis_out = [(x0 + (x1 - x0) * real(j - 1, dp) / real(n - 1, dp), j = 1, n)]
+         end if
+      else
+         axis_out = [default]
+      end if
+      do j = 1, size(axis_out)
+         if (positive) then
+            call require_positive('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
+         else
+            call require_nonnegative('sweep', vlist // '(' // str(j) // ')', axis_out(j), err)
+         end if
+      end do
+   end subroutine make_axis
 
    subroutine read_reduction(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
@@ -1017,7 +1387,7 @@ contains
       logical :: static_correction
       namelist /reduction/ kind, n_modes, static_correction
       kind = cfg%kind;  n_modes = cfg%n_modes;  static_correction = cfg%static_correction
-      call apply_group(srcs, 'reduction', 'kind n_modes static_correction', reader, err)
+      call apply_group(srcs, 'reduction', 'kind:16 n_modes static_correction', reader, err)
       if (allocated(err)) return
       call require_word('reduction', 'kind', kind, "'none', 'modal'", err)
       call require_int('reduction', 'n_modes', n_modes, 1, 100000, err)
@@ -1046,11 +1416,12 @@ contains
       repeats = cfg%repeats;  n_omega_dt = cfg%n_omega_dt
       tolerance_start = cfg%tolerance_start;  rtol_start = cfg%rtol_start
       omega_dt_min = cfg%omega_dt_min;  omega_dt_max = cfg%omega_dt_max
-      call apply_group(srcs, 'study', 'series levels periods base_steps tolerance_start ' &
+      call apply_group(srcs, 'study', 'series():32 levels periods base_steps tolerance_start ' &
          // 'rtol_start repeats omega_dt_min omega_dt_max n_omega_dt', reader, err)
       if (allocated(err)) return
-      if (all(len_trim(series) == 0)) series(1:8) = [character(len=32) :: 'newmark_half_step', &
-         'newmark_fixed', 'paper', 'hht', 'generalized_alpha', 'rk4', 'rk45', 'exact']
+      if (all(len_trim(series) == 0)) series(1:10) = [character(len=32) :: 'auto', &
+         'newmark_error', 'hht_error', 'generalized_alpha_error', 'rk45', 'newmark_half_step', &
+         'newmark_fixed', 'paper', 'rk4', 'exact']
       n = 0
       do i = 1, size(series)
          if (len_trim(series(i)) == 0) exit
@@ -1063,7 +1434,7 @@ contains
       call require_int('study', 'repeats', repeats, 1, 100, err)
       call require_int('study', 'n_omega_dt', n_omega_dt, 2, 100000, err)
       call require_range('study', 'tolerance_start', tolerance_start, 1.0e-12_dp, 10.0_dp, err)
-      call require_range('study', 'rtol_start', rtol_start, 1.0e-14_dp, 1.0_dp, err)
+      call require_range('study', 'rtol_start', rtol_start, 1.0e-12_dp, 0.5_dp, err)
       call require_positive('study', 'omega_dt_min', omega_dt_min, err)
       call require_range('study', 'omega_dt_max', omega_dt_max, omega_dt_min, 1.0e12_dp, err)
       if (allocated(err)) return
@@ -1085,23 +1456,33 @@ contains
       type(source_t), intent(in) :: srcs(:)
       type(model_size_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      integer :: elements(16), modes(16), ne, nm, i
+      character(len=*), parameter :: vars = 'elements() modes() cutoff_hz frequency_tolerance ' &
+         // 'poincare_tolerance force_tolerance'
+      integer :: elements(16), modes(16), e_given(16), m_given(16), ne, nm, i
       real(dp) :: cutoff_hz, frequency_tolerance, poincare_tolerance, force_tolerance
       namelist /model_size/ elements, modes, cutoff_hz, frequency_tolerance, poincare_tolerance, &
          force_tolerance
-      elements = 0;  modes = 0
-      elements(1:7) = [2, 3, 4, 6, 8, 15, 30]
-      modes(1:6) = [1, 2, 3, 4, 5, 6]
       cutoff_hz = cfg%cutoff_hz;  frequency_tolerance = cfg%frequency_tolerance
       poincare_tolerance = cfg%poincare_tolerance;  force_tolerance = cfg%force_tolerance
-      call apply_group(srcs, 'model_size', 'elements modes cutoff_hz frequency_tolerance ' &
-         // 'poincare_tolerance force_tolerance', reader, err)
+      ! the lists are read twice, from two markers, to tell the entries given: a list in the
+      ! deck replaces the default list whole (it does not inherit the default's tail)
+      elements = -1;  modes = -1
+      call apply_group(srcs, 'model_size', vars, reader, err)
       if (allocated(err)) return
-      ne = count(elements > 0);  nm = count(modes > 0)
-      do i = 1, size(elements)
+      e_given = elements;  m_given = modes
+      elements = -2;  modes = -2
+      call apply_group(srcs, 'model_size', vars, reader, err)
+      call list_entries('model_size', 'elements', e_given, elements, ne, err)
+      call list_entries('model_size', 'modes', m_given, modes, nm, err)
+      if (allocated(err)) return
+      elements(ne + 1:) = 0;  modes(nm + 1:) = 0
+      if (ne == 0) elements(1:7) = [2, 3, 4, 6, 8, 15, 30]
+      if (nm == 0) modes(1:6) = [1, 2, 3, 4, 5, 6]
+      do i = 1, size(elements)   ! zero entries are allowed and skipped
          call require_int('model_size', 'elements(' // str(i) // ')', elements(i), 0, 10000, err)
          call require_int('model_size', 'modes(' // str(i) // ')', modes(i), 0, 10000, err)
       end do
+      ne = count(elements > 0)
       if (ne == 0 .and. .not. allocated(err)) call fatal_error(err, 'group &model_size: ' &
          // 'elements: give at least one element count')
       call require_positive('model_size', 'cutoff_hz', cutoff_hz, err)

@@ -88,10 +88,12 @@ contains
             // ': must be < step_max = ' // str(step_max))
          return
       end if
-      if (jacobian == 'exact' .and. deck%solver%method /= 'exact') then
+      if (jacobian == 'exact' .and. deck%solver%method /= 'exact' .and. &
+          deck%solver%method /= 'auto') then
          call fatal_error(err, "group &continuation: jacobian = 'exact' needs &solver " &
-            // "method = 'exact' (the deck has '" // trim(deck%solver%method) // "'); use " &
-            // "jacobian = 'finite_difference' with other methods")
+            // "method = 'exact' (or 'auto' with piecewise-linear stops; the deck has '" &
+            // trim(deck%solver%method) // "'); use jacobian = 'finite_difference' with " &
+            // 'other methods')
          return
       end if
       if (start == 'given') then

@@ -1,11 +1,13 @@
-!> Result files: HDF5 (through gapbeam_hdf5_output) and gnuplot-ready text tables, each written
-!> under a temporary name and renamed when complete. Every dataset carries `units`; every file
-!> carries the effective deck text at /deck.
+!> Result files: HDF5 (through gapbeam_hdf5_output) and gnuplot-ready text tables. The files of
+!> one run form an output set (gapbeam_output_set): written under temporary names, then put in
+!> place together, or not at all; the HDF5 file lists them at /run/files. Every dataset carries
+!> `units`; every file carries the effective deck text at /deck.
 module gapbeam_report
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
-   use gapbeam_hdf5_output, only: h5_writer_t
-   use gapbeam_files, only: write_table, make_parent_directory
+   use gapbeam_hdf5_output, only: h5_writer_t, write_failed
+   use gapbeam_files, only: write_table
+   use gapbeam_output_set, only: output_set_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
@@ -40,29 +42,50 @@ contains
       type(system_t), intent(in) :: sys                !! assembled structure
       type(modes_t), intent(in) :: modes               !! modes
       real(dp), intent(in) :: stop_stiffness(:)        !! resolved stop stiffness (may be empty)
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(output_set_t) :: set
+      call set%begin(deck%job%output, [character(len=12) :: '.h5', '.modes.dat', &
+                     '.shapes.dat'], err)
+      if (allocated(err)) return
+      call write_modes_files(set, deck, sys, modes, stop_stiffness, err)
+      call set%finish(err)
+   end subroutine write_modes
+
+   !> The files of write_modes, under the set's temporary names.
+   subroutine write_modes_files(set, deck, sys, modes, stop_stiffness, err)
+      type(output_set_t), intent(in) :: set            !! .h5, .modes.dat, .shapes.dat
+      type(deck_t), intent(in) :: deck                 !! the deck (title, text)
+      type(system_t), intent(in) :: sys                !! assembled structure
+      type(modes_t), intent(in) :: modes               !! modes
+      real(dp), intent(in) :: stop_stiffness(:)        !! resolved stop stiffness (may be empty)
       type(error_t), allocatable, intent(out) :: err   !! I/O failure
       type(h5_writer_t) :: h5
-      character(len=:), allocatable :: prefix
       real(dp), allocatable :: cols(:, :), tab(:, :)
       character(len=16), allocatable :: names(:), units(:)
       integer :: j
-      prefix = trim(deck%job%output)
-      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%write_text('/deck', deck%text, err);  if (failed()) return
-      call h5%write('/modes/frequency_hz', modes%frequency_hz, 'Hz', err);  if (failed()) return
-      call h5%write('/modes/shapes', modes%shapes, 'm/sqrt(kg)', err);  if (failed()) return
+      call h5%create(set%temp(1), err, in_place=.true.);  if (allocated(err)) return
+      call h5%write_text('/deck', deck%text, err);  if (write_failed(h5, err)) return
+      call set%record(h5, err);  if (write_failed(h5, err)) return
+      call h5%write('/modes/frequency_hz', modes%frequency_hz, 'Hz', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/modes/shapes', modes%shapes, 'm/sqrt(kg)', err)
+      if (write_failed(h5, err)) return
       call h5%write('/modes/participation', modes%participation, 'sqrt(kg)', err)
-      if (failed()) return
+      if (write_failed(h5, err)) return
       call h5%write('/modes/effective_mass', modes%effective_mass, 'kg', err)
-      if (failed()) return
-      call h5%write('/modes/moving_mass', modes%total_mass, 'kg', err);  if (failed()) return
+      if (write_failed(h5, err)) return
+      call h5%write('/modes/moving_mass', modes%total_mass, 'kg', err)
+      if (write_failed(h5, err)) return
       tab = mode_shape_table(sys, modes)
-      call h5%write('/modes/node_x', tab(:, 1), 'm', err);  if (failed()) return
-      call h5%write('/modes/node_w', tab(:, 2:), 'm/sqrt(kg)', err);  if (failed()) return
-      call h5%write('/model/stiffness', sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
-      call h5%write('/model/mass', sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
-      call h5%write('/model/stop_stiffness', stop_stiffness, 'N/m', err);  if (failed()) return
+      call h5%write('/modes/node_x', tab(:, 1), 'm', err);  if (write_failed(h5, err)) return
+      call h5%write('/modes/node_w', tab(:, 2:), 'm/sqrt(kg)', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/stiffness', sys%k, 'N/m, N, N m/rad', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/mass', sys%m, 'kg, kg m, kg m^2', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/stop_stiffness', stop_stiffness, 'N/m', err)
+      if (write_failed(h5, err)) return
       call h5%close(err);  if (allocated(err)) return
 
       allocate(cols(modes%n_modes, 5))
@@ -71,23 +94,19 @@ contains
       cols(:, 3) = modes%frequency_hz / modes%frequency_hz(1)
       cols(:, 4) = modes%participation
       cols(:, 5) = modes%effective_mass / modes%total_mass
-      call write_table(prefix // '.modes.dat', trim(deck%job%title) // ': natural frequencies', &
+      call write_table(set%temp(2), trim(deck%job%title) // ': natural frequencies', &
          [character(len=16) :: 'mode', 'frequency', 'ratio_to_f1', 'participation', &
-         'eff_mass_fraction'], [character(len=16) :: '-', 'Hz', '-', 'sqrt(kg)', '-'], cols, err)
+         'eff_mass_fraction'], [character(len=16) :: '-', 'Hz', '-', 'sqrt(kg)', '-'], cols, err, &
+         in_place=.true.)
       if (allocated(err)) return
       allocate(names(1 + modes%n_modes), units(1 + modes%n_modes))
       names(1) = 'x';  units(1) = 'm'
       do j = 1, modes%n_modes
          names(1 + j) = 'w_mode' // str(j);  units(1 + j) = 'm/sqrt(kg)'
       end do
-      call write_table(prefix // '.shapes.dat', trim(deck%job%title) // ': mode shapes (w)', &
-                       names, units, tab, err)
-   contains
-      logical function failed()
-         failed = allocated(err)
-         if (failed) call h5%abort()
-      end function failed
-   end subroutine write_modes
+      call write_table(set%temp(3), trim(deck%job%title) // ': mode shapes (w)', &
+                       names, units, tab, err, in_place=.true.)
+   end subroutine write_modes_files
 
    !> Calibration result: prefix.h5 with /calibrate/value and the first frequency.
    subroutine write_calibration(deck, value, units, f1_hz, err)
@@ -95,120 +114,185 @@ contains
       real(dp), intent(in) :: value                    !! calibrated value
       character(len=*), intent(in) :: units            !! its units
       real(dp), intent(in) :: f1_hz                    !! resulting first frequency [Hz]
-      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(output_set_t) :: set
       type(h5_writer_t) :: h5
-      character(len=:), allocatable :: prefix
-      prefix = trim(deck%job%output)
-      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%write_text('/deck', deck%text, err);  if (failed()) return
-      call h5%write_text('/calibrate/parameter', trim(deck%calibrate%parameter), err)
-      if (failed()) return
-      call h5%write('/calibrate/value', value, units, err);  if (failed()) return
-      call h5%write('/calibrate/target_f1_hz', deck%calibrate%target_f1_hz, 'Hz', err)
-      if (failed()) return
-      call h5%write('/calibrate/f1_hz', f1_hz, 'Hz', err);  if (failed()) return
-      call h5%close(err)
-   contains
-      logical function failed()
-         failed = allocated(err)
-         if (failed) call h5%abort()
-      end function failed
+      call set%begin(deck%job%output, ['.h5'], err);  if (allocated(err)) return
+      call h5%create(set%temp(1), err, in_place=.true.)
+      if (.not. allocated(err)) call write_calibration_h5(h5, set, deck, value, units, f1_hz, err)
+      call set%finish(err)
    end subroutine write_calibration
 
-   !> Transient results: prefix.h5, prefix.history.dat, prefix.poincare.dat.
+   !> The datasets of write_calibration.
+   subroutine write_calibration_h5(h5, set, deck, value, units, f1_hz, err)
+      type(h5_writer_t), intent(inout) :: h5           !! writer, file created; closed here
+      type(output_set_t), intent(in) :: set            !! the set (for /run/files)
+      type(deck_t), intent(in) :: deck                 !! the deck
+      real(dp), intent(in) :: value                    !! calibrated value
+      character(len=*), intent(in) :: units            !! its units
+      real(dp), intent(in) :: f1_hz                    !! resulting first frequency [Hz]
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      call h5%write_text('/deck', deck%text, err);  if (write_failed(h5, err)) return
+      call set%record(h5, err);  if (write_failed(h5, err)) return
+      call h5%write_text('/calibrate/parameter', trim(deck%calibrate%parameter), err)
+      if (write_failed(h5, err)) return
+      call h5%write('/calibrate/value', value, units, err);  if (write_failed(h5, err)) return
+      call h5%write('/calibrate/target_f1_hz', deck%calibrate%target_f1_hz, 'Hz', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/calibrate/f1_hz', f1_hz, 'Hz', err);  if (write_failed(h5, err)) return
+      call h5%close(err)
+   end subroutine write_calibration_h5
+
+   !> Transient results: prefix.h5, prefix.history.dat, prefix.poincare.dat (the last two when
+   !> &output write_text).
    subroutine write_transient(deck, model, res, diag, err)
       type(deck_t), intent(in) :: deck                 !! the deck
-      type(model_t), intent(in) :: model              !! model
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(point_result_t), intent(in) :: diag         !! period, exponent, label
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(output_set_t) :: set
+      if (deck%output%write_text) then
+         call set%begin(deck%job%output, [character(len=14) :: '.h5', '.history.dat', &
+                        '.poincare.dat'], err)
+      else
+         call set%begin(deck%job%output, ['.h5'], err)
+      end if
+      if (allocated(err)) return
+      call write_transient_h5(set, deck, model, res, diag, err)
+      if (.not. allocated(err) .and. deck%output%write_text) &
+         call write_transient_tables(set, deck, model, res, err)
+      call set%finish(err)
+   end subroutine write_transient
+
+   !> PREFIX.h5 of a transient run, under the set's temporary name.
+   subroutine write_transient_h5(set, deck, model, res, diag, err)
+      type(output_set_t), intent(in) :: set            !! the set; file 1 is the .h5
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure
       type(h5_writer_t) :: h5
-      character(len=:), allocatable :: prefix
+      call h5%create(set%temp(1), err, in_place=.true.);  if (allocated(err)) return
+      call h5%write_text('/deck', deck%text, err);  if (write_failed(h5, err)) return
+      call set%record(h5, err);  if (write_failed(h5, err)) return
+      call h5%write('/history/time', res%time, 's', err);  if (write_failed(h5, err)) return
+      call h5%write('/history/strain', res%strain, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/history/strain_rate', res%strain_rate, '1/s', err)
+      if (write_failed(h5, err)) return
+      if (deck%output%filter_cutoff_hz > 0.0_dp) then
+         call h5%write('/history/strain_filtered', res%strain_filtered, '-', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/poincare/filter_cutoff_hz', deck%output%filter_cutoff_hz, 'Hz', err)
+         if (write_failed(h5, err)) return
+      end if
+      call h5%write('/history/tip_displacement', res%tip_displacement, 'm', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/history/stop_force', res%stop_force, 'N', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/poincare/time', res%p_time, 's', err);  if (write_failed(h5, err)) return
+      call h5%write('/poincare/strain', res%p_strain, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/poincare/strain_rate', res%p_strain_rate, '1/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/poincare/tip_displacement', res%p_tip, 'm', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/poincare/tip_velocity', res%p_tip_velocity, 'm/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/steps_accepted', int(res%steps_accepted), '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/steps_rejected', int(res%steps_rejected), '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/events', int(res%events), '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/run/factorizations', int(res%factorizations), '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/fixed_point_iterations', int(res%fp_iterations), '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/cpu_seconds', res%cpu_seconds, 's', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/wall_seconds', res%wall_seconds, 's', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/setup_seconds', res%setup_seconds, 's', err)
+      if (write_failed(h5, err)) return
+      call h5%write_text('/run/method', res%method, err)
+      if (write_failed(h5, err)) return
+      call h5%write_text('/run/method_reason', res%method_reason, err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/dt_smallest', res%dt_smallest, 's', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/run/dt_largest', res%dt_largest, 's', err);  if (write_failed(h5, err)) return
+      call h5%write('/model/stop_stiffness', model%stop_stiffness, 'N/m', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/f1_open_hz', model%f1_open_hz, 'Hz', err)
+      if (write_failed(h5, err)) return
+      ! the discrete model, so that other tools can integrate exactly the same equations
+      call h5%write('/model/stiffness', model%sys%k, 'N/m, N, N m/rad', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/mass', model%sys%m, 'kg, kg m, kg m^2', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/damping', model%c, 'N s/m, ...', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/load_shape', model%q, 'kg (P = s(t) q)', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/forcing_omega', model%omega, 'rad/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/forcing_half_amplitude', model%half_amplitude, &
+                    'm (s(t) = a omega^2 sin(omega t))', err);  if (write_failed(h5, err)) return
+      call h5%write('/model/strain_row', model%sys%strain_row, '1/m', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/contact_dof', model%c_dof, '1-based dof index', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/contact_sign', model%c_sign, '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/contact_gap', model%c_gap, 'm', err);  if (write_failed(h5, err)) return
+      call h5%write('/model/contact_stiffness', model%c_k, 'N/m', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/contact_damping', model%c_c, 'N s/m', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/model/contact_law', model%c_law, '1: bilinear, 2: hertz', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/count', res%n_impacts, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/impacts/peak_force', res%peak_force, 'N', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/rms_force', res%rms_force, 'N', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/contact_fraction', res%contact_fraction, '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/impulse_per_period', res%impulse_per_period, 'N s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/work_rate', res%work_rate, 'W', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/impacts/first_contact_time', res%first_contact_time, 's', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/period', diag%period, 'forcing periods', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/label', diag%label, 'p >= 1: period p; 0: undecided; ' &
+         // '-1: chaotic', err);  if (write_failed(h5, err)) return
+      call h5%write_text('/diagnostics/label_text', label_text(diag%label), err)
+      if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/lyapunov', diag%lyapunov, '1/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/lyapunov_error', diag%lyapunov_error, '1/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/lyapunov_running', diag%lyapunov_running, '1/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/final/u', res%u, 'm, rad', err);  if (write_failed(h5, err)) return
+      call h5%write('/final/v', res%v, 'm/s, rad/s', err);  if (write_failed(h5, err)) return
+      call h5%write('/final/time', res%t_end, 's', err);  if (write_failed(h5, err)) return
+      call h5%close(err)
+   end subroutine write_transient_h5
+
+   !> PREFIX.history.dat and PREFIX.poincare.dat, under the set's temporary names.
+   subroutine write_transient_tables(set, deck, model, res, err)
+      type(output_set_t), intent(in) :: set            !! the set; files 2 and 3
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
       real(dp), allocatable :: cols(:, :)
       character(len=20), allocatable :: names(:), units(:)
       integer :: j, ns, nf
-      prefix = trim(deck%job%output)
       ns = model%n_stops
-      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%write_text('/deck', deck%text, err);  if (failed()) return
-      call h5%write('/history/time', res%time, 's', err);  if (failed()) return
-      call h5%write('/history/strain', res%strain, '-', err);  if (failed()) return
-      call h5%write('/history/strain_rate', res%strain_rate, '1/s', err);  if (failed()) return
-      if (deck%output%filter_cutoff_hz > 0.0_dp) then
-         call h5%write('/history/strain_filtered', res%strain_filtered, '-', err)
-         if (failed()) return
-         call h5%write('/poincare/filter_cutoff_hz', deck%output%filter_cutoff_hz, 'Hz', err)
-         if (failed()) return
-      end if
-      call h5%write('/history/tip_displacement', res%tip_displacement, 'm', err)
-      if (failed()) return
-      call h5%write('/history/stop_force', res%stop_force, 'N', err);  if (failed()) return
-      call h5%write('/poincare/time', res%p_time, 's', err);  if (failed()) return
-      call h5%write('/poincare/strain', res%p_strain, '-', err);  if (failed()) return
-      call h5%write('/poincare/strain_rate', res%p_strain_rate, '1/s', err);  if (failed()) return
-      call h5%write('/poincare/tip_displacement', res%p_tip, 'm', err);  if (failed()) return
-      call h5%write('/poincare/tip_velocity', res%p_tip_velocity, 'm/s', err)
-      if (failed()) return
-      call h5%write('/run/steps_accepted', int(res%steps_accepted), '-', err)
-      if (failed()) return
-      call h5%write('/run/steps_rejected', int(res%steps_rejected), '-', err);  if (failed()) return
-      call h5%write('/run/events', int(res%events), '-', err);  if (failed()) return
-      call h5%write('/run/factorizations', int(res%factorizations), '-', err)
-      if (failed()) return
-      call h5%write('/run/fixed_point_iterations', int(res%fp_iterations), '-', err)
-      if (failed()) return
-      call h5%write('/run/cpu_seconds', res%cpu_seconds, 's', err);  if (failed()) return
-      call h5%write('/run/dt_smallest', res%dt_smallest, 's', err);  if (failed()) return
-      call h5%write('/run/dt_largest', res%dt_largest, 's', err);  if (failed()) return
-      call h5%write('/model/stop_stiffness', model%stop_stiffness, 'N/m', err)
-      if (failed()) return
-      call h5%write('/model/f1_open_hz', model%f1_open_hz, 'Hz', err);  if (failed()) return
-      ! the discrete model, so that other tools can integrate exactly the same equations
-      call h5%write('/model/stiffness', model%sys%k, 'N/m, N, N m/rad', err);  if (failed()) return
-      call h5%write('/model/mass', model%sys%m, 'kg, kg m, kg m^2', err);  if (failed()) return
-      call h5%write('/model/damping', model%c, 'N s/m, ...', err);  if (failed()) return
-      call h5%write('/model/load_shape', model%q, 'kg (P = s(t) q)', err);  if (failed()) return
-      call h5%write('/model/forcing_omega', model%omega, 'rad/s', err);  if (failed()) return
-      call h5%write('/model/forcing_half_amplitude', model%half_amplitude, &
-                    'm (s(t) = a omega^2 sin(omega t))', err);  if (failed()) return
-      call h5%write('/model/strain_row', model%sys%strain_row, '1/m', err);  if (failed()) return
-      call h5%write('/model/contact_dof', model%c_dof, '1-based dof index', err)
-      if (failed()) return
-      call h5%write('/model/contact_sign', model%c_sign, '-', err);  if (failed()) return
-      call h5%write('/model/contact_gap', model%c_gap, 'm', err);  if (failed()) return
-      call h5%write('/model/contact_stiffness', model%c_k, 'N/m', err);  if (failed()) return
-      call h5%write('/model/contact_damping', model%c_c, 'N s/m', err);  if (failed()) return
-      call h5%write('/model/contact_law', model%c_law, '1: bilinear, 2: hertz', err)
-      if (failed()) return
-      call h5%write('/impacts/count', res%n_impacts, '-', err);  if (failed()) return
-      call h5%write('/impacts/peak_force', res%peak_force, 'N', err);  if (failed()) return
-      call h5%write('/impacts/rms_force', res%rms_force, 'N', err);  if (failed()) return
-      call h5%write('/impacts/contact_fraction', res%contact_fraction, '-', err)
-      if (failed()) return
-      call h5%write('/impacts/impulse_per_period', res%impulse_per_period, 'N s', err)
-      if (failed()) return
-      call h5%write('/impacts/work_rate', res%work_rate, 'W', err);  if (failed()) return
-      call h5%write('/impacts/first_contact_time', res%first_contact_time, 's', err)
-      if (failed()) return
-      call h5%write('/diagnostics/period', diag%period, 'forcing periods', err)
-      if (failed()) return
-      call h5%write('/diagnostics/label', diag%label, 'p >= 1: period p; 0: undecided; ' &
-         // '-1: chaotic', err);  if (failed()) return
-      call h5%write_text('/diagnostics/label_text', label_text(diag%label), err)
-      if (failed()) return
-      call h5%write('/diagnostics/lyapunov', diag%lyapunov, '1/s', err);  if (failed()) return
-      call h5%write('/diagnostics/lyapunov_error', diag%lyapunov_error, '1/s', err)
-      if (failed()) return
-      call h5%write('/diagnostics/lyapunov_running', diag%lyapunov_running, '1/s', err)
-      if (failed()) return
-      call h5%write('/final/u', res%u, 'm, rad', err);  if (failed()) return
-      call h5%write('/final/v', res%v, 'm/s, rad/s', err);  if (failed()) return
-      call h5%write('/final/time', res%t_end, 's', err);  if (failed()) return
-      call h5%close(err);  if (allocated(err)) return
-
-      if (.not. deck%output%write_text) return
       nf = merge(1, 0, deck%output%filter_cutoff_hz > 0.0_dp)
       allocate(cols(size(res%time), 4 + ns + nf), names(4 + ns + nf), units(4 + ns + nf))
       cols(:, 1) = res%time;  cols(:, 2) = res%strain;  cols(:, 3) = res%strain_rate
@@ -223,19 +307,15 @@ contains
          cols(:, 5 + ns) = res%strain_filtered
          names(5 + ns) = 'strain_filtered';  units(5 + ns) = '-'
       end if
-      call write_table(prefix // '.history.dat', trim(deck%job%title), names, units, cols, err)
+      call write_table(set%temp(2), trim(deck%job%title), names, units, cols, err, &
+                       in_place=.true.)
       if (allocated(err)) return
       deallocate(cols)
       allocate(cols(size(res%p_time), 5))
       cols(:, 1) = res%p_strain;  cols(:, 2) = res%p_strain_rate;  cols(:, 3) = res%p_tip
       cols(:, 4) = res%p_tip_velocity;  cols(:, 5) = res%p_time
-      call write_table(prefix // '.poincare.dat', trim(deck%job%title), &
+      call write_table(set%temp(3), trim(deck%job%title), &
          [character(len=20) :: 'strain', 'strain_rate', 'tip_displacement', 'tip_velocity', &
-         'time'], [character(len=20) :: '-', '1/s', 'm', 'm/s', 's'], cols, err)
-   contains
-      logical function failed()
-         failed = allocated(err)
-         if (failed) call h5%abort()
-      end function failed
-   end subroutine write_transient
+         'time'], [character(len=20) :: '-', '1/s', 'm', 'm/s', 's'], cols, err, in_place=.true.)
+   end subroutine write_transient_tables
 end module gapbeam_report

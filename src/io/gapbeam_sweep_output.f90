@@ -9,10 +9,12 @@
 !> /sweep/lyapunov_running (periods, points).
 module gapbeam_sweep_output
    use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t
-   use gapbeam_files, only: write_table, make_parent_directory
+   use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t, write_failed
+   use gapbeam_files, only: write_table, real_path, file_exists
+   use gapbeam_output_set, only: output_set_t
    use gapbeam_results, only: point_result_t, label_text
    implicit none
    private
@@ -31,27 +33,120 @@ module gapbeam_sweep_output
 
 contains
 
-   !> Write points `sf%points` of `results` to PREFIX.h5 (and the text tables when asked).
+   !> Write points `sf%points` of `results` to PREFIX.h5 (and the text tables when asked), as
+   !> one output set (gapbeam_output_set): all files in place, or none changed.
+   !>
+   !> Per-point arrays (impact statistics, Poincare points, the running Lyapunov estimate) are
+   !> sized from the points that succeeded (status 0); a failed point, whose arrays may be
+   !> empty or shorter, gets NaN in the missing places.
    subroutine write_sweep(prefix, sf, results, write_text, err)
       character(len=*), intent(in) :: prefix             !! output path prefix
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       logical, intent(in) :: write_text                  !! also .sweep.dat, .bifurcation.dat
-      type(error_t), allocatable, intent(out) :: err     !! I/O failure
+      type(error_t), allocatable, intent(out) :: err     !! I/O failure; no file changed then
+      type(output_set_t) :: set
       type(h5_writer_t) :: h5
+      if (write_text) then
+         call set%begin(prefix, [character(len=16) :: '.h5', '.sweep.dat', '.bifurcation.dat'], &
+                        err)
+      else
+         call set%begin(prefix, ['.h5'], err)
+      end if
+      if (allocated(err)) return
+      call h5%create(set%temp(1), err, in_place=.true.)
+      if (.not. allocated(err)) call sweep_h5(h5, set, sf, results, err)
+      if (.not. allocated(err) .and. write_text) call sweep_tables(set, sf, results, err)
+      call set%finish(err)
+   end subroutine write_sweep
+
+   !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
+   !> points that succeeded (from all points when none did).
+   subroutine point_sizes(results, points, ns, nr, nl)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(out) :: ns, nr, nl                 !! stops, recorded and Lyapunov periods
+      integer :: j, p, pass
+      ns = 0;  nr = 0;  nl = 0
+      do pass = 1, 2
+         do j = 1, size(points)
+            p = points(j)
+            if (pass == 1 .and. results(p)%status /= 0) cycle
+            if (allocated(results(p)%peak_force)) ns = max(ns, size(results(p)%peak_force))
+            if (allocated(results(p)%p_strain)) nr = max(nr, size(results(p)%p_strain))
+            if (allocated(results(p)%lyapunov_running)) &
+               nl = max(nl, size(results(p)%lyapunov_running))
+         end do
+         if (any(results(points)%status == 0)) exit
+      end do
+   end subroutine point_sizes
+
+   !> `x` (if allocated) in an array of length n, NaN where x has no value.
+   pure function padded(x, n) result(y)
+      real(dp), allocatable, intent(in) :: x(:)          !! values (possibly too short, or none)
+      integer, intent(in) :: n                           !! length wanted
+      real(dp) :: y(n)
+      integer :: m
+      y = ieee_value(0.0_dp, ieee_quiet_nan)
+      if (.not. allocated(x)) return
+      m = min(n, size(x))
+      y(1:m) = x(1:m)
+   end function padded
+
+   !> One impact statistic of every point of the file, (points, stops).
+   function impact_stat(results, points, which, ns) result(v)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: which                       !! 1 peak, 2 rms, 3 contact fraction,
+                                                         !! 4 impulse per period, 5 work rate
+      integer, intent(in) :: ns                          !! stops
+      real(dp) :: v(size(points), ns)
+      integer :: j, p
+      do j = 1, size(points)
+         p = points(j)
+         select case (which)
+         case (1);  v(j, :) = padded(results(p)%peak_force, ns)
+         case (2);  v(j, :) = padded(results(p)%rms_force, ns)
+         case (3);  v(j, :) = padded(results(p)%contact_fraction, ns)
+         case (4);  v(j, :) = padded(results(p)%impulse_per_period, ns)
+         case default;  v(j, :) = padded(results(p)%work_rate, ns)
+         end select
+      end do
+   end function impact_stat
+
+   !> Impact counts of every point of the file, (points, stops); 0 where a point has none.
+   function impact_counts(results, points, ns) result(v)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: ns                          !! stops
+      real(dp) :: v(size(points), ns)
+      integer :: j, p, m
+      v = 0.0_dp
+      do j = 1, size(points)
+         p = points(j)
+         if (.not. allocated(results(p)%n_impacts)) cycle
+         m = min(ns, size(results(p)%n_impacts))
+         v(j, 1:m) = real(results(p)%n_impacts(1:m), dp)
+      end do
+   end function impact_counts
+
+   !> PREFIX.h5 of a sweep: the datasets listed in the module header.
+   subroutine sweep_h5(h5, set, sf, results, err)
+      type(h5_writer_t), intent(inout) :: h5             !! writer, file created; closed here
+      type(output_set_t), intent(in) :: set              !! the set (for /run/files)
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
+      type(error_t), allocatable, intent(out) :: err     !! I/O failure
       integer :: m, ns, nr, nl, j, p, nf
-      real(dp), allocatable :: f(:), a(:), r2(:, :), cols(:, :)
-      integer, allocatable :: i2(:, :)
+      real(dp), allocatable :: f(:), a(:), r2(:, :)
       character(len=16), allocatable :: labels(:)
-      character(len=24), allocatable :: names(:), units(:)
+      character(len=*), parameter :: stat_names(5) = [character(len=18) :: 'peak_force', &
+         'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
+      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '-', &
+         'N s', 'W']
 
       m = size(sf%points);  nf = size(sf%grid_frequency_hz)
-      ns = 0;  nr = 0;  nl = 0
-      if (m > 0) then
-         ns = size(results(sf%points(1))%peak_force)
-         nr = size(results(sf%points(1))%p_strain)
-         nl = size(results(sf%points(1))%lyapunov_running)
-      end if
+      call point_sizes(results, sf%points, ns, nr, nl)
       allocate(f(m), a(m), labels(m))
       do j = 1, m
          p = sf%points(j)
@@ -59,66 +154,87 @@ contains
          a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
          labels(j) = label_text(results(p)%label)
       end do
-      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%create(prefix // '.h5', err);  if (allocated(err)) return
-      call h5%write_text('/deck', sf%deck_text, err);  if (failed()) return
-      call h5%write_text('/sweep/title', sf%title, err);  if (failed()) return
+      call h5%write_text('/deck', sf%deck_text, err);  if (write_failed(h5, err)) return
+      call set%record(h5, err);  if (write_failed(h5, err)) return
+      call h5%write_text('/sweep/title', sf%title, err);  if (write_failed(h5, err)) return
       call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err)
-      if (failed()) return
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err)
-      if (failed()) return
-      call h5%write('/sweep/shard_index', sf%shard_index, '-', err);  if (failed()) return
-      call h5%write('/sweep/shard_count', sf%shard_count, '-', err);  if (failed()) return
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/shard_index', sf%shard_index, '-', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/shard_count', sf%shard_count, '-', err)
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/n_points_total', nf * size(sf%grid_amplitude_pp), '-', err)
-      if (failed()) return
-      call h5%write('/sweep/point_index', sf%points, '-', err);  if (failed()) return
-      call h5%write('/sweep/frequency_hz', f, 'Hz', err);  if (failed()) return
-      call h5%write('/sweep/amplitude_pp', a, 'm', err);  if (failed()) return
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/point_index', sf%points, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/frequency_hz', f, 'Hz', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/amplitude_pp', a, 'm', err);  if (write_failed(h5, err)) return
       call h5%write('/sweep/period', [(results(sf%points(j))%period, j = 1, m)], &
-                    'forcing periods', err);  if (failed()) return
+                    'forcing periods', err)
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/label', [(results(sf%points(j))%label, j = 1, m)], &
-                    'p >= 1: period p; 0: undecided; -1: chaotic', err);  if (failed()) return
-      call h5%write('/sweep/label_text', labels, '-', err);  if (failed()) return
+                    'p >= 1: period p; 0: undecided; -1: chaotic', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/label_text', labels, '-', err);  if (write_failed(h5, err)) return
       call h5%write('/sweep/lyapunov', [(results(sf%points(j))%lyapunov, j = 1, m)], '1/s', err)
-      if (failed()) return
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/lyapunov_error', [(results(sf%points(j))%lyapunov_error, &
-                    j = 1, m)], '1/s', err);  if (failed()) return
+                    j = 1, m)], '1/s', err)
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/status', [(results(sf%points(j))%status, j = 1, m)], &
-                    '0: done, 1: failed', err);  if (failed()) return
+                    '0: done, 1: failed', err)
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/steps', [(real(results(sf%points(j))%steps, dp), j = 1, m)], '-', err)
-      if (failed()) return
+      if (write_failed(h5, err)) return
       call h5%write('/sweep/seconds', [(results(sf%points(j))%seconds, j = 1, m)], 's', err)
-      if (failed()) return
-      allocate(i2(m, ns))
-      do j = 1, m
-         i2(j, :) = results(sf%points(j))%n_impacts
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '-', err)
+      if (write_failed(h5, err)) return
+      do j = 1, size(stat_names)
+         call h5%write('/sweep/impacts/' // trim(stat_names(j)), &
+                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err)
+         if (write_failed(h5, err)) return
       end do
-      call h5%write('/sweep/impacts/count', reshape(real(i2, dp), [m, ns]), '-', err)
-      if (failed()) return
-      call stat('/sweep/impacts/peak_force', 1, 'N');  if (allocated(err)) return
-      call stat('/sweep/impacts/rms_force', 2, 'N');  if (allocated(err)) return
-      call stat('/sweep/impacts/contact_fraction', 3, '-');  if (allocated(err)) return
-      call stat('/sweep/impacts/impulse_per_period', 4, 'N s');  if (allocated(err)) return
-      call stat('/sweep/impacts/work_rate', 5, 'W');  if (allocated(err)) return
       allocate(r2(nr, m))
       do j = 1, m
-         r2(:, j) = results(sf%points(j))%p_strain
+         r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
       end do
-      call h5%write('/sweep/poincare/strain', r2, '-', err);  if (failed()) return
+      call h5%write('/sweep/poincare/strain', r2, '-', err);  if (write_failed(h5, err)) return
       do j = 1, m
-         r2(:, j) = results(sf%points(j))%p_strain_rate
+         r2(:, j) = padded(results(sf%points(j))%p_strain_rate, nr)
       end do
-      call h5%write('/sweep/poincare/strain_rate', r2, '1/s', err);  if (failed()) return
+      call h5%write('/sweep/poincare/strain_rate', r2, '1/s', err)
+      if (write_failed(h5, err)) return
       deallocate(r2);  allocate(r2(nl, m))
       do j = 1, m
-         r2(:, j) = results(sf%points(j))%lyapunov_running
+         r2(:, j) = padded(results(sf%points(j))%lyapunov_running, nl)
       end do
-      call h5%write('/sweep/lyapunov_running', r2, '1/s', err);  if (failed()) return
-      call h5%close(err);  if (allocated(err)) return
-      if (.not. write_text) return
+      call h5%write('/sweep/lyapunov_running', r2, '1/s', err)
+      if (write_failed(h5, err)) return
+      call h5%close(err)
+   end subroutine sweep_h5
 
-      ! one row per point
-      allocate(cols(m, 6 + 4 * max(ns, 1)), names(6 + 4 * max(ns, 1)), units(6 + 4 * max(ns, 1)))
+   !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
+   !> with its forcing), under the set's temporary names.
+   subroutine sweep_tables(set, sf, results, err)
+      type(output_set_t), intent(in) :: set              !! files 2 and 3
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
+      type(error_t), allocatable, intent(out) :: err     !! I/O failure
+      integer :: m, ns, nr, nl, j, p, nf
+      real(dp), allocatable :: f(:), a(:), cols(:, :), row(:), counts(:, :)
+      character(len=24) :: names(10), units(10)
+
+      m = size(sf%points);  nf = size(sf%grid_frequency_hz)
+      call point_sizes(results, sf%points, ns, nr, nl)
+      allocate(f(m), a(m))
+      do j = 1, m
+         p = sf%points(j)
+         f(j) = sf%grid_frequency_hz(mod(p - 1, nf) + 1)
+         a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
+      end do
+      allocate(cols(m, 10))
       cols = 0.0_dp
       cols(:, 1) = f;  cols(:, 2) = a
       do j = 1, m
@@ -126,54 +242,33 @@ contains
          cols(j, 3) = results(p)%period;  cols(j, 4) = results(p)%label
          cols(j, 5) = results(p)%lyapunov;  cols(j, 6) = results(p)%lyapunov_error
          if (ns > 0) then
-            cols(j, 7) = results(p)%n_impacts(1);  cols(j, 8) = results(p)%peak_force(1)
-            cols(j, 9) = results(p)%rms_force(1);  cols(j, 10) = results(p)%work_rate(1)
+            counts = impact_counts(results, [p], ns)
+            cols(j, 7) = counts(1, 1)
+            row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
+            row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
+            row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
          end if
       end do
-      names(1:10) = [character(len=24) :: 'frequency', 'amplitude_pp', 'period', 'label', &
+      names = [character(len=24) :: 'frequency', 'amplitude_pp', 'period', 'label', &
          'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', 'rms_force_stop1', &
          'work_rate_stop1']
-      units(1:10) = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
+      units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
          'N', 'N', 'W']
-      call write_table(prefix // '.sweep.dat', sf%title // ': sweep points (label: p = period,' &
-         // ' 0 undecided, -1 chaotic)', names(1:10), units(1:10), cols(:, 1:10), err)
+      call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
+         // ' 0 undecided, -1 chaotic)', names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
-      ! bifurcation data: every Poincare point with its forcing
       deallocate(cols);  allocate(cols(m * nr, 4))
       do j = 1, m
          p = sf%points(j)
          cols((j - 1) * nr + 1:j * nr, 1) = f(j)
          cols((j - 1) * nr + 1:j * nr, 2) = a(j)
-         cols((j - 1) * nr + 1:j * nr, 3) = results(p)%p_strain
-         cols((j - 1) * nr + 1:j * nr, 4) = results(p)%p_strain_rate
+         cols((j - 1) * nr + 1:j * nr, 3) = padded(results(p)%p_strain, nr)
+         cols((j - 1) * nr + 1:j * nr, 4) = padded(results(p)%p_strain_rate, nr)
       end do
-      call write_table(prefix // '.bifurcation.dat', sf%title // ': Poincare points of every ' &
-         // 'sweep point', [character(len=24) :: 'frequency', 'amplitude_pp', 'strain', &
-         'strain_rate'], [character(len=24) :: 'Hz', 'm', '-', '1/s'], cols, err)
-   contains
-      logical function failed()
-         failed = allocated(err)
-         if (failed) call h5%abort()
-      end function failed
-
-      subroutine stat(path, which, unit_text)
-         character(len=*), intent(in) :: path, unit_text
-         integer, intent(in) :: which
-         real(dp) :: v(m, ns)
-         integer :: q
-         do q = 1, m
-            select case (which)
-            case (1);  v(q, :) = results(sf%points(q))%peak_force
-            case (2);  v(q, :) = results(sf%points(q))%rms_force
-            case (3);  v(q, :) = results(sf%points(q))%contact_fraction
-            case (4);  v(q, :) = results(sf%points(q))%impulse_per_period
-            case (5);  v(q, :) = results(sf%points(q))%work_rate
-            end select
-         end do
-         call h5%write(path, v, unit_text, err)
-         if (allocated(err)) call h5%abort()
-      end subroutine stat
-   end subroutine write_sweep
+      call write_table(set%temp(3), sf%title // ': Poincare points of every sweep point', &
+         [character(len=24) :: 'frequency', 'amplitude_pp', 'strain', 'strain_rate'], &
+         [character(len=24) :: 'Hz', 'm', '-', '1/s'], cols, err, in_place=.true.)
+   end subroutine sweep_tables
 
    !> Read a sweep file back: its description and its points into `results` (sized to all
    !> points of the sweep on return).
@@ -256,6 +351,8 @@ contains
          call fatal_error(err, here // 'no shard files given')
          return
       end if
+      call check_merge_paths(out_prefix, paths, err)
+      if (allocated(err)) return
       do k = 1, size(paths)
          call read_sweep(trim(paths(k)), sf, results, err)
          if (allocated(err)) then
@@ -312,6 +409,46 @@ contains
       merged%points = [(p, p = 1, size(results))]
       call write_sweep(out_prefix, merged, results, write_text, err)
    end subroutine merge_sweep
+
+   !> Refuse a merge whose inputs name one file twice, or whose output is one of its inputs
+   !> (compared as canonical paths, so 'a.h5' and './a.h5' are the same file).
+   subroutine check_merge_paths(out_prefix, paths, err)
+      character(len=*), intent(in) :: out_prefix         !! output prefix
+      character(len=*), intent(in) :: paths(:)           !! shard files
+      type(error_t), allocatable, intent(out) :: err     !! the clash found
+      character(len=*), parameter :: here = 'gapbeam merge: '
+      character(len=:), allocatable :: canon(:), out_real
+      integer :: k, j, width
+      width = 1
+      do k = 1, size(paths)
+         if (.not. file_exists(paths(k))) then
+            call fatal_error(err, here // 'shard file ' // trim(paths(k)) // ' does not exist')
+            return
+         end if
+         width = max(width, len(real_path(paths(k))))
+      end do
+      allocate(character(len=width) :: canon(size(paths)))
+      do k = 1, size(paths)
+         canon(k) = real_path(paths(k))
+         do j = 1, k - 1
+            if (canon(j) == canon(k)) then
+               call fatal_error(err, here // trim(paths(k)) // ' is given twice (inputs ' &
+                  // str(j) // ' and ' // str(k) // ' are the same file)')
+               return
+            end if
+         end do
+      end do
+      out_real = real_path(trim(out_prefix) // '.h5')
+      if (len(out_real) == 0) return
+      do k = 1, size(paths)
+         if (trim(canon(k)) == out_real) then
+            call fatal_error(err, here // 'the output ' // trim(out_prefix) // '.h5 is also ' &
+               // 'input ' // str(k) // ' (' // trim(paths(k)) // '): it would be overwritten; ' &
+               // 'give another output name')
+            return
+         end if
+      end do
+   end subroutine check_merge_paths
 
    pure function list_missing(seen) result(t)
       logical, intent(in) :: seen(:)

@@ -16,6 +16,7 @@ module gapbeam_jobs
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_transient, only: integrate
+   use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
@@ -128,7 +129,12 @@ contains
       call describe_structure(dk%structure)
       call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
                                dk%calibrate%target_f1_hz, value, e)
-      if (allocated(e)) return
+      if (allocated(e)) then      ! name the deck variables the calibration starts from
+         e%message = "group &calibrate: parameter = '" // trim(dk%calibrate%parameter) &
+            // "', target_f1_hz = " // str(dk%calibrate%target_f1_hz) // ', starting from ' &
+            // start_text(dk) // ': ' // e%message
+         return
+      end if
       st = dk%structure
       select case (dk%calibrate%parameter)
       case ('root_k_theta')
@@ -148,12 +154,32 @@ contains
       call write_calibration(dk, value, units, f1, e)
    end subroutine run_calibrate
 
+   !> The deck variable a calibration starts from, with its value ('&beam width = 0.01').
+   function start_text(dk) result(t)
+      type(deck_t), intent(in) :: dk                   !! the deck
+      character(len=:), allocatable :: t
+      select case (dk%calibrate%parameter)
+      case ('root_k_theta')
+         t = '&root k_theta = ' // str(dk%structure%root%k_theta)
+      case ('spring')
+         t = '&springs stiffness(' // str(dk%calibrate%index) // ') = ' &
+            // str(dk%structure%springs(dk%calibrate%index)%stiffness)
+      case ('thickness')
+         t = '&beam thickness = ' // str(dk%structure%beam%thickness)
+      case ('width')
+         t = '&beam width = ' // str(dk%structure%beam%width)
+      case default
+         t = 'the deck'
+      end select
+   end function start_text
+
    subroutine run_work_precision(dk, e)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
       type(model_t) :: model
       type(series_result_t), allocatable :: results(:)
       real(dp), allocatable :: u0(:), v0(:)
+      character(len=:), allocatable :: ref
       call describe_structure(dk%structure)
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
@@ -162,9 +188,12 @@ contains
          // 'from the initial state; reference: the exact integrator'
       call work_precision(model, dk%solver, dk%output, u0, v0, dk%study, results, e)
       if (allocated(e)) return
-      write(output_unit, '(a)') work_precision_summary(results, 'newmark_half_step')
+      ! ratios to the default method when it is charted, else to the first series
+      ref = trim(dk%study%series(1))
+      if (any(dk%study%series == 'auto')) ref = 'auto'
+      write(output_unit, '(a)') work_precision_summary(results, ref)
       call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                'newmark_half_step', e)
+                                ref, e)
    end subroutine run_work_precision
 
    subroutine run_stability(dk, e)
@@ -230,10 +259,13 @@ contains
       type(transient_result_t) :: res
       type(point_result_t) :: diag
       real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: setup
       integer :: j
       call describe_structure(dk%structure)
+      setup = thread_cpu_seconds()
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
+      setup = thread_cpu_seconds() - setup
       if (dk%reduction%kind == 'modal') write(output_unit, '(a)') 'model: modal, ' &
          // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
          '                    ', dk%reduction%static_correction)) // ': ' // str(model%n) &
@@ -258,7 +290,10 @@ contains
          // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations'
       if (dk%solver%stop_solution == 'fixed_point') write(output_unit, '(a)') &
          'fixed-point iterations: ' // str(int(res%fp_iterations))
-      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s'
+      write(output_unit, '(a)') 'method: ' // res%method // ' (' // res%method_reason // ')'
+      res%setup_seconds = setup
+      write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s, wall ' &
+         // str(res%wall_seconds) // ' s (set-up: ' // str(setup) // ' s cpu)'
       do j = 1, model%n_stops
          write(output_unit, '(a)') 'stop ' // str(j) // ': ' // str(res%n_impacts(j)) &
             // ' impacts in ' // str(dk%solver%record_periods) // ' periods, peak force ' &

@@ -15,6 +15,7 @@ module gapbeam_sweep_job
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
+   use gapbeam_files, only: make_parent_directory
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -51,7 +52,7 @@ contains
          n_run
       integer(int64) :: c0, c1, rate
       real(dp) :: elapsed, per_point
-      character(len=:), allocatable :: prefix
+      character(len=:), allocatable :: prefix, report
 
       complete = .false.
       call system_clock(c0, rate)
@@ -64,11 +65,19 @@ contains
       done = .false.
       prefix = sweep_prefix(deck, batch)
       n_loaded = 0
+      ! the output directory first: the checkpoint goes there
+      call make_parent_directory(prefix, err)
+      if (allocated(err)) return
       if (deck%sweep%checkpoint) then
          call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
             // '! shard ' // str(batch%shard_index) // ' of ' &
-            // str(batch%shard_count), results, done, n_loaded, err)
+            // str(batch%shard_count), results, done, n_loaded, report, err)
          if (allocated(err)) return
+         if (len(report) > 0) then
+            write(error_unit, '(a)') 'sweep: checkpoint: ' // replace_new_lines(report, &
+               new_line('a') // 'sweep: checkpoint: ')
+            flush(error_unit)
+         end if
       end if
       allocate(todo(0))
       n_total = 0
@@ -158,6 +167,22 @@ contains
          deck%output%write_text))
       complete = .true.
    end subroutine run_sweep_job
+
+   !> `text` with every new line replaced by `by`.
+   pure function replace_new_lines(text, by) result(t)
+      character(len=*), intent(in) :: text             !! lines
+      character(len=*), intent(in) :: by               !! replacement of each new line
+      character(len=:), allocatable :: t
+      integer :: i
+      t = ''
+      do i = 1, len(text)
+         if (text(i:i) == new_line('a')) then
+            t = t // by
+         else
+            t = t // text(i:i)
+         end if
+      end do
+   end function replace_new_lines
 
    !> All points of the given items, ascending.
    function sorted_points(sw, items) result(pts)

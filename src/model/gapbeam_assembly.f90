@@ -8,7 +8,7 @@ module gapbeam_assembly
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_fibre_distance, &
       n_nodes, dof_w, dof_theta
    use gapbeam_model, only: system_t
-   use gapbeam_linalg, only: dense_to_band
+   use gapbeam_linalg, only: band_to_dense
    use gapbeam_beam_element, only: beam_stiffness, beam_consistent_mass, beam_lumped_mass, &
       beam_curvature_row
    implicit none
@@ -18,10 +18,13 @@ module gapbeam_assembly
 contains
 
    !> Number the dofs and assemble K, M, r and the root-strain row of a validated structure.
-   pure subroutine assemble(st, sys)
+   !> K and M are assembled in band storage; the dense copies are filled from it unless
+   !> `dense` is false (calibrations: O(n) memory per trial).
+   pure subroutine assemble(st, sys, dense)
       type(structure_t), intent(in) :: st    !! validated structure
       type(system_t), intent(out) :: sys     !! assembled system
-      integer :: nn, i, e, n, idx(4), a, b
+      logical, intent(in), optional :: dense !! fill sys%k and sys%m too (default: yes)
+      integer :: nn, i, e, n, idx(4), a, b, kd
       real(dp) :: le, ei, rho_a, ke(4, 4), me(4, 4), md(4)
       logical :: lumped
 
@@ -43,7 +46,8 @@ contains
          end if
       end do
       sys%n_dof = n
-      allocate(sys%k(n, n), sys%m(n, n), source=0.0_dp)
+      kd = sys%kd
+      allocate(sys%k_band(kd + 1, n), sys%m_band(kd + 1, n), source=0.0_dp)
 
       le = st%beam%length / real(st%beam%n_elem, dp)
       ei = beam_ei(st%beam)
@@ -65,32 +69,38 @@ contains
          do b = 1, 4
             if (idx(b) == 0) cycle
             do a = 1, 4
-               if (idx(a) == 0) cycle
-               sys%k(idx(a), idx(b)) = sys%k(idx(a), idx(b)) + ke(a, b)
-               sys%m(idx(a), idx(b)) = sys%m(idx(a), idx(b)) + me(a, b)
+               if (idx(a) == 0 .or. idx(a) > idx(b)) cycle
+               i = kd + 1 + idx(a) - idx(b)
+               sys%k_band(i, idx(b)) = sys%k_band(i, idx(b)) + ke(a, b)
+               sys%m_band(i, idx(b)) = sys%m_band(i, idx(b)) + me(a, b)
             end do
          end do
       end do
       if (st%root%condition == 'spring') then
          i = sys%dof_of(dof_theta, 1)
-         sys%k(i, i) = sys%k(i, i) + st%root%k_theta
+         sys%k_band(kd + 1, i) = sys%k_band(kd + 1, i) + st%root%k_theta
       end if
       if (allocated(st%springs)) then
          do e = 1, size(st%springs)
             i = sys%dof_of(st%springs(e)%dof, st%springs(e)%node)
-            if (i > 0) sys%k(i, i) = sys%k(i, i) + st%springs(e)%stiffness
+            if (i > 0) sys%k_band(kd + 1, i) = sys%k_band(kd + 1, i) + st%springs(e)%stiffness
          end do
       end if
       if (allocated(st%masses)) then
          do e = 1, size(st%masses)
             i = sys%dof_of(dof_w, st%masses(e)%node)
-            if (i > 0) sys%m(i, i) = sys%m(i, i) + st%masses(e)%mass
+            if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%mass
             i = sys%dof_of(dof_theta, st%masses(e)%node)
-            if (i > 0) sys%m(i, i) = sys%m(i, i) + st%masses(e)%inertia
+            if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%inertia
          end do
       end if
-      call dense_to_band(sys%k, sys%kd, sys%k_band)
-      call dense_to_band(sys%m, sys%kd, sys%m_band)
+      if (present(dense)) then
+         if (.not. dense) kd = -1
+      end if
+      if (kd >= 0) then
+         call band_to_dense(sys%k_band, sys%k)
+         call band_to_dense(sys%m_band, sys%m)
+      end if
 
       allocate(sys%r(n), source=0.0_dp)
       do i = 2, nn

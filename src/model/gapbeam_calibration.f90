@@ -10,28 +10,27 @@ module gapbeam_calibration
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_description, only: structure_t, spring_t, beam_ei, dof_w, dof_name
    use gapbeam_model, only: system_t
-   use gapbeam_results, only: modes_t
    use gapbeam_assembly, only: assemble
-   use gapbeam_eigen, only: solve_modes
+   use gapbeam_eigen, only: lowest_frequency
    implicit none
    private
    public :: first_frequency, calibrate_parameter, calibrate_spring
 
    real(dp), parameter :: span = 1.0e12_dp     ! parameter searched in [p0/span, p0*span]
+   real(dp), parameter :: calibration_rtol = 1.0e-8_dp   ! |f1 - target| / target accepted
 
 contains
 
    !> First natural frequency of a structure [Hz].
-   subroutine first_frequency(st, f1, err)
+   subroutine first_frequency(st, f1, err, certify, accuracy)
       type(structure_t), intent(in) :: st             !! validated structure
       real(dp), intent(out) :: f1                     !! first natural frequency [Hz]
       type(error_t), allocatable, intent(out) :: err  !! set on eigen failure
+      logical, intent(in), optional :: certify        !! Sturm check of f1 (default: yes)
+      real(dp), intent(out), optional :: accuracy     !! relative accuracy of f1^2
       type(system_t) :: sys
-      type(modes_t) :: modes
-      call assemble(st, sys)
-      call solve_modes(sys, modes, err)
-      if (allocated(err)) return
-      f1 = modes%frequency_hz(1)
+      call assemble(st, sys, dense=.false.)
+      call lowest_frequency(sys, f1, err, certify, accuracy)
    end subroutine first_frequency
 
    !> Value of a spring from (node, dof) to ground that makes f1 = target_hz.
@@ -69,7 +68,7 @@ contains
       real(dp), intent(out) :: value                  !! calibrated value [SI]
       type(error_t), allocatable, intent(out) :: err  !! set when out of reach
       real(dp) :: x0, xa, xb, xc, fa, fb, fc, f0, step, lo, hi, flo, fhi
-      real(dp) :: d, e, p, q, r, s, tol, xm
+      real(dp) :: d, e, p, q, r, s, tol, xm, accuracy
       integer :: it
       character(len=*), parameter :: where = 'gapbeam_calibration:calibrate_parameter: '
 
@@ -153,17 +152,28 @@ contains
          call residual(xb, fb);  if (allocated(err)) return
       end do
       value = exp(xb)
+      ! the answer is checked, not assumed: f1 at the value found, certified, is the target
+      call residual(xb, fb, .true.);  if (allocated(err)) return
+      if (abs(fb) > max(calibration_rtol, accuracy) * target_hz) then
+         call fatal_error(err, where // 'no value of ' // trim(parameter) // ' gives f1 = ' &
+            // str(target_hz) // ' Hz to ' // str(calibration_rtol) // ': the search ended at ' &
+            // str(value) // ' with f1 = ' // str(fb + target_hz) // ' Hz (f1 is not ' &
+            // 'continuous in it here)')
+         return
+      end if
 
    contains
 
-      subroutine residual(x, g)
+      subroutine residual(x, g, certify)
          real(dp), intent(in) :: x
          real(dp), intent(out) :: g
+         logical, intent(in), optional :: certify
          type(structure_t) :: trial
          real(dp) :: f1
          trial = st
          call set_value(trial, parameter, index, exp(x))
-         call first_frequency(trial, f1, err)
+         call first_frequency(trial, f1, err, merge(.true., .false., present(certify)), &
+                              accuracy)
          if (allocated(err)) then
             err%message = where // 'at ' // trim(parameter) // ' = ' // str(exp(x)) // ': ' &
                // err%message

@@ -9,9 +9,8 @@ module gapbeam_model_builder
    use gapbeam_settings, only: initial_state_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: model_t, global_dof
-   use gapbeam_results, only: modes_t
    use gapbeam_assembly, only: assemble
-   use gapbeam_eigen, only: solve_modes
+   use gapbeam_eigen, only: band_frequencies
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
    implicit none
@@ -87,7 +86,7 @@ contains
       type(forcing_t), intent(in) :: forcing          !! base excitation
       type(model_t), intent(out) :: model             !! result
       type(error_t), allocatable, intent(out) :: err  !! calibration or eigen failure
-      type(modes_t) :: modes
+      real(dp), allocatable :: omega2(:)
       real(dp) :: f1_open
 
       call resolve_stop_stiffness(st, stops, model%stop_stiffness, f1_open, err)
@@ -95,9 +94,9 @@ contains
       model%f1_open_hz = f1_open
       call assemble(st, model%sys)
       model%n = model%sys%n_dof
-      call solve_modes(model%sys, modes, err)
+      call band_frequencies(model%sys, omega2, err)
       if (allocated(err)) return
-      model%omega_max = sqrt(maxval(modes%omega2))
+      model%omega_max = sqrt(maxval(omega2))
       model%beta = damping%mass_coefficient
       model%gamma = damping%stiffness_coefficient
       model%c = model%beta * model%sys%m + model%gamma * model%sys%k
