@@ -70,6 +70,7 @@ contains
          "&continuation parameter_min = 10.5, parameter_max = 11.0 /"], &
          [character(len=40) :: '&continuation', 'parameter', '10', '10.5'])
       call bad('exact Jacobian with Newmark', [character(len=200) :: job, &
+         "&solver method = 'newmark' /", &
          "&continuation parameter_min = 8.0, parameter_max = 11.0 /"], &
          [character(len=40) :: '&continuation', 'jacobian', 'exact', 'newmark'])
       call bad('curves without parameter2', [character(len=200) :: job, ex, &
@@ -169,11 +170,12 @@ contains
    !> Labels (period, impacts per recorded period) of an up or down sweep along frequencies fs
    !> of the deck's model, each point from the last point's final state (the first from rest
    !> with a longer transient), exact integrator.
-   subroutine line_sweep(deck, model, fs, period, impacts)
+   subroutine line_sweep(deck, model, fs, period, impacts, transient)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
       real(dp), intent(in) :: fs(:)
       integer, intent(out) :: period(:), impacts(:)
+      integer, intent(in) :: transient          !! periods before each point (300 for the first)
       type(solver_settings_t) :: cfg
       type(diagnostics_settings_t) :: dg
       type(point_result_t) :: pr
@@ -185,7 +187,7 @@ contains
       dg%lyapunov_periods = 0;  dg%period_max = 8
       allocate(u(model%n), v(model%n), source=0.0_dp)
       do j = 1, size(fs)
-         cfg%transient_periods = merge(300, 100, j == 1)
+         cfg%transient_periods = merge(max(300, transient), transient, j == 1)
          call run_point(model, cfg, deck%output, dg, fs(j), deck%forcing%amplitude_pp, u, v, pr)
          period(j) = pr%period
          impacts(j) = pr%n_impacts(1)
@@ -220,7 +222,7 @@ contains
       nf = 23
       fs = [(8.40_dp + 0.01_dp * real(j - 1, dp), j = 1, nf)]
       allocate(per(nf), imp(nf))
-      call line_sweep(deck, model, fs, per, imp)
+      call line_sweep(deck, model, fs, per, imp, 100)
       call note('4 mm up sweep 8.40-8.62 Hz, periods: ' // join_int(per))
       call check('4 mm line: two period doublings and a Neimark-Sacker point', &
          count(res%bif_kind == 'period_doubling' .and. res%bif_period == 1) == 2 .and. &
@@ -332,7 +334,7 @@ contains
       allocate(per(nf), imp(nf))
       ! up: the first point on the one-impact period-1 orbit
       fs = [(8.74_dp + 0.01_dp * real(j - 1, dp), j = 1, nf)]
-      call line_sweep(deck, model, fs, per, imp)
+      call line_sweep(deck, model, fs, per, imp, 400)
       call note('up sweep 8.74-8.82 Hz, periods: ' // join_int(per) // '; impacts: ' &
          // join_int(imp))
       i_up = findloc(per == 1 .and. imp == 40, .true., dim=1)
@@ -340,7 +342,7 @@ contains
          i_up > 1 .and. fs(max(i_up, 2) - 1) < maxval(folds) .and. fs(max(i_up, 1)) > maxval(folds))
       ! down: the last point on it
       fs = fs(nf:1:-1)
-      call line_sweep(deck, model, fs, per, imp)
+      call line_sweep(deck, model, fs, per, imp, 400)
       call note('down sweep 8.82-8.74 Hz, periods: ' // join_int(per) // '; impacts: ' &
          // join_int(imp))
       i_down = findloc(per == 1 .and. imp == 40, .false., dim=1) - 1

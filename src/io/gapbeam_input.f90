@@ -926,6 +926,8 @@ contains
             end if
          else
             call require_positive('stops', 'stiffness' // ix, stiffness(i), err)
+            if (allocated(err)) err%message = err%message // ' (or rule_factor' // ix &
+               // ' > 0: the stiffness from the rule)'
          end if
          if (law_code(law(i)) == 2) then
             call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
