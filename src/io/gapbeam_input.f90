@@ -735,6 +735,13 @@ contains
       if (allocated(err)) return
       call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
+      ! the beam's scale rule (check_beam_scales): a larger spring overflows the stiffness's
+      ! norms and eigen-solves later, far from the deck variable
+      if (condition == 'spring' .and. .not. allocated(err)) then
+         if (k_theta > sqrt(huge(1.0_dp))) call fatal_error(err, 'group &root: k_theta = ' &
+            // str(k_theta) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+            // ' (its square must not overflow)')
+      end if
       if (allocated(err)) return
       cfg = root_t(condition=condition, k_theta=k_theta)
    contains
