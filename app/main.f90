@@ -20,6 +20,7 @@ program main
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_usage, only: usage_lines, help_text, version_text
+   use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
    implicit none
    integer, parameter :: status_error = 1, status_usage = 2, status_locked = 4
    type(deck_t) :: deck
@@ -136,6 +137,8 @@ program main
       call run_stability(deck, err)
    case ('model_size')
       call run_model_size(deck, err)
+   case ('continuation')                                     ! issue 14
+      call run_continuation_job(deck, err)
    case ('sweep')
       call run_sweep_job(deck, batch, complete, err)
       if (allocated(err)) call fail(path, err%message, lock)

@@ -43,6 +43,15 @@
 #                                         -> PREFIX.model_size.png (scripts/model_size.gp: Poincare
 #                                            distance to the reference against run time, log-log,
 #                                            acceptable candidates filled, tolerance line)
+# ANALYSIS=continuation: PREFIX.branches.dat (+ .bifurcations.dat) -> PREFIX.diagram.png
+#                                           (scripts/continuation.gp: Poincare root strain of the
+#                                            continued orbits, stable solid, unstable dashed, the
+#                                            bifurcations marked, over the points of the overlay
+#                                            sweep named by &continuation overlay, if it was run)
+#                     PREFIX.multipliers.dat -> PREFIX.multipliers.png (scripts/multipliers.gp)
+#                     PREFIX.curves.dat (if any curve) -> PREFIX.curves.png
+#                                           (scripts/continuation_curves.gp: the curves over the
+#                                            overlay sweep's chaos map)
 # Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
 # Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
 # Prints `plot: wrote FILE` per figure written. A .dat file that is missing or holds no data row
@@ -80,7 +89,7 @@ analysis=$1
 prefix=$2
 
 case ${analysis} in
-   transient | modes | sweep | work_precision | stability | model_size) ;;
+   transient | modes | sweep | work_precision | stability | model_size | continuation) ;;
    *) exit 0 ;;
 esac
 
@@ -225,6 +234,41 @@ case ${analysis} in
       title=${title%%: spectral radius*}
       render spectral_radius.gp "${prefix}.spectral_radius.png" \
          "datafile=$(gp_quote "${radius}"); plottitle=$(gp_quote "${title}")"
+      ;;
+   continuation)
+      # The overlay (a sweep prefix, &continuation overlay) is named on the tables' second line.
+      branches="${prefix}.branches.dat"
+      if ! has_data "${branches}"; then
+         skip "${branches}"
+         exit 0
+      fi
+      title=$(dat_title "${branches}")
+      overlay=$(sed -n 's/^# overlay: //p' "${branches}" | head -n 1)
+      sweep_bif=""
+      sweep_pts=""
+      if [[ -n ${overlay} ]] && has_data "${overlay}.bifurcation.dat"; then
+         sweep_bif="${overlay}.bifurcation.dat"
+      fi
+      if [[ -n ${overlay} ]] && has_data "${overlay}.sweep.dat"; then
+         sweep_pts="${overlay}.sweep.dat"
+      fi
+      if [[ -n ${overlay} && -z ${sweep_bif} ]]; then
+         printf 'plot: overlay %s: no sweep tables (run its sweep deck first); none drawn\n' \
+            "${overlay}" >&2
+      fi
+      # branches of a two-parameter run lie at one amplitude: only that row of a grid sweep
+      amp=$(sed -n 's/^# branches at: &forcing amplitude_pp = //p' "${branches}" | head -n 1)
+      [[ -n ${amp} ]] || amp=-1
+      render continuation.gp "${prefix}.diagram.png" \
+         "datafile=$(gp_quote "${branches}"); bifile=$(gp_quote "${prefix}.bifurcations.dat"); sweepfile=$(gp_quote "${sweep_bif}"); sweep_amp=${amp}; plottitle=$(gp_quote "${title}")"
+      if has_data "${prefix}.multipliers.dat"; then
+         render multipliers.gp "${prefix}.multipliers.png" \
+            "datafile=$(gp_quote "${prefix}.multipliers.dat"); plottitle=$(gp_quote "${title}")"
+      fi
+      if has_data "${prefix}.curves.dat"; then
+         render continuation_curves.gp "${prefix}.curves.png" \
+            "datafile=$(gp_quote "${prefix}.curves.dat"); sweepfile=$(gp_quote "${sweep_pts}"); plottitle=$(gp_quote "${title}")"
+      fi
       ;;
    model_size)
       ladder="${prefix}.model_size.dat"

@@ -21,7 +21,7 @@ module gapbeam_settings
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
-      // "'sweep', 'work_precision', 'stability', 'model_size'"
+      // "'sweep', 'work_precision', 'stability', 'model_size', 'continuation'"
    character(len=*), parameter :: calibration_words = &
       "'root_k_theta', 'spring', 'thickness', 'width'"
    character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"

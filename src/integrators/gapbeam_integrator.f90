@@ -48,6 +48,10 @@ module gapbeam_integrator
    contains
       procedure(init_interface), deferred :: init        !! build for a model
       procedure(advance_interface), deferred :: advance  !! carry a state to a time
+      ! --- continuation hook (issue 14): the Jacobian of the flow where an integrator has one
+      !     (the exact integrator overrides it); the default says there is none
+      procedure :: advance_jacobian => advance_jacobian_none
+      ! --- end of the continuation hook
    end type integrator_t
 
    !> One step of a one-step method at one step size.
@@ -127,6 +131,22 @@ module gapbeam_integrator
    end interface
 
 contains
+
+   ! --- continuation hook (issue 14)
+   !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with
+   !> mass (see gapbeam_exact_jacobian); this integrator has no such Jacobian: an error, the
+   !> state unchanged. Callers use finite differences of `advance` instead.
+   subroutine advance_jacobian_none(self, state, t_target, jac, err)
+      class(integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state            !! state (unchanged)
+      real(dp), intent(in) :: t_target                 !! target time [s]
+      real(dp), allocatable, intent(out) :: jac(:, :)  !! not allocated
+      type(error_t), allocatable, intent(out) :: err   !! always set
+      allocate(err)
+      err%message = "gapbeam_integrator: method '" // self%method // "' gives no exact " &
+         // "Jacobian of its flow (use &continuation jacobian = 'finite_difference')"
+   end subroutine advance_jacobian_none
+   ! --- end of the continuation hook
 
    !> The settings a run uses: method 'auto' resolved (the exact integrator when every stop is
    !> piecewise linear, else Newmark with error control) and step_control 'auto' resolved

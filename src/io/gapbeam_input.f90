@@ -26,12 +26,16 @@ module gapbeam_input
    implicit none
    private
    public :: read_deck, known_groups
+   ! --- continuation hook (issue 14): the submodule gapbeam_input_continuation calls these;
+   !     gfortran gives private module procedures internal linkage, so they must be public
+   public :: apply_group, require_int, require_nonnegative, require_range, require_word
+   ! --- end of the continuation hook
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
 
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
-      'study model_size'
+      'study model_size continuation'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
    integer, parameter :: max_axis = 1000000     !! most values of a sweep axis range (n_frequency)
    integer, parameter :: max_points = 1000000   !! most points of a sweep
@@ -53,6 +57,18 @@ module gapbeam_input
          character(len=*), intent(inout) :: msg
       end subroutine nml_reader
    end interface
+
+   ! --- continuation hook (issue 14): &continuation, in submodule gapbeam_input_continuation
+   interface
+      !> Read and validate &continuation (after every other group: it names deck variables).
+      module subroutine read_continuation(srcs, deck, present_group, err)
+         type(source_t), intent(in) :: srcs(:)           !! deck file, then overrides
+         type(deck_t), intent(inout) :: deck             !! deck read so far
+         logical, intent(in) :: present_group            !! the deck has &continuation
+         type(error_t), allocatable, intent(out) :: err  !! first problem found
+      end subroutine read_continuation
+   end interface
+   ! --- end of the continuation hook
 
 contains
 
@@ -141,6 +157,8 @@ contains
       call read_study(srcs, deck%study, err);  if (failed(err, path)) return
       call read_model_size(srcs, deck%model_size, err);  if (failed(err, path)) return
       call read_reduction(srcs, deck%reduction, err);  if (failed(err, path)) return
+      call read_continuation(srcs, deck, group_present(srcs, 'continuation'), err)   ! issue 14
+      if (failed(err, path)) return
       call check_sizes(deck, err);  if (failed(err, path)) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
@@ -149,7 +167,8 @@ contains
          return
       end if
       if ((deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep' .or. &
-           deck%job%analysis == 'work_precision' .or. deck%job%analysis == 'model_size') .and. &
+           deck%job%analysis == 'work_precision' .or. deck%job%analysis == 'model_size' .or. &
+           deck%job%analysis == 'continuation') .and. &
           .not. group_present(srcs, 'forcing')) then
          call fatal_error(err, path // ": group &forcing is missing: analysis='" &
             // trim(deck%job%analysis) // "' needs frequency_hz (use amplitude_pp=0 for free " &
@@ -736,6 +755,13 @@ contains
       if (allocated(err)) return
       call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
+      ! the beam's scale rule (check_beam_scales): a larger spring overflows the stiffness's
+      ! norms and eigen-solves later, far from the deck variable
+      if (condition == 'spring' .and. .not. allocated(err)) then
+         if (k_theta > sqrt(huge(1.0_dp))) call fatal_error(err, 'group &root: k_theta = ' &
+            // str(k_theta) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+            // ' (its square must not overflow)')
+      end if
       if (allocated(err)) return
       cfg = root_t(condition=condition, k_theta=k_theta)
    contains
@@ -927,6 +953,8 @@ contains
             end if
          else
             call require_positive('stops', 'stiffness' // ix, stiffness(i), err)
+            if (allocated(err)) err%message = err%message // ' (or rule_factor' // ix &
+               // ' > 0: the stiffness from the rule)'
          end if
          if (law_code(law(i)) == 2) then
             call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
