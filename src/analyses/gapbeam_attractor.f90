@@ -36,16 +36,37 @@ module gapbeam_attractor
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
    use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
+   use gapbeam_progress, only: monitor_t
    implicit none
    private
    public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
       transient_budget, lyapunov_budget
 
+   !> A monitor told the work of one phase shifted by the work of the phases before it.
+   type, extends(monitor_t) :: shifted_monitor_t
+      class(monitor_t), pointer :: inner => null()   !! the caller's monitor
+      real(dp) :: offset = 0.0_dp                    !! forcing periods integrated before
+   contains
+      procedure :: update => shifted_update
+   end type shifted_monitor_t
+
 contains
 
+   !> Tell the caller's monitor `offset + done`.
+   subroutine shifted_update(self, done, t, dt)
+      class(shifted_monitor_t), intent(inout) :: self   !! shifted monitor
+      real(dp), intent(in) :: done                      !! work of this phase
+      real(dp), intent(in), optional :: t               !! simulated time [s]
+      real(dp), intent(in), optional :: dt              !! step [s]
+      call self%inner%update(self%offset + done, t, dt)
+   end subroutine shifted_update
+
    !> Run from (u0, v0) until settled, then period, exponent and label with their evidence.
-   !> `res` is the final record (its history, Poincare points and impact statistics).
-   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err)
+   !> `res` is the final record (its history, Poincare points and impact statistics). A
+   !> `monitor` is told the forcing periods integrated: the runs', and the exponent's two
+   !> trajectories (2 per period); the extensions and an adaptive exponent make them more
+   !> than the deck's transient, record and lyapunov periods.
+   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err, monitor)
       type(model_t), intent(in) :: model                !! model
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(output_settings_t), intent(in) :: out         !! what to record
@@ -54,7 +75,9 @@ contains
       type(transient_result_t), intent(out) :: res       !! the final record
       type(point_result_t), intent(inout) :: pr          !! label, evidence, statistics
       type(error_t), allocatable, intent(out) :: err     !! solver failure
+      class(monitor_t), intent(inout), optional, target :: monitor   !! told the progress
       type(solver_settings_t) :: more
+      type(shifted_monitor_t) :: watch
       real(dp), allocatable :: u(:), v(:)
       real(dp) :: cpu0, tol, period, rate, distance, pending
       real(dp), allocatable :: section(:, :)
@@ -65,7 +88,8 @@ contains
       period = 2.0_dp * pi / model%omega
       tol = auto_period_tolerance(model, cfg, diag)
       budget = transient_budget(cfg, diag)
-      call integrate(model, cfg, out, u0, v0, res, err)
+      if (present(monitor)) watch%inner => monitor
+      call run(cfg, u0, v0)
       if (allocated(err)) return
       pr%method = res%method
       run_steps = int(res%steps_accepted)
@@ -79,13 +103,18 @@ contains
             call label_record(res, diag, tol, pr, p, settled, pending)
             if (settled .or. cfg%transient_periods + added + cfg%record_periods > budget) exit
             u = res%u;  v = res%v
-            call integrate(model, more, out, u, v, res, err)
+            call run(more, u, v)
             if (allocated(err)) return
             run_steps = run_steps + int(res%steps_accepted)
             discarded = discarded + cfg%record_periods
             added = added + cfg%record_periods
          end do
-         call exponent(model, cfg, diag, res%u, res%v, pr, err, section)
+         if (present(monitor)) then
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch)
+            watch%offset = watch%offset + 2.0_dp * real(pr%lyapunov_periods, dp)
+         else
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section)
+         end if
          if (allocated(err)) return
          ! the exponent's own periods (the trajectory continued) must show the same attractor:
          ! a long chaotic transient that falls onto an orbit during them is no chaos. Their
@@ -99,7 +128,7 @@ contains
          end if
          ! the attractor changed: a new record from the exponent's end, and all again
          u = pr%u_end;  v = pr%v_end
-         call integrate(model, more, out, u, v, res, err)
+         call run(more, u, v)
          if (allocated(err)) return
          run_steps = run_steps + int(res%steps_accepted)
          discarded = discarded + cfg%record_periods + pr%lyapunov_periods
@@ -125,7 +154,7 @@ contains
             if (budget - cfg%transient_periods - added < 1) exit
             more%transient_periods = n_more
             distance = pending
-            call integrate(model, more, out, u, v, res, err)
+            call run(more, u, v)
             if (allocated(err)) return
             run_steps = run_steps + int(res%steps_accepted)
             discarded = discarded + n_more
@@ -146,21 +175,38 @@ contains
       call copy_statistics(res, pr)
       pr%steps = run_steps
       pr%seconds_label = thread_cpu_seconds() - cpu0
+
+   contains
+
+      !> One run of c from (ua, va) into res (err set on failure), told to the monitor.
+      subroutine run(c, ua, va)
+         type(solver_settings_t), intent(in) :: c     !! settings of this run
+         real(dp), intent(in) :: ua(:), va(:)         !! start
+         if (present(monitor)) then
+            call integrate(model, c, out, ua, va, res, err, monitor=watch)
+            watch%offset = watch%offset + real(c%transient_periods, dp) &
+                           + real(c%record_periods, dp)
+         else
+            call integrate(model, c, out, ua, va, res, err)
+         end if
+      end subroutine run
    end subroutine diagnose
 
    !> Period, Lyapunov exponent and label of a finished transient run (no extension: the
    !> settling test is reported, and an unsettled record is labelled so).
-   subroutine point_diagnostics(model, cfg, diag, res, pr, err)
+   !> A `monitor` is told the forcing periods integrated by the exponent's two trajectories.
+   subroutine point_diagnostics(model, cfg, diag, res, pr, err, monitor)
       type(model_t), intent(in) :: model                !! model at this forcing
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
       type(transient_result_t), intent(in) :: res        !! the run
       type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
       type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
       integer :: p
       logical :: settled
       call label_record(res, diag, auto_period_tolerance(model, cfg, diag), pr, p, settled)
-      call exponent(model, cfg, diag, res%u, res%v, pr, err)
+      call exponent(model, cfg, diag, res%u, res%v, pr, err, monitor=monitor)
       if (allocated(err)) return
       pr%transient_periods = cfg%transient_periods
       pr%method = res%method
@@ -217,7 +263,7 @@ contains
 
    !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
    !> pr%v_end: the reference state after the exponent's periods.
-   subroutine exponent(model, cfg, diag, u, v, pr, err, section)
+   subroutine exponent(model, cfg, diag, u, v, pr, err, section, monitor)
       type(model_t), intent(in) :: model                 !! model
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
@@ -226,6 +272,7 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! solver failure
       !> root strain and its rate at the end of each of the exponent's periods (2, N)
       real(dp), allocatable, intent(out), optional :: section(:, :)
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
       type(lyapunov_t) :: lyap
       if (present(section)) allocate(section(2, 0))
       pr%u_end = u;  pr%v_end = v
@@ -233,7 +280,7 @@ contains
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       if (diag%lyapunov_periods > 0) then
          call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
-                               pr%period)
+                               pr%period, monitor)
          if (allocated(err)) return
          if (present(section)) section = lyap%section
          pr%lyapunov = lyap%exponent
@@ -242,7 +289,7 @@ contains
          pr%lyapunov_periods = lyap%periods
          pr%lyapunov_converged = merge(1, 0, lyap%converged)
       else
-         allocate(pr%lyapunov_running(0))
+         pr%lyapunov_running = [real(dp) ::]
       end if
    end subroutine exponent
 
@@ -308,7 +355,8 @@ contains
 
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
    !> standard error meets the target of `diag` (or its most periods).
-   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period)
+   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period, &
+                               monitor)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
@@ -318,6 +366,7 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! solver failure
       !> period of the orbit (0 or absent: none): blocks are whole multiples of it
       integer, intent(in), optional :: orbit_period
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
@@ -363,6 +412,7 @@ contains
             else
                logs(k) = log(d / d0)
             end if
+            if (present(monitor)) call monitor%update(real(2 * k, dp))
          end do
          lambda = sum(logs(1:n)) / (real(n, dp) * period)
          sigma = block_standard_error(logs(1:n), period, q)

@@ -16,8 +16,10 @@
 !> Derivatives of phi in x and lambda and of P in lambda are forward differences (steps 1e-6
 !> of each component's scale); P_x is the monodromy.
 !>
-!> A curve starts at every located bifurcation of a kind listed in &continuation curves (not
-!> at one already on a curve of its kind and period), is followed both ways from it, and
+!> A curve starts at every located bifurcation of a kind listed in &continuation curves where
+!> the orbit is stable on one side (a period doubling or fold where it loses stability, a
+!> grazing of a stable orbit: the boundaries of what a sweep observes), not at one already on
+!> a curve of its kind and period; it is followed both ways from it, and
 !> ends outside [parameter_min, parameter_max] x [parameter2_min, parameter2_max], after
 !> curve_max_points, or when a step below 1e-6 fails.
 module gapbeam_bifurcation_curves
@@ -70,6 +72,7 @@ contains
       if (.not. allocated(curves)) allocate(curves(0))
       do i = 1, size(bifs)
          if (.not. any(pb%cfg%curves == bifs(i)%kind)) cycle
+         if (.not. bifs(i)%primary) cycle
          if (on_a_curve(pb, curves, bifs(i))) cycle
          call follow_curve(pb, bifs(i), cv)
          allocate(tmp(size(curves) + 1))
@@ -128,6 +131,7 @@ contains
       cs%c = cs%c / norm2(cs%c);  cs%b = cs%b / norm2(cs%b)
       cs%t_graze = bf%t_graze;  cs%c_graze = bf%c_graze
       z0 = [bf%y(1:n), bf%parameter, pb%lam2]
+      pb%e_ref = max(energy_size(pb%lp0, z0(1:n)), tiny(1.0_dp))
       ! the tangent at the start, towards increasing lambda_2
       bt = [spread(0.0_dp, 1, n + 1), pb%scale(2)]
       call curve_tangent(pb, cs, z0, bt / sqrt(wdot(pb, bt, bt)), t0, err)
@@ -160,8 +164,8 @@ contains
       type(curve_state_t) :: cs
       real(dp), allocatable :: za(:), ta(:), z(:), t(:), tmp(:, :), jx(:, :)
       type(error_t), allocatable :: err
-      real(dp) :: ds, ds_max
-      integer :: its, n
+      real(dp) :: ds, ds_max, e_start
+      integer :: its, n, k, n_fail
       n = pb%n
       cs = cs0
       ds_max = pb%cfg%curve_step
@@ -169,8 +173,12 @@ contains
       ds = 0.25_dp * ds_max
       allocate(zs(n + 2, 32))
       nz = 1;  zs(:, 1) = z0
-      za = z0;  ta = t0
+      za = z0
+      e_start = max(energy_size(pb%lp0, z0(1:n)), tiny(1.0_dp))
+      pb%e_ref = e_start
+      ta = t0 / sqrt(wdot(pb, t0, t0))
       ended = 'curve_max_points reached'
+      n_fail = 0
       do while (nz < pb%cfg%curve_max_points)
          call curve_correct(pb, cs, za, ta, ds, z, jx, its, err)
          if (.not. allocated(err)) call tangent_from(pb, jx, ta, t, err)
@@ -180,6 +188,13 @@ contains
          end if
          if (allocated(err)) then
             ds = 0.5_dp * ds
+            n_fail = n_fail + 1
+            if (n_fail > 5) then
+               ended = 'crawling at (' // str(za(n + 1)) // ', ' // str(za(n + 2)) // '): more ' &
+                  // 'than 5 failed steps in 20 points (the test function is not smooth here: ' &
+                  // 'a grazing nearby?); last: ' // err%message
+               exit
+            end if
             if (ds < 1.0e-6_dp) then
                ended = 'step below 1e-6 at (' // str(za(n + 1)) // ', ' // str(za(n + 2)) &
                   // '): ' // err%message
@@ -195,18 +210,40 @@ contains
          end if
          nz = nz + 1
          zs(:, nz) = z
+         if (mod(nz, 20) == 0) n_fail = 0
+         if (nz > 6) then
+            if (minval([(sqrt(max(0.0_dp, wdot(pb, zs(:, k) - z, zs(:, k) - z))), &
+                         k = 1, nz - 5)]) < 0.5_dp * ds) then
+               ended = 'closed: the curve is back at an earlier point'
+               exit
+            end if
+         end if
+         ! stalled: 40 points that move less than 1e-3 of the plane (a non-smooth point of
+         ! the test function, e.g. where the orbit grazes)
+         if (nz > 40) then
+            if (maxval(abs((zs(n + 1:n + 2, nz) - zs(n + 1:n + 2, nz - 40)) / pb%scale)) &
+                < 1.0e-3_dp) then
+               ended = 'stalled at (' // str(z(n + 1)) // ', ' // str(z(n + 2)) // '): 40 ' &
+                  // 'points within 1e-3 of the ranges (a non-smooth point, e.g. grazing?)'
+               exit
+            end if
+         end if
          if (z(n + 1) < pb%cfg%parameter_min .or. z(n + 1) > pb%cfg%parameter_max .or. &
              z(n + 2) < pb%cfg%parameter2_min .or. z(n + 2) > pb%cfg%parameter2_max) then
             ended = 'left the range at (' // str(z(n + 1)) // ', ' // str(z(n + 2)) // ')'
             exit
          end if
-         if (its <= 2) then
+         if (its <= 4) then              ! quasi-Newton iterations
             ds = min(1.5_dp * ds, ds_max)
-         else if (its >= 4) then
+         else if (its <= 7) then
+            ds = min(1.2_dp * ds, ds_max)
+         else if (its >= 10) then
             ds = 0.7_dp * ds
          end if
          call update_state(pb, cs, z)
-         za = z;  ta = t
+         ! the metric follows the size of the orbit (see gapbeam_continuation_problem)
+         pb%e_ref = max(energy_size(pb%lp0, z(1:n)), 1.0e-2_dp * e_start)
+         za = z;  ta = t / sqrt(wdot(pb, t, t))
       end do
    end subroutine follow_one
 
@@ -313,7 +350,8 @@ contains
       type(problem_t), intent(inout) :: pb                !! problem
       type(curve_state_t), intent(in) :: cs               !! curve state
       real(dp), intent(in) :: z(:)                        !! point
-      real(dp), allocatable, intent(inout) :: jx(:, :)    !! Jacobian (kept if residual_only)
+      real(dp), allocatable, intent(inout) :: jx(:, :)    !! Jacobian (residual_only: only
+                                                          !! its orbit block P_x - I anew)
       real(dp), allocatable, intent(out) :: r(:)          !! residual (P(x) - x, phi)
       type(error_t), allocatable, intent(out) :: err      !! failure
       logical, intent(in), optional :: residual_only      !! only r
@@ -325,7 +363,15 @@ contains
       call curve_phi(pb, cs, z, phi, err, px, jac);  if (allocated(err)) return
       r = [px - z(1:n), phi]
       if (present(residual_only)) then
-         if (residual_only) return
+         if (residual_only) then
+            if (allocated(jx)) then
+               jx(1:n, 1:n) = jac
+               do j = 1, n
+                  jx(j, j) = jx(j, j) - 1.0_dp
+               end do
+            end if
+            return
+         end if
       end if
       if (allocated(jx)) deallocate(jx)
       allocate(jx(n + 1, n + 2))
@@ -365,24 +411,34 @@ contains
       real(dp), allocatable, intent(out) :: jx(:, :)    !! Jacobian of the last iteration
       integer, intent(out) :: its                       !! iterations
       type(error_t), allocatable, intent(out) :: err    !! no convergence
-      real(dp), allocatable :: r(:), a(:, :), b(:), wt(:)
+      real(dp), allocatable :: r(:), a(:, :), b(:), wt(:), r_prev(:), jstep(:, :), u(:)
       real(dp) :: sz, con
       integer :: n, info
       n = pb%n
       z = za + sigma * t
       wt = wvec(pb, t)
       allocate(a(n + 2, n + 2), b(n + 2))
-      do its = 0, pb%cfg%max_iterations
-         call extended_jacobian(pb, cs, z, jx, r, err, residual_only=.true.)
+      do its = 0, 2 * pb%cfg%max_iterations
+         ! the whole extended Jacobian at the predictor; then its orbit block (the monodromy)
+         ! anew at every iterate and the rest (the test function's row, the columns of the
+         ! variables) by Broyden's rank-one update
+         call extended_jacobian(pb, cs, z, jx, r, err, residual_only=its > 0)
          if (allocated(err)) return
+         if (its > 0) then
+            u = (r - r_prev - matmul(jstep, b)) / dot_product(b, b)
+            jx(n + 1, :) = jstep(n + 1, :) + u(n + 1) * b
+            jx(1:n, n + 1:n + 2) = jstep(1:n, n + 1:n + 2) + &
+               matmul(reshape(u(1:n), [n, 1]), reshape(b(n + 1:n + 2), [1, 2]))
+         end if
+         r_prev = r
          sz = max(energy_size(pb%lp0, z(1:n)), 1.0e-3_dp * pb%e_ref)
          con = dot_product(wt, z - za) - sigma
          if (energy_size(pb%lp0, r(1:n)) <= pb%cfg%tolerance * sz .and. &
              abs(r(n + 1)) <= tiny_phi(cs, pb) .and. its > 0) return
-         if (its == pb%cfg%max_iterations) exit
-         call extended_jacobian(pb, cs, z, jx, r, err);  if (allocated(err)) return
+         if (its == 2 * pb%cfg%max_iterations) exit
          a(1:n + 1, :) = jx
          a(n + 2, :) = wt
+         jstep = jx
          b = [-r, -con]
          call solve_linear(a, b, info)
          if (info /= 0) then
@@ -396,7 +452,7 @@ contains
          z = z + b
       end do
       call fatal_error(err, 'curve corrector: no convergence in ' &
-         // str(pb%cfg%max_iterations) // ' iterations')
+         // str(2 * pb%cfg%max_iterations) // ' chord iterations')
    end subroutine curve_correct
 
    !> Size below which phi counts as zero: 1e-9 (bordered g, dimensionless) or 1e-9 of the

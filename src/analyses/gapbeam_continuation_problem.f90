@@ -8,10 +8,11 @@
 !> G(y) = P^p(x; lambda) - x = 0, with P the one-period map.
 !>
 !> **Norm.** <a, b>_W = (a_u' K_r b_u + a_v' M_r b_v) / (2 E_ref)^2 + a_lambda b_lambda / S^2,
-!> with K_r, M_r of the starting model, E_ref the energy norm of the starting orbit and S the
-!> parameter scale (the width of the continuation range): a step of 1 moves the orbit by twice
-!> its own size or the parameter across its range. Steps, tangents and the arclength are
-!> measured in this norm.
+!> with K_r, M_r of the starting model, E_ref the energy norm of the last orbit of the branch
+!> (updated at every point, at least 1/100 of the start orbit's) and S the parameter scale
+!> (the width of the continuation range): a step of 1 moves the orbit by twice its own size
+!> or the parameter across its range. Steps, tangents and the arclength are measured in this
+!> norm.
 !>
 !> **Corrector.** From a point y_a with unit tangent t, the point at arclength sigma solves
 !> G(y) = 0 and <t, y - y_a>_W = sigma by Newton's method from y_a + sigma t, with the

@@ -240,22 +240,34 @@ contains
 
    !> Run work items `items` in parallel (OpenMP, dynamic schedule, one item per thread at a
    !> time); slots(s) is written only by the thread that runs slot s. No I/O in here.
-   subroutine run_items(deck, base, plan, items, u0, v0, slots)
+   !> Along a line every slot is handed the final state of the one before; with `first`,
+   !> `last` only positions first..last of each item's slots are run, the slot before `first`
+   !> having been run already (its final state is in `slots`), so a line run in several calls
+   !> gives the same results as in one.
+   subroutine run_items(deck, base, plan, items, u0, v0, slots, first, last)
       type(deck_t), intent(in) :: deck                   !! deck
       type(model_t), intent(in) :: base                  !! model of the deck itself
       type(sweep_plan_t), intent(in) :: plan             !! plan
       integer, intent(in) :: items(:)                    !! work items to run
       real(dp), intent(in) :: u0(:), v0(:)               !! the deck's initial state
       type(point_result_t), intent(inout) :: slots(:)    !! indexed by slot
-      integer :: i, j
+      integer, intent(in), optional :: first, last       !! positions along each item to run
+      integer :: i, j, j1, j2
       integer, allocatable :: ss(:)
       real(dp), allocatable :: u(:), v(:)
+      j1 = 1;  j2 = huge(1)
+      if (present(first)) j1 = max(1, first)
+      if (present(last)) j2 = last
       !$omp parallel do default(none) schedule(dynamic, 1) &
-      !$omp shared(deck, base, plan, items, u0, v0, slots) private(i, j, ss, u, v)
+      !$omp shared(deck, base, plan, items, u0, v0, slots, j1, j2) private(i, j, ss, u, v)
       do i = 1, size(items)
          ss = item_slots(plan, items(i))
-         u = u0;  v = v0
-         do j = 1, size(ss)
+         if (j1 > 1 .and. j1 <= size(ss)) then
+            u = slots(ss(j1 - 1))%u_end;  v = slots(ss(j1 - 1))%v_end
+         else
+            u = u0;  v = v0
+         end if
+         do j = j1, min(j2, size(ss))
             call run_slot(deck, base, plan, ss(j), u0, v0, u, v, slots(ss(j)))
             u = slots(ss(j))%u_end;  v = slots(ss(j))%v_end
          end do

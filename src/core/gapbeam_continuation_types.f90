@@ -39,6 +39,8 @@ module gapbeam_continuation_types
       real(dp) :: locate_tolerance = 0.0_dp     !! bifurcations located to this (0: range*1e-7)
       logical :: switch_period_doubling = .true. !! follow the doubled branch at each PD
       integer :: max_period = 16                !! longest period followed (cascade)
+      integer :: unstable_points = 0            !! a doubled branch stops after this many
+                                                !! unstable points in a row (0: never)
       integer :: grazing_samples = 256          !! samples of d' per forcing period
       character(len=64) :: parameter2 = ''      !! second variable of the curves ('' : none)
       real(dp) :: parameter2_min = 0.0_dp       !! curves stop outside [min, max]
@@ -54,7 +56,7 @@ module gapbeam_continuation_types
       integer :: period = 1                          !! forcing periods of the orbit
       integer :: parent = 0                          !! branch it was switched from (0: start)
       integer :: first = 0, last = -1                !! its points in the result arrays
-      character(len=:), allocatable :: ended         !! why it stopped
+      character(len=256) :: ended = ''                !! why it stopped
    end type branch_t
 
    !> A two-parameter curve of bifurcation points.
@@ -63,7 +65,7 @@ module gapbeam_continuation_types
       integer :: period = 1                          !! period of the orbits on it
       real(dp), allocatable :: parameter(:)          !! first variable [its unit]
       real(dp), allocatable :: parameter2(:)         !! second variable [its unit]
-      character(len=:), allocatable :: ended         !! why it stopped (each end)
+      character(len=256) :: ended = ''                !! why it stopped (each end)
    end type curve_t
 
    !> Everything a continuation produces.

@@ -90,6 +90,8 @@ module gapbeam_settings
       real(dp) :: filter_cutoff_hz = 0.0_dp     !! low-pass before Poincare sampling (0: off) [Hz]
       integer  :: filter_order = 4              !! Butterworth order of that filter [-]
       integer  :: filter_samples_per_period = 256  !! filter sampling rate / forcing frequency [-]
+      logical  :: state_history = .false.       !! keep every dof at the history samples
+      integer  :: shape_points = 8              !! points per element of the deflected shape [-]
    end type output_settings_t
 
    !> Initial state relative to the base: at rest, or given values at listed dofs.
@@ -187,10 +189,13 @@ module gapbeam_settings
       integer :: n_omega_dt = 101                   !! points of the chart [-]
    end type study_settings_t
 
-   !> Batch options from the command line (not the deck): a job array's shard and a time limit.
+   !> Options from the command line (not the deck): a job array's shard, a time limit, and
+   !> the progress lines.
    type :: batch_options_t
       integer :: shard_index = 1                     !! this process's shard (--shard I/N)
       integer :: shard_count = 1                     !! number of shards
       real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none
+      logical :: quiet = .false.                     !! no progress lines (--quiet)
+      real(dp) :: progress_interval_s = 0.0_dp       !! between progress lines [s], 0: default
    end type batch_options_t
 end module gapbeam_settings

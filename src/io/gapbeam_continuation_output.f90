@@ -23,10 +23,11 @@
 !>                                      point, multiplier_real, multiplier_imag, grazing, note
 !>   /continuation/curves/kind, period, ended (per curve); curve_NNN/parameter, parameter2
 !>   /continuation/seconds, map_evaluations, periods_integrated
-!> Text: PREFIX.branches.dat (one block per branch and section point: parameter, strain,
-!> strain rate, tip, stable (1 stable, 0 unstable, 0.5 a located bifurcation), branch,
-!> period), PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per
-!> curve). Their first comment lines name the overlay sweep for scripts/plot.sh.
+!> Text: PREFIX.branches.dat (blocks per branch and section point, a new block wherever the
+!> stability changes, a located bifurcation point ending one block and starting the next:
+!> parameter, strain, strain rate, tip, stable (1 stable, 0 unstable), branch, period),
+!> PREFIX.bifurcations.dat, PREFIX.multipliers.dat, PREFIX.curves.dat (one block per curve).
+!> Their first comment lines name the overlay sweep for scripts/plot.sh.
 module gapbeam_continuation_output
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
@@ -196,23 +197,40 @@ contains
       character(len=:), allocatable :: t, head
       integer :: nt
       integer :: b, j, k, m
-      real(dp) :: s
+      real(dp) :: s, last
       head = '# ' // title // new_line('a') // '# overlay: ' // trim(overlay) // new_line('a') &
          // '# parameter: ' // res%parameter_name // ' [' // res%parameter_units // ']' &
+         // new_line('a')
+      if (len(res%parameter2_name) > 0) head = head // '# branches at: ' &
+         // res%parameter2_name // ' = ' // trim(adjustl(real_text(res%parameter2_value))) &
          // new_line('a')
       ! branches: one block per (branch, section point)
       nt = 0
       call append(t, nt, head)
       call append(t, nt, '# columns: parameter [' // res%parameter_units // '], strain [-], ' &
-         // 'strain_rate [1/s], tip [m], stable [1 stable, 0 unstable, 0.5 bifurcation], ' &
+         // 'strain_rate [1/s], tip [m], stable [1 stable, 0 unstable], ' &
          // 'branch [-], period [forcing periods]' // new_line('a'))
       do b = 1, size(res%branches)
          do k = 1, res%branches(b)%period
+            ! a new block wherever the stability changes: a located point ends the block
+            ! before it (with that block's flag) and starts the next (with the next's), so that
+            ! gnuplot draws each block in one style
+            last = -1.0_dp
             do j = res%branches(b)%first, res%branches(b)%last
                s = merge(1.0_dp, 0.0_dp, res%stable(j))
-               if (res%located(j)) s = 0.5_dp
+               if (res%located(j) .and. j < res%branches(b)%last) &
+                  s = merge(1.0_dp, 0.0_dp, res%stable(j + 1))
+               if (res%located(j) .and. last >= 0.0_dp) then
+                  call append(t, nt, row([res%parameter(j), res%p_strain(k, j), &
+                     res%p_rate(k, j), res%p_tip(k, j), last, real(b, dp), &
+                     real(res%period(j), dp)]))
+                  call append(t, nt, new_line('a'))
+               else if (last >= 0.0_dp .and. s /= last) then
+                  call append(t, nt, new_line('a'))
+               end if
                call append(t, nt, row([res%parameter(j), res%p_strain(k, j), res%p_rate(k, j), &
                   res%p_tip(k, j), s, real(b, dp), real(res%period(j), dp)]))
+               last = s
             end do
             call append(t, nt, new_line('a') // new_line('a'))
          end do
@@ -227,8 +245,8 @@ contains
          // 'other]' // new_line('a'))
       do j = 1, res%n_bif
          m = res%bif_point(j)
-         call append(t, nt, trim(res%bif_kind(j)) // row([res%bif_parameter(j), res%p_strain(1, m), &
-            real(res%bif_period(j), dp), real(res%bif_branch(j), dp), &
+         call append(t, nt, trim(res%bif_kind(j)) // row([res%bif_parameter(j), &
+            res%p_strain(1, m), real(res%bif_period(j), dp), real(res%bif_branch(j), dp), &
             real(res%bif_multiplier(j), dp), aimag(res%bif_multiplier(j)), res%bif_grazing(j), &
             real(curve_kind_code(res%bif_kind(j)), dp)]))
       end do
@@ -236,8 +254,8 @@ contains
       ! multipliers
       nt = 0
       call append(t, nt, head)
-      call append(t, nt, '# columns: parameter [' // res%parameter_units // '], real [-], imag [-], ' &
-         // 'modulus [-], branch [-], period [forcing periods]' // new_line('a'))
+      call append(t, nt, '# columns: parameter [' // res%parameter_units // '], real [-], ' &
+         // 'imag [-], modulus [-], branch [-], period [forcing periods]' // new_line('a'))
       do j = 1, res%n
          do k = 1, res%n_state
             call append(t, nt, row([res%parameter(j), real(res%multipliers(k, j), dp), &
@@ -279,6 +297,12 @@ contains
       t(nt + 1:nt + len(x)) = x
       nt = nt + len(x)
    end subroutine append
+
+   pure function real_text(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=26) :: s
+      write(s, '(es26.16e3)') x
+   end function real_text
 
    !> One table row.
    pure function row(v) result(s)

@@ -148,6 +148,7 @@ contains
                         deck%structure%springs, err);  if (failed(err, path)) return
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
       if (failed(err, path)) return
+      call check_root_spring(deck%structure, err);  if (failed(err, path)) return
       call read_modes(srcs, deck%n_print_modes, err);  if (failed(err, path)) return
       call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
       call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
@@ -215,6 +216,26 @@ contains
             // str(deck%output%samples_per_period) // ' = ' // str_int64(samples) &
             // ' history samples: at most ' // str_int64(max_values))
          return
+      end if
+      if (deck%output%state_history .and. deck%job%analysis == 'transient') then
+         if (deck%reduction%kind /= 'none') then
+            call fatal_error(err, "group &output: state_history = .true.: needs the finite " &
+               // "element model, not a modal one (&reduction kind = '" &
+               // trim(deck%reduction%kind) // "'; allowed: 'none')")
+            return
+         end if
+         ! every dof at every history sample, and the deflected shape at its points
+         per_point = 2_int64 * (deck%structure%beam%n_elem + 1) &
+                     + int(deck%structure%beam%n_elem, int64) * deck%output%shape_points + 1
+         if (samples * per_point > max_values) then
+            call fatal_error(err, 'group &output: state_history = .true.: ' &
+               // str_int64(samples) // ' history samples x ' // str_int64(per_point) &
+               // ' values each (2 dofs per node and the shape at n_elem x shape_points + 1 ' &
+               // 'points) = ' // str_int64(samples * per_point) // ': at most ' &
+               // str_int64(max_values) // '; keep fewer history_periods, samples_per_period ' &
+               // 'or shape_points')
+            return
+         end if
       end if
       if (deck%job%analysis /= 'sweep') return
       ! per run (point and start): Poincare strain and rate, the running Lyapunov estimate (at
@@ -401,6 +422,27 @@ contains
          return
       end do
    end subroutine apply_group
+
+   !> A root spring negligible against the beam (kappa = k_theta L / EI below 1e-12) with no
+   !> &springs: to double precision the root is a pin and the beam a mechanism, whose stiffness
+   !> matrix is singular (the eigen-solve would fail far from the deck variables).
+   subroutine check_root_spring(st, err)
+      type(structure_t), intent(in) :: st                !! beam, root, springs
+      type(error_t), allocatable, intent(out) :: err     !! the spring is negligible
+      real(dp) :: kappa, ei_l
+      if (st%root%condition /= 'spring') return
+      if (allocated(st%springs)) then
+         if (size(st%springs) > 0) return
+      end if
+      kappa = st%root%k_theta * st%beam%length / beam_ei(st%beam)
+      ei_l = beam_ei(st%beam) / st%beam%length
+      if (kappa < 1.0e-12_dp) call fatal_error(err, 'group &root: k_theta = ' &
+         // str(st%root%k_theta) // ' N m/rad against the beam (&beam youngs_modulus, width, ' &
+         // 'thickness or second_moment, length: EI/L = ' // str(ei_l) // ' N m): kappa = ' &
+         // 'k_theta L / EI = ' // str(kappa) // ' is below ' &
+         // '1e-12; to double precision the root is a pin and the beam, with no &springs, a ' &
+         // 'mechanism (its stiffness matrix is singular)')
+   end subroutine check_root_spring
 
    !> The list variables of group `name` assigned whole ('node = 2, 3', not 'node(2) = 3') in
    !> the sources after source `s`, as ' a b ' (blank separated, blanks around), or ''.
@@ -790,6 +832,13 @@ contains
       if (allocated(err)) return
       call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
+      ! the beam's scale rule (check_beam_scales): a larger spring overflows the stiffness's
+      ! norms and eigen-solves later, far from the deck variable
+      if (condition == 'spring' .and. .not. allocated(err)) then
+         if (k_theta > sqrt(huge(1.0_dp))) call fatal_error(err, 'group &root: k_theta = ' &
+            // str(k_theta) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+            // ' (its square must not overflow)')
+      end if
       if (allocated(err)) return
       cfg = root_t(condition=condition, k_theta=k_theta)
    contains
@@ -981,6 +1030,8 @@ contains
             end if
          else
             call require_positive('stops', 'stiffness' // ix, stiffness(i), err)
+            if (allocated(err)) err%message = err%message // ' (or rule_factor' // ix &
+               // ' > 0: the stiffness from the rule)'
          end if
          if (law_code(law(i)) == 2) then
             call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
@@ -1025,6 +1076,15 @@ contains
       case ('rayleigh')
          call require_nonnegative('damping', 'mass_coefficient', mass_coefficient, err)
          call require_nonnegative('damping', 'stiffness_coefficient', stiffness_coefficient, err)
+         ! the beam's scale rule (check_beam_scales): beta M and gamma K must not overflow
+         ! (beta = 1e308 made every damping term infinite and the run never end)
+         if (.not. allocated(err) .and. mass_coefficient > sqrt(huge(1.0_dp))) &
+            call fatal_error(err, 'group &damping: mass_coefficient = ' // str(mass_coefficient) &
+               // ': must be at most ' // str(sqrt(huge(1.0_dp))) // ' (1/s)')
+         if (.not. allocated(err) .and. stiffness_coefficient > sqrt(huge(1.0_dp))) &
+            call fatal_error(err, 'group &damping: stiffness_coefficient = ' &
+               // str(stiffness_coefficient) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+               // ' (s)')
       case ('ratios')
          call require_positive('damping', 'frequency1_hz', frequency1_hz, err)
          call require_positive('damping', 'frequency2_hz', frequency2_hz, err)
@@ -1243,16 +1303,19 @@ contains
       type(output_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: poincare_phase_deg, filter_cutoff_hz
-      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period
-      logical :: write_text
+      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period, &
+         shape_points
+      logical :: write_text, state_history
       namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
-         filter_cutoff_hz, filter_order, filter_samples_per_period
+         filter_cutoff_hz, filter_order, filter_samples_per_period, state_history, shape_points
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
       filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
       filter_samples_per_period = cfg%filter_samples_per_period
+      state_history = cfg%state_history;  shape_points = cfg%shape_points
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
-         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period', reader, err)
+         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period state_history ' &
+         // 'shape_points', reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
@@ -1265,6 +1328,7 @@ contains
       call require_int('output', 'filter_order', filter_order, 1, 12, err)
       call require_int('output', 'filter_samples_per_period', filter_samples_per_period, 16, &
          1000000, err)
+      call require_int('output', 'shape_points', shape_points, 1, 1000, err)
       if (allocated(err)) return
       if (filter_cutoff_hz > 0.0_dp .and. mod(filter_samples_per_period, samples_per_period) &
           /= 0) then
@@ -1276,7 +1340,8 @@ contains
       cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
          samples_per_period=samples_per_period, history_periods=history_periods, &
          write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
-         filter_samples_per_period=filter_samples_per_period)
+         filter_samples_per_period=filter_samples_per_period, state_history=state_history, &
+         shape_points=shape_points)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

@@ -25,13 +25,13 @@ contains
       real(dp) :: parameter_min, parameter_max, step, step_min, step_max, tolerance, fd_step, &
          locate_tolerance, parameter2_min, parameter2_max, curve_step
       integer :: period, transient_periods, max_points, max_iterations, max_period, &
-         grazing_samples, curve_max_points, k
+         grazing_samples, curve_max_points, k, unstable_points
       logical :: switch_period_doubling
       namelist /continuation/ parameter, parameter_min, parameter_max, direction, start, &
          period, transient_periods, step, step_min, step_max, max_points, tolerance, &
          max_iterations, jacobian, fd_step, locate_tolerance, switch_period_doubling, &
          max_period, grazing_samples, parameter2, parameter2_min, parameter2_max, curves, &
-         curve_max_points, curve_step, overlay
+         curve_max_points, curve_step, overlay, unstable_points
       if (.not. present_group) then
          if (deck%job%analysis == 'continuation') call fatal_error(err, 'group &continuation ' &
             // "is missing: analysis='continuation' needs at least parameter, parameter_min " &
@@ -46,6 +46,7 @@ contains
       max_iterations = c%max_iterations;  jacobian = c%jacobian;  fd_step = c%fd_step
       locate_tolerance = c%locate_tolerance;  switch_period_doubling = c%switch_period_doubling
       max_period = c%max_period;  grazing_samples = c%grazing_samples
+      unstable_points = c%unstable_points
       parameter2 = c%parameter2;  parameter2_min = c%parameter2_min
       parameter2_max = c%parameter2_max;  curves = c%curves
       curve_max_points = c%curve_max_points;  curve_step = c%curve_step;  overlay = c%overlay
@@ -53,7 +54,8 @@ contains
          // 'direction start period transient_periods step step_min step_max max_points ' &
          // 'tolerance max_iterations jacobian fd_step locate_tolerance ' &
          // 'switch_period_doubling max_period grazing_samples parameter2 parameter2_min ' &
-         // 'parameter2_max curves curve_max_points curve_step overlay', reader, err)
+         // 'parameter2_max curves curve_max_points curve_step overlay unstable_points', &
+         reader, err)
       if (allocated(err)) return
       call check_variable(deck, 'parameter', parameter, parameter_min, parameter_max, &
                           'parameter_min', 'parameter_max', err)
@@ -76,6 +78,8 @@ contains
       call require_range('continuation', 'fd_step', fd_step, 1.0e-12_dp, 1.0e-2_dp, err)
       call require_nonnegative('continuation', 'locate_tolerance', locate_tolerance, err)
       call require_int('continuation', 'grazing_samples', grazing_samples, 8, 1000000, err)
+      call require_int('continuation', 'unstable_points', unstable_points, 0, 1000000, err, &
+                       '0: doubled branches are followed however unstable')
       call require_int('continuation', 'curve_max_points', curve_max_points, 2, 1000000, err)
       call require_range('continuation', 'curve_step', curve_step, 0.0_dp, 1.0_dp, err)
       if (allocated(err)) return
@@ -84,10 +88,12 @@ contains
             // ': must be < step_max = ' // str(step_max))
          return
       end if
-      if (jacobian == 'exact' .and. deck%solver%method /= 'exact') then
+      if (jacobian == 'exact' .and. deck%solver%method /= 'exact' .and. &
+          deck%solver%method /= 'auto') then
          call fatal_error(err, "group &continuation: jacobian = 'exact' needs &solver " &
-            // "method = 'exact' (the deck has '" // trim(deck%solver%method) // "'); use " &
-            // "jacobian = 'finite_difference' with other methods")
+            // "method = 'exact' (or 'auto' with piecewise-linear stops; the deck has '" &
+            // trim(deck%solver%method) // "'); use jacobian = 'finite_difference' with " &
+            // 'other methods')
          return
       end if
       if (start == 'given') then
@@ -114,7 +120,9 @@ contains
             // "parameter2 = '" // trim(parameter2) // "' needs curves, e.g. curves = " &
             // "'period_doubling', 'grazing' (allowed: " // curve_kind_words // ')')
       else if (any(len_trim(curves) > 0)) then
-         call fatal_error(err, "group &continuation: curves = '" // trim(curves(1)) &
+         k = findloc(len_trim(curves) > 0, .true., dim=1)
+         call fatal_error(err, "group &continuation: curves(" // str(k) // ") = '" &
+            // trim(curves(k)) &
             // "': two-parameter curves need parameter2 (the second variable, e.g. " &
             // "'&forcing amplitude_pp') with parameter2_min and parameter2_max")
       end if
@@ -127,7 +135,8 @@ contains
          locate_tolerance=locate_tolerance, switch_period_doubling=switch_period_doubling, &
          max_period=max_period, grazing_samples=grazing_samples, parameter2=parameter2, &
          parameter2_min=parameter2_min, parameter2_max=parameter2_max, curves=curves, &
-         curve_max_points=curve_max_points, curve_step=curve_step, overlay=overlay)
+         curve_max_points=curve_max_points, curve_step=curve_step, overlay=overlay, &
+         unstable_points=unstable_points)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

@@ -9,7 +9,9 @@
 !> certificate_text; /sweep/impacts/<stat> (points, stops); /sweep/poincare/strain and
 !> strain_rate (recorded periods, points); /sweep/lyapunov_running (periods, points);
 !> /sweep/starts/kind (starts), /sweep/starts/label, attractor, lyapunov (starts, points);
-!> /sweep/attractors/label, fraction, lyapunov (starts, points; padded past n_attractors).
+!> /sweep/attractors/label, fraction, lyapunov (starts, points; padded past n_attractors);
+!> /parameters (gapbeam_file_info). Shapes above are Fortran's: in C order (h5py) every
+!> per-point array has the point first: (point, stop), (point, period), (point, start).
 module gapbeam_sweep_output
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -19,6 +21,8 @@ module gapbeam_sweep_output
    use gapbeam_files, only: write_table, real_path, file_exists
    use gapbeam_output_set, only: output_set_t
    use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
+   use gapbeam_parameters, only: parameter_set_t
+   use gapbeam_file_info, only: write_file_info, write_parameter_set
    implicit none
    private
    public :: sweep_file_t, write_sweep, read_sweep, merge_sweep
@@ -39,6 +43,9 @@ module gapbeam_sweep_output
       integer :: shard_index = 1                     !! this file's shard
       integer :: shard_count = 1                     !! shards of the sweep
       integer, allocatable :: points(:)              !! point indices in the file (ascending)
+      type(parameter_set_t) :: parameters            !! the run's parameters (/parameters)
+      !> a file whose /parameters are copied instead (a merge: the first shard's)
+      character(len=:), allocatable :: parameters_source
    end type sweep_file_t
 
    !> A list of texts (one text dataset of a file).
@@ -51,13 +58,26 @@ module gapbeam_sweep_output
       'status', 'certificate', 'lyapunov_periods', 'lyapunov_converged', 'period_max_tested', &
       'closest_period', 'transient_periods', 'settle_windows', 'settled', 'accuracy_label', &
       'perturbed_label', 'n_attractors']
-   character(len=*), parameter :: label_units = 'p >= 1: period p; 0: undecided; -1: ' &
+   character(len=*), parameter :: label_codes = 'p >= 1: period p; 0: undecided; -1: ' &
       // 'chaotic; -2: unsettled; -3: failed'
-   character(len=*), parameter :: int_units(14) = [character(len=80) :: 'forcing periods', &
-      label_units, '0: done, 1: failed', '0: none, 1: certified, 2: disputed', &
-      'forcing periods', '1: sigma met its target, 0: stopped at the most periods', &
-      'forcing periods', 'forcing periods', 'forcing periods', '-', &
-      '1: windows agree (or no test), 0: not settled', label_units, label_units, '-']
+   !> their UDUNITS-2 units and long names
+   character(len=*), parameter :: int_units(14) = [character(len=1) :: '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', &
+      '1', '1', '1']
+   character(len=*), parameter :: int_long(14) = [character(len=100) :: &
+      'detected period in forcing periods; 0: none up to period_max', &
+      'label code of the point (' // label_codes // ')', &
+      'status of the point: 0 done, 1 failed (results NaN)', &
+      'certificate: 0 none, 1 certified, 2 disputed', &
+      'forcing periods averaged for the Lyapunov exponent', &
+      'exponent converged: 1 sigma met its target, 0 stopped at the most periods', &
+      'periods 1..this were tried for a period', &
+      'best-repeating candidate period in forcing periods', &
+      'forcing periods before the final record, in all', &
+      'windows of the record compared by the settling test', &
+      'settled: 1 the windows agree (or no test), 0 not settled', &
+      'label code of the accuracy check (-3: the check failed)', &
+      'label code of the perturbed start (-3: the check failed)', &
+      'distinct attractors reached by the starts of the point']
    !> Real fields per point.
    character(len=*), parameter :: real_names(18) = [character(len=24) :: 'lyapunov', &
       'lyapunov_error', 'seconds', 'steps', 'f1_open_hz', 'period_tolerance', &
@@ -65,13 +85,31 @@ module gapbeam_sweep_output
       'seconds_label', 'seconds_certify', 'accuracy_lyapunov', 'accuracy_lyapunov_error', &
       'accuracy_distance', 'perturbed_lyapunov', 'perturbed_lyapunov_error', &
       'perturbed_distance']
-   character(len=*), parameter :: real_units(18) = [character(len=40) :: '1/s', '1/s', &
-      's (CPU)', '-', 'Hz', '- (of the orbit size)', '- (of the orbit size)', &
-      '- (of the orbit size)', '-', '1/s', 's (CPU)', 's (CPU)', '1/s', '1/s', &
-      '- (of the orbit size)', '1/s', '1/s', '- (of the orbit size)']
+   character(len=*), parameter :: real_units(18) = [character(len=3) :: 's-1', 's-1', &
+      's', '1', 'Hz', '1', '1', '1', '1', 's-1', 's', 's', 's-1', 's-1', '1', 's-1', 's-1', '1']
+   character(len=*), parameter :: real_long(18) = [character(len=100) :: &
+      'largest Lyapunov exponent', 'standard error of the largest Lyapunov exponent', &
+      'CPU time of the point (labelled run and certificate)', &
+      'accepted integration steps of the labelled run (Lyapunov periods not counted)', &
+      'first natural frequency of the point''s model, stops open', &
+      'period tolerance used, relative to the orbit size', &
+      'repeat distance of the closest period, relative to the orbit size', &
+      'largest difference of the settling windows, relative to the orbit size', &
+      'range of the root strain over the final record', &
+      'range of the root strain rate over the final record', &
+      'CPU time of the labelled run', 'CPU time of the certificate''s checks', &
+      'Lyapunov exponent of the accuracy check', &
+      'standard error of the Lyapunov exponent of the accuracy check', &
+      'distance of the accuracy check''s orbit to the run''s, relative to the orbit size', &
+      'Lyapunov exponent of the perturbed start', &
+      'standard error of the Lyapunov exponent of the perturbed start', &
+      'distance of the perturbed start''s orbit to the run''s, relative to the orbit size']
    !> Texts per point.
    character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
       'certificate_reason', 'accuracy_method', 'message']
+   character(len=*), parameter :: text_long(4) = [character(len=60) :: &
+      'integration method of the labelled run', 'the certificate and its reason', &
+      'what the accuracy check ran ('''' when none)', 'failure message ('''' when done)']
 
 contains
 
@@ -135,40 +173,42 @@ contains
       y(1:m) = x(1:m)
    end function padded
 
-   !> One impact statistic of every point of the file, (points, stops).
+   !> One impact statistic of every point of the file, Fortran (stops, points): in C order
+   !> (h5py) one row per point.
    function impact_stat(results, points, which, ns) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: which                       !! 1 peak, 2 rms, 3 contact fraction,
                                                          !! 4 impulse per period, 5 work rate
       integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(size(points), ns)
+      real(dp) :: v(ns, size(points))
       integer :: j, p
       do j = 1, size(points)
          p = points(j)
          select case (which)
-         case (1);  v(j, :) = padded(results(p)%peak_force, ns)
-         case (2);  v(j, :) = padded(results(p)%rms_force, ns)
-         case (3);  v(j, :) = padded(results(p)%contact_fraction, ns)
-         case (4);  v(j, :) = padded(results(p)%impulse_per_period, ns)
-         case default;  v(j, :) = padded(results(p)%work_rate, ns)
+         case (1);  v(:, j) = padded(results(p)%peak_force, ns)
+         case (2);  v(:, j) = padded(results(p)%rms_force, ns)
+         case (3);  v(:, j) = padded(results(p)%contact_fraction, ns)
+         case (4);  v(:, j) = padded(results(p)%impulse_per_period, ns)
+         case default;  v(:, j) = padded(results(p)%work_rate, ns)
          end select
       end do
    end function impact_stat
 
-   !> Impact counts of every point of the file, (points, stops); 0 where a point has none.
+   !> Impact counts of every point of the file, Fortran (stops, points); 0 where a point has
+   !> none.
    function impact_counts(results, points, ns) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(size(points), ns)
+      real(dp) :: v(ns, size(points))
       integer :: j, p, m
       v = 0.0_dp
       do j = 1, size(points)
          p = points(j)
          if (.not. allocated(results(p)%n_impacts)) cycle
          m = min(ns, size(results(p)%n_impacts))
-         v(j, 1:m) = real(results(p)%n_impacts(1:m), dp)
+         v(1:m, j) = real(results(p)%n_impacts(1:m), dp)
       end do
    end function impact_counts
 
@@ -375,8 +415,14 @@ contains
       character(len=16), allocatable :: labels(:), certs(:)
       character(len=*), parameter :: stat_names(5) = [character(len=18) :: 'peak_force', &
          'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
-      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '-', &
+      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '1', &
          'N s', 'W']
+      character(len=*), parameter :: stat_long(5) = [character(len=60) :: &
+         'largest force of each stop in the record', &
+         'root mean square force of each stop over the record', &
+         'fraction of the record each stop is in contact', &
+         'impulse of each stop per forcing period', &
+         'mean rate of contact work of each stop']
 
       m = size(sf%points)
       call point_sizes(results, sf%points, ns, nr, nl)
@@ -387,86 +433,126 @@ contains
          labels(j) = label_text(results(p)%label)
          certs(j) = certificate_text(results(p)%certificate)
       end do
-      call h5%write_text('/deck', sf%deck_text, err);  if (write_failed(h5, err)) return
+      call write_file_info(h5, 'sweep', sf%deck_text, err);  if (write_failed(h5, err)) return
+      call h5%write_text('/deck', sf%deck_text, err, 'the effective deck text: deck file ' &
+         // 'and command-line overrides');  if (write_failed(h5, err)) return
       call set%record(h5, err);  if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/title', sf%title, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err)
+      if (allocated(sf%parameters_source)) then
+         call h5%copy_from(sf%parameters_source, '/parameters', err)
+      else
+         call write_parameter_set(h5, sf%parameters, err)
+      end if
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err)
+      call h5%write_text('/sweep/title', sf%title, err, '&job title')
       if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/x_variable', sf%x_variable, err)
+      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
+                    'forcing frequency axis of the sweep grid (or the one &forcing value)')
       if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/y_variable', sf%y_variable, err)
+      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
+                    'base displacement amplitude axis, peak to peak (or the one &forcing value)')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_x', sf%grid_x, sf%x_units, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_y', sf%grid_y, sf%y_units, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_index', sf%shard_index, '-', err)
+      call h5%write_text('/sweep/x_variable', sf%x_variable, err, 'deck variable of the x axis')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_count', sf%shard_count, '-', err)
+      call h5%write_text('/sweep/y_variable', sf%y_variable, err, 'deck variable of the y axis')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y), '-', err)
+      call h5%write('/sweep/grid_x', sf%grid_x, unit_string(sf%x_units), err, &
+                    'x axis values (' // sf%x_variable // ')')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/point_index', sf%points, '-', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/x', x, sf%x_units, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/y', y, sf%y_units, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/frequency_hz', f, 'Hz', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/amplitude_pp', a, 'm', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/grid_y', sf%grid_y, unit_string(sf%y_units), err, &
+                    'y axis values (' // sf%y_variable // ')')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/shard_index', sf%shard_index, '1', err, &
+                    'shard I of this file (1 for a whole or merged sweep)')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/shard_count', sf%shard_count, '1', err, 'number N of shards')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y), '1', err, &
+                    'points of the whole sweep, n_x x n_y')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/point_index', sf%points, '1', err, 'point number p = i_x + ' &
+         // '(i_y - 1) n_x of each point of the file (x fastest)')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/x', x, unit_string(sf%x_units), err, 'x axis value of the point')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/y', y, unit_string(sf%y_units), err, 'y axis value of the point')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/frequency_hz', f, 'Hz', err, 'forcing frequency of the point')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/amplitude_pp', a, 'm', err, 'base displacement amplitude of the ' &
+         // 'point, peak to peak');  if (write_failed(h5, err)) return
       do k = 1, size(int_names)
          call h5%write('/sweep/' // trim(int_names(k)), [(int_field(results(sf%points(j)), k), &
-                       j = 1, m)], trim(int_units(k)), err)
+                       j = 1, m)], trim(int_units(k)), err, trim(int_long(k)))
          if (write_failed(h5, err)) return
       end do
       do k = 1, size(real_names)
          call h5%write('/sweep/' // trim(real_names(k)), [(real_field(results(sf%points(j)), &
-                       k), j = 1, m)], trim(real_units(k)), err)
+                       k), j = 1, m)], trim(real_units(k)), err, trim(real_long(k)))
          if (write_failed(h5, err)) return
       end do
-      call h5%write('/sweep/label_text', labels, '-', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/certificate_text', certs, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/label_text', labels, '1', err, 'label: period_<p>, chaotic, ' &
+         // 'undecided, unsettled or failed');  if (write_failed(h5, err)) return
+      call h5%write('/sweep/certificate_text', certs, '1', err, 'certificate: certified, ' &
+         // 'disputed or none');  if (write_failed(h5, err)) return
       do k = 1, size(text_names)
-         call h5%write('/sweep/' // trim(text_names(k)), texts(results, sf%points, k), '-', err)
+         call h5%write('/sweep/' // trim(text_names(k)), texts(results, sf%points, k), '1', &
+                       err, trim(text_long(k)))
          if (write_failed(h5, err)) return
       end do
-      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '-', err)
+      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '1', err, &
+                    'contact onsets of each stop in the record', 'point stop')
       if (write_failed(h5, err)) return
       do j = 1, size(stat_names)
          call h5%write('/sweep/impacts/' // trim(stat_names(j)), &
-                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err)
+                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err, &
+                       trim(stat_long(j)), 'point stop')
          if (write_failed(h5, err)) return
       end do
       allocate(r2(nr, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
       end do
-      call h5%write('/sweep/poincare/strain', r2, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/poincare/strain', r2, '1', err, 'root strain at the Poincare ' &
+         // 'section, every recorded period of the final record', 'point period')
+      if (write_failed(h5, err)) return
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain_rate, nr)
       end do
-      call h5%write('/sweep/poincare/strain_rate', r2, '1/s', err)
+      call h5%write('/sweep/poincare/strain_rate', r2, 's-1', err, 'root strain rate at the ' &
+         // 'Poincare section, every recorded period of the final record', 'point period')
       if (write_failed(h5, err)) return
       deallocate(r2);  allocate(r2(nl, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%lyapunov_running, nl)
       end do
-      call h5%write('/sweep/lyapunov_running', r2, '1/s', err)
+      call h5%write('/sweep/lyapunov_running', r2, 's-1', err, 'running estimate of the ' &
+         // 'largest Lyapunov exponent after each period (NaN past the point''s own)', &
+         'point period')
       if (write_failed(h5, err)) return
       call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
                         a_label, a_frac, a_lyap)
-      call h5%write('/sweep/starts/kind', sf%start_kind, "'deck', 'rest', 'up', 'down', " &
-                    // "'random'", err)
+      call h5%write('/sweep/starts/kind', sf%start_kind, '1', err, "kind of each start: " &
+                    // "'deck', 'rest', 'up', 'down' or 'random'")
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/label', s_label, label_units, err)
+      call h5%write('/sweep/starts/label', s_label, '1', err, 'label code of every start (' &
+                    // label_codes // ')', 'point start')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/attractor', s_attr, 'attractor number (0: failed)', err)
+      call h5%write('/sweep/starts/attractor', s_attr, '1', err, 'attractor number each ' &
+                    // 'start reached (0: failed)', 'point start')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/lyapunov', s_lyap, '1/s', err)
+      call h5%write('/sweep/starts/lyapunov', s_lyap, 's-1', err, 'largest Lyapunov ' &
+                    // 'exponent of every start', 'point start')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/label', a_label, label_units // ' (0 past n_attractors)', &
-                    err)
+      call h5%write('/sweep/attractors/label', a_label, '1', err, 'label code of each ' &
+                    // 'distinct attractor (0 past n_attractors)', 'point attractor')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/fraction', a_frac, '- (of the starts)', err)
+      call h5%write('/sweep/attractors/fraction', a_frac, '1', err, 'fraction of the ' &
+                    // 'starts that reached each attractor (NaN past n_attractors)', &
+                    'point attractor')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/lyapunov', a_lyap, '1/s', err)
+      call h5%write('/sweep/attractors/lyapunov', a_lyap, 's-1', err, 'largest Lyapunov ' &
+                    // 'exponent of each attractor''s first start (NaN past n_attractors)', &
+                    'point attractor')
       if (write_failed(h5, err)) return
       call h5%close(err)
    end subroutine sweep_h5
@@ -519,9 +605,15 @@ contains
          'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp']
       units = [character(len=24) :: xu, yu, 'periods', 'p|0|-1|-2|-3', '1/s', &
          '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm']
+      ! the grid's extent in the title line, so that a shard's chart places its tiles on the
+      ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
          // ' 0 undecided, -1 chaotic, -2 unsettled, -3 failed; certificate: 1 certified,' &
-         // ' 2 disputed, 0 none)', names, units, cols, err, in_place=.true.)
+         // ' 2 disputed, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
+         // ' from ' // num(minval(sf%grid_x)) // ' to ' // num(maxval(sf%grid_x)) // ' ' &
+         // one_word(xu) // ', ' // str(size(sf%grid_y)) // ' ' // trim(yn) // ' from ' &
+         // num(minval(sf%grid_y)) // ' to ' // num(maxval(sf%grid_y)) // ' ' // one_word(yu), &
+         names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
       deallocate(cols);  allocate(cols(m * nr, 6))
       do j = 1, m
@@ -538,6 +630,14 @@ contains
          [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols, err, &
          in_place=.true.)
    end subroutine sweep_tables
+
+   !> A deck variable's unit as UDUNITS-2 ('-' is '1', a pure number).
+   pure function unit_string(u) result(t)
+      character(len=*), intent(in) :: u                  !! unit ('-', 'm', 'N m/rad', ...)
+      character(len=:), allocatable :: t
+      t = trim(u)
+      if (t == '-' .or. len(t) == 0) t = '1'
+   end function unit_string
 
    !> Column name of an axis: 'frequency' and 'amplitude_pp' for the forcing (as before),
    !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2').
@@ -572,8 +672,15 @@ contains
          a_lyap(:, :), one(:)
       integer, allocatable :: ione(:)
       type(text_list_t) :: tv(size(text_names))
-      character(len=:), allocatable :: kinds(:)
+      character(len=:), allocatable :: kinds(:), axis_order
       call h5%open(path, err);  if (allocated(err)) return
+      call h5%read_attr('/', 'axis_order', axis_order, err)
+      if (allocated(err)) then
+         call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' was written ' &
+            // 'by an older gapbeam (no axis_order attribute; its impact arrays are ' &
+            // 'transposed): merge it with the version that wrote it')
+         goto 9
+      end if
       call h5%read_text('/deck', sf%deck_text, err);  if (allocated(err)) goto 9
       call h5%read_text('/sweep/title', sf%title, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/grid_frequency_hz', sf%grid_frequency_hz, err)
@@ -649,10 +756,10 @@ contains
             call set_text_field(results(p), k, trim(tv(k)%v(j)))
          end do
          results(p)%x = xv(j);  results(p)%y = yv(j)
-         results(p)%n_impacts = nint(cnt(j, :))
-         results(p)%peak_force = pk(j, :);  results(p)%rms_force = rms(j, :)
-         results(p)%contact_fraction = cf(j, :);  results(p)%impulse_per_period = imp(j, :)
-         results(p)%work_rate = wr(j, :);  results(p)%p_strain = ps(:, j)
+         results(p)%n_impacts = nint(cnt(:, j))
+         results(p)%peak_force = pk(:, j);  results(p)%rms_force = rms(:, j)
+         results(p)%contact_fraction = cf(:, j);  results(p)%impulse_per_period = imp(:, j)
+         results(p)%work_rate = wr(:, j);  results(p)%p_strain = ps(:, j)
          results(p)%p_strain_rate = pr(:, j)
          ! the running estimate without the padding past the point's own periods
          results(p)%lyapunov_running = lr(1:min(size(lr, 1), &
@@ -744,6 +851,7 @@ contains
       merged = first
       merged%shard_index = 1;  merged%shard_count = 1
       merged%points = [(p, p = 1, size(results))]
+      merged%parameters_source = trim(paths(1))
       call write_sweep(out_prefix, merged, results, write_text, err)
       if (present(n_failed)) then
          n_failed = 0
@@ -796,6 +904,27 @@ contains
          end if
       end do
    end subroutine check_merge_paths
+
+   !> A unit as one word (blanks as '.', the UDUNITS-2 product): the grid line is read by words.
+   pure function one_word(u) result(t)
+      character(len=*), intent(in) :: u                  !! unit
+      character(len=:), allocatable :: t
+      integer :: k
+      t = trim(adjustl(u))
+      if (len(t) == 0) t = '1'
+      do k = 1, len(t)
+         if (t(k:k) == ' ') t(k:k) = '.'
+      end do
+   end function one_word
+
+   !> A number with 17 significant digits and a decimal point, as every reader takes it.
+   function num(x) result(t)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: t
+      character(len=32) :: buf
+      write(buf, '(es24.16e3)') x
+      t = trim(adjustl(buf))
+   end function num
 
    pure function list_missing(seen) result(t)
       logical, intent(in) :: seen(:)

@@ -41,7 +41,7 @@ contains
                // ' stable), ' // res%parameter_name // ' from ' &
                // str(minval(res%parameter(b%first:b%last))) // ' to ' &
                // str(maxval(res%parameter(b%first:b%last))) // trim(parent_text(b%parent)) &
-               // '; ' // b%ended
+               // '; ' // trim(b%ended)
          end associate
       end do
       do k = 1, res%n_bif
@@ -60,10 +60,10 @@ contains
                // res%parameter_name // ' ' // str(minval(cv%parameter)) // '..' &
                // str(maxval(cv%parameter)) // ', ' // res%parameter2_name // ' ' &
                // str(minval(cv%parameter2)) // '..' // str(maxval(cv%parameter2)) // '; ' &
-               // cv%ended
+               // trim(cv%ended)
          end associate
       end do
-      write(output_unit, '(a)') 'cpu: ' // str(res%seconds) // ' s, ' &
+      write(output_unit, '(a)') 'elapsed: ' // str(res%seconds) // ' s, ' &
          // str(res%map_evaluations) // ' map evaluations, ' // str(res%periods_integrated) &
          // ' forcing periods integrated'
       call write_continuation(trim(deck%job%output), trim(deck%job%title), deck%text, &
