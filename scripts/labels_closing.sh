@@ -35,7 +35,7 @@ summary=${out}/summary.txt
 {
    echo "labels_closing: $(date -u +%Y-%m-%dT%H:%MZ), commit $(git rev-parse --short HEAD)" \
         "$(git diff --quiet && echo clean || echo modified), ${OMP_NUM_THREADS} thread(s)," \
-        "$(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+        "$(nproc --all) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
    echo "executable: ${exe}"
    echo
    echo "== 1. The paper's cases: label, lambda +- sigma (1/s), evidence, certificate"
@@ -141,3 +141,21 @@ print(f"ratio on/off: {(b + c) / a:.2f} (points' CPU), {un / uo:.2f} (process us
       f"checks / labelled run of the same run: {c / b:.2f}")
 EOF
 cat "${summary}"
+
+# 4. the cost of certifying the single runs above (from their result files)
+python3 - "${out}" <<'PYEOF' | tee -a "${summary}"
+import sys, glob, os
+import h5py
+out = sys.argv[1]
+print()
+print("== 4. Cost of certification of the single runs (CPU s: labelled run, checks, ratio)")
+for path in sorted(glob.glob(f"{out}/*el*.h5")):
+    with h5py.File(path, "r") as f:
+        d = f["diagnostics"]
+        sl, sc = float(d["seconds_label"][()]), float(d["seconds_certify"][()])
+        am = d["accuracy_method"][()]
+        am = am.decode() if isinstance(am, bytes) else str(am)
+    name = os.path.basename(path)[:-3]
+    print(f"  {name:18s} label {sl:6.3f} s, checks {sc:6.3f} s, ratio (label + checks) / label "
+          f"{(sl + sc) / sl:4.2f}; accuracy check: {am or 'none (the run was exact)'}")
+PYEOF
