@@ -11,7 +11,9 @@ What it does
 ------------
 1. Reads every deck in inputs/*.nml (sorted) and makes it cheap to run ("cheapening", done on the
    deck text before any mutation, so a mutation can still hit the variables it sets): 2 + 4
-   forcing periods for transient, sweep and model-size runs, a Lyapunov exponent over 2 periods,
+   forcing periods for transient, sweep and model-size runs, a Lyapunov exponent over 2 periods
+   (no adaptive average: lyapunov_max_periods = 2) and at most 6 transient periods (no settling
+   extension: transient_max_periods = 6),
    2 history periods; sweeps: progress lines off (output under the deck's own prefix, in a
    directory the sweep creates), a 3-frequency line given as a list, a 3 x 2 grid;
    work-precision studies of 2 levels over 1 period without rk45 (see cheapen) and stability
@@ -233,6 +235,9 @@ def cheapen(text):
         text = set_value(text, 'solver', 'transient_periods', '2')
         text = set_value(text, 'solver', 'record_periods', '4')
         text = set_value(text, 'diagnostics', 'lyapunov_periods', '2')
+        # the exponent's adaptive average and the settling extensions bounded as tightly
+        text = set_value(text, 'diagnostics', 'lyapunov_max_periods', '2')
+        text = set_value(text, 'diagnostics', 'transient_max_periods', '6')
     if analysis == 'transient':
         text = set_value(text, 'output', 'history_periods', '2')
     if analysis == 'sweep':
