@@ -394,6 +394,18 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
 
     c.run("{}: poincare() of a point not in the file is a ValueError".format(name), missing)
 
+    def cpu_within_wall():
+        # issue 10 item 6: CPU time of the process <= wall time x threads (merges have no /run)
+        if "/run/cpu_seconds" not in data:
+            return (name == "sweep_merged", "no /run/cpu_seconds")
+        cpu = float(data["/run/cpu_seconds"][0])
+        wall = float(data["/run/wall_seconds"][0])
+        threads = int(data["/run/threads"][0])
+        return (0.0 <= cpu <= wall * threads + 1e-3 and threads >= 1,
+                "cpu {} s, wall {} s, {} threads".format(cpu, wall, threads))
+
+    c.run("{}: /run/cpu_seconds <= /run/wall_seconds x /run/threads".format(name), cpu_within_wall)
+
     try:
         import pandas as pd
     except ImportError:

@@ -46,6 +46,9 @@ module gapbeam_sweep_output
       type(parameter_set_t) :: parameters            !! the run's parameters (/parameters)
       !> a file whose /parameters are copied instead (a merge: the first shard's)
       character(len=:), allocatable :: parameters_source
+      real(dp) :: cpu_seconds = -1.0_dp              !! CPU time of the process, all threads [s]
+      real(dp) :: wall_seconds = -1.0_dp             !! elapsed time of the job [s]
+      integer :: threads = 0                         !! OpenMP threads of the run
    end type sweep_file_t
 
    !> A list of texts (one text dataset of a file).
@@ -445,6 +448,16 @@ contains
       if (write_failed(h5, err)) return
       call h5%write_text('/sweep/title', sf%title, err, '&job title')
       if (write_failed(h5, err)) return
+      if (sf%threads > 0) then   ! a run, not a merge (a merge's shards hold their own)
+         call h5%write('/run/cpu_seconds', sf%cpu_seconds, 's', err, 'CPU time of the ' &
+                       // 'process up to the writing of the results, all threads')
+         if (write_failed(h5, err)) return
+         call h5%write('/run/wall_seconds', sf%wall_seconds, 's', err, 'wall time of the ' &
+                       // 'job up to the writing of the results')
+         if (write_failed(h5, err)) return
+         call h5%write('/run/threads', sf%threads, '1', err, 'OpenMP threads of the run')
+         if (write_failed(h5, err)) return
+      end if
       call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
                     'forcing frequency axis of the sweep grid (or the one &forcing value)')
       if (write_failed(h5, err)) return

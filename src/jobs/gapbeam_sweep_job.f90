@@ -27,6 +27,7 @@ module gapbeam_sweep_job
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters
    use gapbeam_kinds, only: pi
+   use gapbeam_clock, only: process_cpu_seconds
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -69,12 +70,13 @@ contains
          n_round, j1
       type(meter_t) :: meter
       integer(int64) :: c0, c1, rate
-      real(dp) :: elapsed
+      real(dp) :: elapsed, cpu0
       character(len=:), allocatable :: prefix, report
 
       complete = .false.
       n_failed = 0
       call system_clock(c0, rate)
+      cpu0 = process_cpu_seconds()
       call build_model(deck, base, u0, v0, err)
       if (allocated(err)) return
       call make_plan(deck, plan, err)
@@ -195,10 +197,16 @@ contains
       sf%points = pts
       sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
                                      base%omega_max / (2.0_dp * pi), base%n)
+      sf%cpu_seconds = process_cpu_seconds() - cpu0   ! inside the wall-time window
+      call system_clock(c1)
+      sf%wall_seconds = real(c1 - c0, dp) / real(rate, dp)
+      sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
       call summary(results(pts), n_failed, plan%ns)
+      write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
+         // str(sf%wall_seconds) // ' s, ' // str(threads) // ' thread(s)'
       call system_clock(c1)
       write(output_unit, '(a)') 'sweep: ' // str(size(pts)) // ' points in ' &
          // str(real(c1 - c0, dp) / real(rate, dp)) // ' s; files: ' // prefix // '.h5' &
