@@ -5,7 +5,7 @@ module gapbeam_lapack
    implicit none
    private
    public :: dsygv, dsbgv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
-   public :: zgesv, dsyevr, dsygst, dtrtrs, dgbtrf, dgbtrs, zgemm
+   public :: zgesv, dsyevd, dsygst, dtrtrs, dgbtrf, dgbtrs, zgemm
 
    interface
       !> Generalized symmetric-definite eigenproblem A x = lambda B x.
@@ -97,17 +97,15 @@ module gapbeam_lapack
          integer,     intent(out)   :: ipiv(*), info
       end subroutine zgesv
 
-      !> Selected eigenvalues and eigenvectors of a symmetric matrix (MRRR).
-      subroutine dsyevr(jobz, range, uplo, n, a, lda, vl, vu, il, iu, abstol, m, w, z, ldz, &
-                        isuppz, work, lwork, iwork, liwork, info)
+      !> All eigenvalues and eigenvectors of a symmetric matrix (divide and conquer).
+      subroutine dsyevd(jobz, uplo, n, a, lda, w, work, lwork, iwork, liwork, info)
          import :: dp
-         character, intent(in)    :: jobz, range, uplo
-         integer,   intent(in)    :: n, lda, il, iu, ldz, lwork, liwork
-         real(dp),  intent(in)    :: vl, vu, abstol
+         character, intent(in)    :: jobz, uplo
+         integer,   intent(in)    :: n, lda, lwork, liwork
          real(dp),  intent(inout) :: a(lda, *)
-         integer,   intent(out)   :: m, isuppz(*), iwork(*), info
-         real(dp),  intent(out)   :: w(*), z(ldz, *), work(*)
-      end subroutine dsyevr
+         real(dp),  intent(out)   :: w(*), work(*)
+         integer,   intent(out)   :: iwork(*), info
+      end subroutine dsyevd
 
       !> Reduce a symmetric-definite generalized problem to standard form with a Cholesky
       !> factor (itype 1: A <- U^-T A U^-1).

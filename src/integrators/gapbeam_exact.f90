@@ -28,7 +28,7 @@
 !> then the configuration is kept); a watched function that starts within round-off of zero on
 !> the wrong side gets a dead band of that size until it is clear of zero. This is how a
 !> contact that starts exactly at zero gap from rest (d = d' = d'' = 0, d''' > 0) closes. A
-!> segment whose search would take more than max_search_steps steps (fast terms that do not
+!> segment whose search would take more than search_limit steps (fast terms that do not
 !> decay) ends the run with an error naming the time and what to change: never a silent hang.
 !>
 !> **Statistics.** From the observer's watch instant on, over each window of a segment the
@@ -78,7 +78,6 @@ module gapbeam_exact
    real(dp), parameter :: time_tol = 1.0e-14_dp    ! event bracket / forcing period
    integer, parameter :: max_flips = 4             ! switches allowed at one instant
    integer, parameter :: max_roots = 64            ! zeros of d' kept per contact phase window
-   integer, parameter :: max_search_steps = 200000 ! safe steps in one segment at most
    integer, parameter :: prune_every = 8           ! accepted steps between prunings
 
    ! outcome of a sweep over a segment
@@ -137,6 +136,7 @@ module gapbeam_exact
       real(dp), allocatable :: xe(:)                  !! (2n) modal state (eta, v) at the end
       real(dp), allocatable :: ae(:)                  !! (n) modal acceleration there
       integer :: search_steps = 0                     !! safe steps in the current segment
+      integer :: search_limit = 200000                !! more in one segment: an error
       type(exact_piece_t) :: piece                    !! handed to the observer
    contains
       procedure :: init => exact_init
@@ -592,7 +592,7 @@ contains
    end subroutine sweep
 
    !> Step from tau towards target with safe steps; stops early at a switch. More than
-   !> max_search_steps steps in one segment is an error naming the time and the cause.
+   !> search_limit steps in one segment is an error naming the time and the cause.
    subroutine advance_to(self, tau, target, switched, m_new, obs, err)
       class(exact_integrator_t), intent(inout), target :: self   !! integrator
       real(dp), intent(inout) :: tau                      !! current instant [s]
@@ -609,7 +609,7 @@ contains
       associate (cf => self%cfgs(self%ic), sg => self%sg)
          do while (tau < target)
             self%search_steps = self%search_steps + 1
-            if (self%search_steps > max_search_steps) then
+            if (self%search_steps > self%search_limit) then
                call stalled(self, tau, err)
                return
             end if
@@ -663,19 +663,28 @@ contains
       class(exact_integrator_t), intent(in) :: self     !! integrator
       real(dp), intent(in) :: tau                       !! instant in the segment [s]
       type(error_t), allocatable, intent(inout) :: err  !! the error
-      real(dp) :: fast
+      real(dp) :: fast, slow
       integer :: j
-      fast = 0.0_dp
+      character(len=:), allocatable :: what
+      ! the fastest live terms: those that do not decay, else any
+      fast = 0.0_dp;  slow = 0.0_dp
       do j = 1, self%sg%nt
-         if (self%sg%live(j) .and. abs(real(self%sg%mu(j))) <= 1.0e-6_dp &
-             * abs(self%sg%mu(j))) fast = max(fast, abs(self%sg%mu(j)))
+         if (.not. self%sg%live(j) .or. self%sg%root(j) == 0) cycle
+         fast = max(fast, abs(self%sg%mu(j)))
+         if (abs(real(self%sg%mu(j))) <= 1.0e-6_dp * abs(self%sg%mu(j))) &
+            slow = max(slow, abs(self%sg%mu(j)))
       end do
+      if (slow > 0.0_dp) then
+         what = 'undamped terms up to ' // str(slow) // ' 1/s keep its watched functions ' &
+            // 'oscillating'
+      else
+         what = 'its watched functions carry terms up to ' // str(fast) // ' 1/s'
+      end if
       call fatal_error(err, 'gapbeam_exact: the event search at t = ' &
-         // str(self%abs_time(tau)) // ' s needs more than ' // str(max_search_steps) &
-         // ' steps in one linear segment (configuration ' &
-         // mask_text(self%mask, self%nc) // '; undamped terms up to ' // str(fast) &
-         // ' rad/s keep the watched functions oscillating): add damping (&damping ' &
-         // 'stiffness_coefficient), use fewer elements, or use method = ''newmark''')
+         // str(self%abs_time(tau)) // ' s needs more than ' // str(self%search_limit) &
+         // ' steps in one linear segment (configuration ' // mask_text(self%mask, self%nc) &
+         // '; ' // what // '): add damping (&damping stiffness_coefficient), use fewer ' &
+         // 'elements, or use method = ''newmark''')
    end subroutine stalled
 
    !> The watch instant is reached at tau: close the window before it, start the statistics.

@@ -136,8 +136,9 @@ contains
       end if
       ! particular solutions
       allocate(cf%y(cf%n), cf%eta_s(cf%n))
-      call config_solve(om, cf, cmplx(0.0_dp, model%omega, dp), &
-                        cmplx(0.0_dp, -om%pload, dp), cf%y, ok)
+      cf%y = (0.0_dp, 0.0_dp);  ok = .true.
+      if (any(om%pload /= 0.0_dp)) call config_solve(om, cf, cmplx(0.0_dp, model%omega, dp), &
+                                                     cmplx(0.0_dp, -om%pload, dp), cf%y, ok)
       if (.not. ok) then
          call fatal_error(err, where // ': the forcing frequency is a natural frequency of ' &
             // 'this undamped configuration; no periodic particular solution')
@@ -170,13 +171,13 @@ contains
       allocate(cf%simple(2 * n), source=.true.)
       nb = 0
       do j = 1, n
-         kappa = abs(om%p1(j)) / max(abs(cf%nu(j)), tiny(1.0_dp))
+         kappa = condition(abs(om%p1(j)), abs(cf%nu(j)))
          if (kappa > 1.0_dp / tol_cluster) nb = nb + 1
       end do
       allocate(cf%blk(nb))
       cf%nblk = 0
       do j = 1, n
-         kappa = abs(om%p1(j)) / max(abs(cf%nu(j)), tiny(1.0_dp))
+         kappa = condition(abs(om%p1(j)), abs(cf%nu(j)))
          if (.not. (kappa > 1.0_dp / tol_cluster)) cycle
          cf%nblk = cf%nblk + 1
          associate (bk => cf%blk(cf%nblk))
@@ -573,7 +574,7 @@ contains
       real(dp) :: dmin, kmax
       allocate(kappa(cf%nroot))
       do i = 1, cf%nroot
-         kappa(i) = abs(cf%lam(i)) * sum(abs(cf%x(:, i))**2) / max(abs(cf%nu(i)), tiny(1.0_dp))
+         kappa(i) = condition(abs(cf%lam(i)) * sum(abs(cf%x(:, i))**2), abs(cf%nu(i)))
       end do
       allocate(bad(cf%nroot))
       bad = kappa > 1.0_dp / tol_cluster
@@ -692,6 +693,13 @@ contains
          ld = ld + sum(si(c, :) * sp(:, c))
       end do
    end function log_derivative
+
+   !> Eigenvalue condition num / den, capped at 1e300 (a double root has den = 0).
+   pure real(dp) function condition(num, den)
+      real(dp), intent(in) :: num, den
+      condition = 1.0e300_dp
+      if (den > 1.0e-300_dp * num) condition = num / den
+   end function condition
 
    !> Bound data of a block: max |m +- delta| and max Re(m +- delta).
    pure subroutine block_bounds(bk)
