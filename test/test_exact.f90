@@ -39,6 +39,7 @@ program test_exact
    call critically_damped()
    call near_critical_beam()
    call two_stops_with_damper()
+   call coalescing_contact_pair()
    call symmetric_two_sided_stop()
    call newmark_converges_to_exact()
    call filtered_strain()
@@ -566,6 +567,62 @@ contains
             r%events >= 2)
       end do
    end subroutine near_critical_beam
+
+   !> A contact configuration whose pair of roots coalesces (the SDOF's stop damper at, or
+   !> 1e-5 above, critical damping of the closed oscillator: a block from contour integrals,
+   !> its window statistics by the polynomial and by the split form): the final state against
+   !> the matrix-exponential reference, and every impact statistic against the mean of the
+   !> runs at c (1 -+ 1e-3) (simple roots), which it matches to second order.
+   subroutine coalescing_contact_pair()
+      type(model_t) :: model
+      type(transient_result_t) :: r, rl, rh
+      real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: c_crit, d, s, z(2)
+      integer :: k
+      character(len=*), parameter :: common(3) = [character(len=120) :: &
+         "&damping model = 'rayleigh', mass_coefficient = 1.0, stiffness_coefficient = 1.0e-4 /",&
+         '&forcing amplitude_pp = 1.0e-3 /', '&solver transient_periods = 1, record_periods = 5 /']
+      ! closed: m x'' + (beta m + gamma k1 + c) x' + (k1 + ks) x = ...: critical c
+      c_crit = m1 * (2.0_dp * sqrt((k1 + ks) / m1) - 1.0_dp - 1.0e-4_dp * k1 / m1)
+      z = [1.0_dp, 1.0_dp + 1.0e-5_dp]
+      do k = 1, 2
+         call run(sdof, [character(len=300) :: sdof_time_base(), common, damper(c_crit * z(k))], &
+            model, r, u0=u0, v0=v0)
+         d = expm_difference(model, r, u0, v0, 6)
+         call run(sdof, [character(len=300) :: sdof_time_base(), common, &
+            damper(c_crit * z(k) * (1.0_dp - 1.0e-3_dp))], model, rl)
+         call run(sdof, [character(len=300) :: sdof_time_base(), common, &
+            damper(c_crit * z(k) * (1.0_dp + 1.0e-3_dp))], model, rh)
+         s = max(mean_dev(r%peak_force(1), rl%peak_force(1), rh%peak_force(1)), &
+                 mean_dev(r%rms_force(1), rl%rms_force(1), rh%rms_force(1)), &
+                 mean_dev(r%impulse_per_period(1), rl%impulse_per_period(1), &
+                          rh%impulse_per_period(1)), &
+                 mean_dev(r%work_rate(1), rl%work_rate(1), rh%work_rate(1)), &
+                 mean_dev(r%contact_fraction(1), rl%contact_fraction(1), rh%contact_fraction(1)))
+         call note('SDOF, stop damper at ' // str(z(k)) // ' x critical in contact, ' &
+            // str(int(r%events)) // ' switches: exact vs matrix exponential ' // str(d) &
+            // '; statistics against the mean of c (1 -+ 1e-3): ' // str(s))
+         call check_le('coalescing contact pair (' // str(z(k)) // ' x critical): closed form ' &
+            // 'and matrix-exponential reference agree', d, 1.0e-11_dp)
+         call check_le('coalescing contact pair (' // str(z(k)) // ' x critical): impact ' &
+            // 'statistics continuous to second order', s, 1.0e-5_dp)
+         call check('coalescing contact pair: impacts, the same switches nearby', &
+            r%events >= 4 .and. rl%events == r%events .and. rh%events == r%events)
+      end do
+   end subroutine coalescing_contact_pair
+
+   !> '&stops damping = c /'
+   function damper(c) result(ov)
+      real(dp), intent(in) :: c
+      character(len=300) :: ov
+      write(ov, '(a, es24.16, a)') '&stops damping = ', c, ' /'
+   end function damper
+
+   !> |x - (a + b) / 2| / |x|.
+   pure real(dp) function mean_dev(x, a, b)
+      real(dp), intent(in) :: x, a, b
+      mean_dev = abs(x - 0.5_dp * (a + b)) / max(abs(x), tiny(1.0_dp))
+   end function mean_dev
 
    !> Two stops on a four-element beam, one of them with a contact damper (rank-1 and rank-2
    !> configurations, releases by the damper law), and massless rotations (condensed), against

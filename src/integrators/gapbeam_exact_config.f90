@@ -635,8 +635,13 @@ contains
          if (abs(om%p1(i) - c) > 4.0_dp * zr) dist = min(dist, abs(om%p1(i) - c))
          if (abs(om%p2(i) - c) > 4.0_dp * zr) dist = min(dist, abs(om%p2(i) - c))
       end do
+      ! the trapezoidal rule errs by (rad / rho)^N + (rho / dist)^N; Q_c near the block is
+      ! evaluated with an absolute error ~ eps |lambda|^2, i.e. relative ~ eps |c|^2 / rho^2:
+      ! so the circle is taken as wide as the neighbours allow
       rad = max(0.5_dp * abs(z1 - z2), 1.0e-8_dp * abs(c))
-      if (dist > 4.0_dp * rad) then
+      if (dist > 9.0_dp * rad) then
+         rho = dist / 3.0_dp
+      else if (dist > 4.0_dp * rad) then
          rho = sqrt(rad * dist)
       else
          rho = 2.0_dp * rad

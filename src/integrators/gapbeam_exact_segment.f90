@@ -634,38 +634,62 @@ contains
       end if
    end function phi1
 
-   !> Integrals I_k = int_0^l s^k e^{z s} ds = k! l^{k+1} phi_{k+1}(z l), k = 0..kmax
-   !> (phi_j(x) = sum_i x^i / (i + j)!: downward recurrence from a series for |x| <= 8,
-   !> upward from e^x beyond).
+   !> Integrals I_k = int_0^l s^k e^{z s} ds, k = 0..kmax: l^{k+1} J_k(z l) with
+   !> J_k(x) = int_0^1 t^k e^{x t} dt, by 20-point Gauss-Legendre for |x| <= 12 (exact to
+   !> round-off there: the integrand is entire and varies by at most e^12), else by the upward
+   !> recurrence J_k = (e^x - k J_{k-1}) / x, stable for |x| > k.
    pure subroutine power_integrals(z, l, kmax, ik)
       complex(dp), intent(in) :: z
       real(dp), intent(in) :: l
       integer, intent(in) :: kmax
       complex(dp), intent(out) :: ik(0:kmax)
-      complex(dp) :: x, ph(0:kmax + 1), term
-      integer :: j, i
+      complex(dp) :: x, ex, e
+      real(dp) :: t(20), w(20)
+      integer :: j, q
       x = z * l
-      if (abs(x) <= 8.0_dp) then
-         ph(kmax + 1) = (0.0_dp, 0.0_dp)
-         term = cmplx(1.0_dp / fact(kmax + 1), 0.0_dp, dp)
-         do i = 0, 80
-            ph(kmax + 1) = ph(kmax + 1) + term
-            term = term * x / real(i + kmax + 2, dp)
-            if (abs(term) < 1.0e-18_dp * abs(ph(kmax + 1))) exit
-         end do
-         do j = kmax, 0, -1
-            ph(j) = 1.0_dp / fact(j) + x * ph(j + 1)
+      if (abs(x) <= 12.0_dp) then
+         call gauss_legendre(t, w)
+         ik = (0.0_dp, 0.0_dp)
+         do q = 1, size(t)
+            e = w(q) * exp(x * t(q))
+            do j = 0, kmax
+               ik(j) = ik(j) + e * t(q)**j
+            end do
          end do
       else
-         ph(0) = exp(x)
-         do j = 0, kmax
-            ph(j + 1) = (ph(j) - 1.0_dp / fact(j)) / x
+         ex = exp(x)
+         ik(0) = (ex - 1.0_dp) / x
+         do j = 1, kmax
+            ik(j) = (ex - real(j, dp) * ik(j - 1)) / x
          end do
       end if
       do j = 0, kmax
-         ik(j) = fact(j) * l**(j + 1) * ph(j + 1)
+         ik(j) = ik(j) * l**(j + 1)
       end do
    end subroutine power_integrals
+
+   !> Nodes and weights of n-point Gauss-Legendre on [0, 1].
+   pure subroutine gauss_legendre(t, w)
+      real(dp), intent(out) :: t(:), w(:)
+      integer :: n, i, k, it
+      real(dp) :: z, p0, p1, p2, dp1
+      n = size(t)
+      do i = 1, n
+         z = cos(acos(-1.0_dp) * (real(i, dp) - 0.25_dp) / (real(n, dp) + 0.5_dp))
+         do it = 1, 100
+            p0 = 1.0_dp;  p1 = z
+            do k = 2, n
+               p2 = (real(2 * k - 1, dp) * z * p1 - real(k - 1, dp) * p0) / real(k, dp)
+               p0 = p1;  p1 = p2
+            end do
+            dp1 = real(n, dp) * (z * p1 - p0) / (z**2 - 1.0_dp)
+            z = z - p1 / dp1
+            if (abs(p1 / dp1) < 1.0e-16_dp) exit
+         end do
+         t(i) = 0.5_dp * (1.0_dp - z)
+         w(i) = 1.0_dp / ((1.0_dp - z**2) * dp1**2)
+      end do
+   end subroutine gauss_legendre
 
    !> Integral over [0, l] of Re(sum_j p_j e^{mu_j s}) + Re(sum_q e^{pm_q s} sum_k c_kq s^k) + p0.
    pure real(dp) function lin_integral(mu, p, pm, c, p0, l) result(s)
