@@ -1,6 +1,6 @@
 !> One contact configuration of the exact event-driven integrator (gapbeam_exact): the open
 !> structure (gapbeam_exact_modes) plus the springs and dampers of the active contacts, as a
-!> rank-r update of the diagonal modal structure (research note §3.4-3.6).
+!> rank-r update of the diagonal modal structure (docs/exact_integrator.md).
 !>
 !> In modal coordinates a configuration with the active contacts A (r of them; Psi = their
 !> modal rows, G(lambda) = diag(k_c + c_c lambda)) has the characteristic matrix
@@ -89,6 +89,7 @@ module gapbeam_exact_config
       complex(dp), allocatable :: lam(:)            !! (2n) roots [1/s]
       complex(dp), allocatable :: delta(:)          !! (2n) offsets from the home poles [1/s]
       logical, allocatable :: simple(:)             !! (2n) not in a block
+      integer, allocatable :: partner(:)            !! (2n) complex-conjugate root (0: none)
       complex(dp), allocatable :: x(:, :)           !! (n, 2n) eigenvectors (r > 0)
       complex(dp), allocatable :: nu(:)             !! (2n) x' Q_c'(lambda) x
       integer :: nblk = 0                           !! blocks
@@ -132,8 +133,14 @@ contains
       else
          call secular_roots(om, cf, where, err);  if (allocated(err)) return
          call root_vectors(om, cf)
+         call conjugate_pairs(om, cf)
          call find_blocks(om, cf, where, err);  if (allocated(err)) return
       end if
+      do i = 1, cf%nroot             ! a pair is folded only when both of its roots are simple
+         if (cf%partner(i) > 0) then
+            if (.not. (cf%simple(i) .and. cf%simple(cf%partner(i)))) cf%partner(i) = 0
+         end if
+      end do
       ! particular solutions
       allocate(cf%y(cf%n), cf%eta_s(cf%n))
       cf%y = (0.0_dp, 0.0_dp);  ok = .true.
@@ -169,6 +176,12 @@ contains
       allocate(cf%delta(2 * n), source=(0.0_dp, 0.0_dp))
       cf%nu = [om%p1 - om%p2, om%p2 - om%p1]      ! q_j'(p) = 2 p + d_j
       allocate(cf%simple(2 * n), source=.true.)
+      allocate(cf%partner(2 * n), source=0)
+      do j = 1, n
+         if (aimag(om%p1(j)) > 0.0_dp) then        ! underdamped: p2 = conj(p1) exactly
+            cf%partner(j) = n + j;  cf%partner(n + j) = j
+         end if
+      end do
       nb = 0
       do j = 1, n
          kappa = condition(abs(om%p1(j)), abs(cf%nu(j)))
@@ -561,6 +574,28 @@ contains
          cf%nu(h) = sum(cf%x(:, h)**2 * dq) + sum(cf%cc * w(:, 1)**2)
       end do
    end subroutine root_vectors
+
+   !> Pair the roots of the two poles of each underdamped mode when they are complex
+   !> conjugates (to 1e-10, as the set of a real problem is): the second is then set to the
+   !> exact conjugate of the first (offset, eigenvector, nu), so that the segments can keep one
+   !> term per pair with twice its coefficient.
+   subroutine conjugate_pairs(om, cf)
+      type(open_modes_t), intent(in) :: om
+      type(config_t), intent(inout) :: cf
+      integer :: j, a, b
+      allocate(cf%partner(cf%nroot), source=0)
+      do j = 1, cf%n
+         if (.not. (aimag(om%p1(j)) > 0.0_dp)) cycle
+         a = j;  b = cf%n + j
+         if (.not. (aimag(cf%lam(a)) > 0.0_dp)) cycle
+         if (.not. (abs(cf%lam(b) - conjg(cf%lam(a))) <= 1.0e-10_dp * abs(cf%lam(a)))) cycle
+         cf%partner(a) = b;  cf%partner(b) = a
+         cf%delta(b) = conjg(cf%delta(a))
+         cf%lam(b) = conjg(cf%lam(a))
+         cf%x(:, b) = conjg(cf%x(:, a))
+         cf%nu(b) = conjg(cf%nu(a))
+      end do
+   end subroutine conjugate_pairs
 
    !> Nearly coalescing roots (eigenvalue condition above 1/tol_cluster) paired into blocks.
    subroutine find_blocks(om, cf, where, err)

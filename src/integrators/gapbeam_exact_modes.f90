@@ -17,7 +17,7 @@
 !> eigensolver's backward error eps ||M^-1 K|| shifts the low frequencies and rotates the low
 !> shapes (at 60 elements omega_1^2 by 6e-9, phi_1 by 5e-10: 2e-8 of run error), so the modal
 !> data are refined to the accuracy of the float64 model with residuals in extended precision
-!> (`xp`, research note §2.4, §3.2):
+!> (`xp`; docs/exact_integrator.md):
 !>
 !> 1. every frequency becomes the Rayleigh quotient phi'K phi / phi'M phi (float64 quotients
 !>    cancel like n^4);

@@ -121,15 +121,20 @@ contains
             if (cf%simple(rho)) sg%coef(rho) = (s(rho, 1) + cf%lam(rho) * s(rho, 2)) / cf%nu(rho)
          end do
       end if
-      ! terms: the simple roots, then the harmonic
-      call size_terms(sg, count(cf%simple) + 1, nb)
+      ! terms: the simple roots (one of each complex-conjugate pair, its coefficient doubled:
+      ! Re(a e^{lambda t}) + Re(conj(a) e^{conj(lambda) t}) = Re(2 a e^{lambda t})), then the
+      ! harmonic
+      call size_terms(sg, count(cf%simple .and. .not. (cf%partner > 0 .and. &
+                      cf%partner < [(rho, rho = 1, nr)])) + 1, nb)
       k = 0
       do rho = 1, nr
          if (.not. cf%simple(rho)) cycle
+         if (cf%partner(rho) > 0 .and. cf%partner(rho) < rho) cycle
          k = k + 1
          sg%root(k) = rho
          sg%mu(k) = cf%lam(rho)
          sg%a(k, :) = sg%coef(rho) * cf%lrow(rho, :)
+         if (cf%partner(rho) > 0) sg%a(k, :) = 2.0_dp * sg%a(k, :)
       end do
       k = k + 1
       sg%root(k) = 0
