@@ -1,11 +1,11 @@
-!> Explicit interfaces of the LAPACK routines gapbeam calls (with `implicit-external = false`
+!> Explicit interfaces of the LAPACK (and BLAS) routines gapbeam calls (with `implicit-external = false`
 !> a call without an interface here does not compile). Callers check every `info`.
 module gapbeam_lapack
    use gapbeam_kinds, only: dp
    implicit none
    private
    public :: dsygv, dsbgv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
-   public :: zgesv
+   public :: zgesv, dsyevd, dsygst, dtrtrs, dgbtrf, dgbtrs, zgemm
 
    interface
       !> Generalized symmetric-definite eigenproblem A x = lambda B x.
@@ -96,5 +96,64 @@ module gapbeam_lapack
          complex(dp), intent(inout) :: a(lda, *), b(ldb, *)
          integer,     intent(out)   :: ipiv(*), info
       end subroutine zgesv
+
+      !> All eigenvalues and eigenvectors of a symmetric matrix (divide and conquer).
+      subroutine dsyevd(jobz, uplo, n, a, lda, w, work, lwork, iwork, liwork, info)
+         import :: dp
+         character, intent(in)    :: jobz, uplo
+         integer,   intent(in)    :: n, lda, lwork, liwork
+         real(dp),  intent(inout) :: a(lda, *)
+         real(dp),  intent(out)   :: w(*), work(*)
+         integer,   intent(out)   :: iwork(*), info
+      end subroutine dsyevd
+
+      !> Reduce a symmetric-definite generalized problem to standard form with a Cholesky
+      !> factor (itype 1: A <- U^-T A U^-1).
+      subroutine dsygst(itype, uplo, n, a, lda, b, ldb, info)
+         import :: dp
+         integer,   intent(in)    :: itype, n, lda, ldb
+         character, intent(in)    :: uplo
+         real(dp),  intent(inout) :: a(lda, *)
+         real(dp),  intent(in)    :: b(ldb, *)
+         integer,   intent(out)   :: info
+      end subroutine dsygst
+
+      !> Solve a triangular system.
+      subroutine dtrtrs(uplo, trans, diag, n, nrhs, a, lda, b, ldb, info)
+         import :: dp
+         character, intent(in)    :: uplo, trans, diag
+         integer,   intent(in)    :: n, nrhs, lda, ldb
+         real(dp),  intent(in)    :: a(lda, *)
+         real(dp),  intent(inout) :: b(ldb, *)
+         integer,   intent(out)   :: info
+      end subroutine dtrtrs
+
+      !> LU factorization of a general band matrix.
+      subroutine dgbtrf(m, n, kl, ku, ab, ldab, ipiv, info)
+         import :: dp
+         integer,  intent(in)    :: m, n, kl, ku, ldab
+         real(dp), intent(inout) :: ab(ldab, *)
+         integer,  intent(out)   :: ipiv(*), info
+      end subroutine dgbtrf
+
+      !> Solve with a band LU factorization.
+      subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
+         import :: dp
+         character, intent(in)    :: trans
+         integer,   intent(in)    :: n, kl, ku, nrhs, ldab, ldb
+         real(dp),  intent(in)    :: ab(ldab, *)
+         integer,   intent(in)    :: ipiv(*)
+         real(dp),  intent(inout) :: b(ldb, *)
+         integer,   intent(out)   :: info
+      end subroutine dgbtrs
+
+      !> Complex matrix product C = alpha op(A) op(B) + beta C (BLAS).
+      subroutine zgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+         import :: dp
+         character,   intent(in)    :: transa, transb
+         integer,     intent(in)    :: m, n, k, lda, ldb, ldc
+         complex(dp), intent(in)    :: alpha, beta, a(lda, *), b(ldb, *)
+         complex(dp), intent(inout) :: c(ldc, *)
+      end subroutine zgemm
    end interface
 end module gapbeam_lapack

@@ -1,27 +1,35 @@
 !> Exact event-driven integrator of the piecewise-linear gap model: the accuracy reference.
 !>
-!> Between switches of the contact configuration the motion is known in closed form
-!> (gapbeam_exact_segment); this module finds the switches and hands the observer one piece per
-!> window of a segment.
+!> Between switches of the contact configuration the motion is known in closed form. In the
+!> open structure's mass-normalised modal coordinates (gapbeam_exact_modes) every
+!> configuration is a rank-r update of n single-dof oscillators, whose 2n roots, eigenvectors
+!> and nearly coalescing pairs are found once per configuration (gapbeam_exact_config); a
+!> segment is a sum of exponentials projected by the residue formula, no eigenvector matrix
+!> inverted (gapbeam_exact_segment). This holds for any mesh and any Rayleigh damping (modes
+!> near, at and past critical, massless rotations condensed, contact dampers, several stops).
+!> This module finds the switches and hands the observer one piece per window of a segment.
 !>
 !> **Events.** Every quantity watched is a sum of exponentials phi(tau) = Re(sum_j a_j
-!> e^{mu_j tau}) + a_0 whose derivatives and their bounds on the rest of the segment are known.
-!> The search for the first sign change steps safely: from tau it advances to the first zero of
-!> a lower bound of sigma phi (quadratic: phi + phi' s - B2 s^2/2, or cubic: phi + phi' s +
-!> phi'' s^2/2 - B3 s^3/6, whichever reaches further), so no root, grazing included, is missed
-!> (short of an excursion shorter than the time tolerance); near a transversal root these steps
-!> converge quadratically from the safe side, and the root is bracketed to time_tol * T (1e-14 of
-!> the forcing period), then bisected if needed. A contact c with penetration d = s_c u_i - g_c
-!> is active while d > 0 and, for a damped stop, k d + c d' > 0 (the damper never pulls): the
-!> watched functions are d and, with a damper, k d + c d'. At a sign change the activity of all
-!> contacts is decided from the sign just after the instant: the first of d, d', d'', d''' (and
-!> of k d + c d' and its derivatives) that is not zero to round-off, the derivatives taken from
-!> the state through the equations of motion (free of the cancellations of the modal sums, and
-!> the same before and after the switch). A change of activity ends the segment, otherwise the
-!> search goes on. A new segment re-decides at its first instant (at most 4 switches at one
-!> instant, then the configuration is kept); a watched function that starts within round-off
-!> of zero on the wrong side gets a dead band of that size until it is clear of zero. This is
-!> how a contact that starts exactly at zero gap from rest (d = d' = d'' = 0, d''' > 0) closes.
+!> e^{mu_j tau}) + a_0 (plus rare blocks) whose derivatives and their bounds on the rest of the
+!> segment are known. The search for the first sign change steps safely: from tau it advances
+!> to the first zero of a lower bound of sigma phi (quadratic: phi + phi' s - B2 s^2/2, or
+!> cubic: phi + phi' s + phi'' s^2/2 - B3 s^3/6, whichever reaches further), so no root,
+!> grazing included, is missed (short of an excursion shorter than the time tolerance); near a
+!> transversal root these steps converge quadratically from the safe side, and the root is
+!> bracketed to time_tol * T (1e-14 of the forcing period), then bisected if needed. A contact
+!> c with penetration d = s_c u_i - g_c is active while d > 0 and, for a damped stop,
+!> k d + c d' > 0 (the damper never pulls): the watched functions are d and, with a damper,
+!> k d + c d'. At a sign change the activity of all contacts is decided from the sign just after
+!> the instant: the first of d and its derivatives up to the third (and of k d + c d' and its
+!> derivatives) that is not zero to round-off, the derivatives taken from the modal state
+!> through the equations of motion (free of the cancellations of the modal sums, and the same
+!> before and after the switch). A change of activity ends the segment, otherwise the search
+!> goes on. A new segment re-decides at its first instant (at most 4 switches at one instant,
+!> then the configuration is kept); a watched function that starts within round-off of zero on
+!> the wrong side gets a dead band of that size until it is clear of zero. This is how a
+!> contact that starts exactly at zero gap from rest (d = d' = d'' = 0, d''' > 0) closes. A
+!> segment whose search would take more than search_limit steps (fast terms that do not
+!> decay) ends the run with an error naming the time and what to change: never a silent hang.
 !>
 !> **Statistics.** From the observer's watch instant on, over each window of a segment the
 !> integrals of f, f^2 and f |d'| of every active contact are computed in closed form (|d'| by
@@ -29,9 +37,9 @@
 !> root strain and strain-rate extremes are exact extrema (to 1e-13 of the function's scale): a
 !> running maximum M is certified by the same bounds (the cubic bound of phi under M + tol, or a
 !> step on which phi' keeps its sign), which converge onto each local maximum that could exceed
-!> M. A window ends at a switch, a re-anchoring, a Taylor sub-step, the watch instant or a full
-!> list of zeros of d'; each window is one piece for the observer, whose samples are evaluated
-!> from the closed form at any instant inside.
+!> M. A window ends at a switch, a re-anchoring, the watch instant or a full list of zeros of
+!> d'; each window is one piece for the observer, whose samples are evaluated from the closed
+!> form at any instant inside.
 !>
 !> Time is kept as (forcing periods k, offset r in [0, T)), so the forcing phase Omega r is
 !> computed without the loss of precision of Omega t at large t; a segment longer than two
@@ -42,8 +50,9 @@
 !> segment.
 !>
 !> Limits: bilinear stops only (the Hertz law is not piecewise linear: rejected with an error);
-!> forcing exactly at an undamped natural frequency of a configuration (no periodic particular
-!> solution) is rejected; at most 62 one-sided contacts.
+!> Rayleigh damping C = beta M + gamma K (as every deck builds it); forcing exactly at an
+!> undamped natural frequency of a configuration (no periodic particular solution) is
+!> rejected; at most 62 one-sided contacts.
 module gapbeam_exact
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
@@ -55,10 +64,11 @@ module gapbeam_exact
    use gapbeam_contact_law, only: contact_force
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_integrator, only: integrator_t, contact_forces_at
-   use gapbeam_exact_segment, only: reduced_t, config_t, segment_t, setup_reduction, expand, &
-      build_config, start_segment, eval_seg, segment_values, segment_state, taylor_next, &
-      modal_window, taylor_window, gauss_legendre, sign_after, band, add_fn, mono_quad, &
-      cubic_root, cond_limit
+   use gapbeam_exact_modes, only: open_modes_t, build_open_modes, to_modal, to_physical
+   use gapbeam_exact_config, only: config_t, build_config, mask_text
+   use gapbeam_exact_segment, only: segment_t, start_segment, eval_seg, prune_seg, &
+      segment_values, segment_state, modal_window, sign_after, band, add_fn, mono_quad, &
+      cubic_root
    implicit none
    private
    public :: exact_integrator_t, exact_piece_t
@@ -66,9 +76,9 @@ module gapbeam_exact
    real(dp), parameter :: peak_tol = 1.0e-13_dp    ! extrema: tolerance / scale of the function
    real(dp), parameter :: tiny_scale = 1.0e-10_dp  ! margin of the load scale below sqrt(huge)
    real(dp), parameter :: time_tol = 1.0e-14_dp    ! event bracket / forcing period
-   integer, parameter :: n_gauss = 16              ! Gauss-Legendre points of the fallback
    integer, parameter :: max_flips = 4             ! switches allowed at one instant
    integer, parameter :: max_roots = 64            ! zeros of d' kept per contact phase window
+   integer, parameter :: prune_every = 8           ! accepted steps between prunings
 
    ! outcome of a sweep over a segment
    integer, parameter :: end_switch = 1, end_horizon = 2, end_anchor = 3
@@ -77,7 +87,7 @@ module gapbeam_exact
    type, extends(piece_t) :: exact_piece_t
       type(segment_t), pointer :: sg => null()        !! the segment
       type(config_t), pointer :: cf => null()         !! its configuration
-      type(reduced_t), pointer :: red => null()       !! condensed structure
+      type(open_modes_t), pointer :: om => null()     !! open structure
       type(model_t), pointer :: model => null()       !! model
       real(dp) :: t0 = 0.0_dp                         !! time of the segment's start [s]
       real(dp) :: omega = 0.0_dp                      !! forcing [rad/s]
@@ -89,20 +99,15 @@ module gapbeam_exact
 
    !> The exact event-driven integrator.
    type, extends(integrator_t) :: exact_integrator_t
-      !> 'auto' (closed form, Taylor where the eigenvectors are ill-conditioned), 'modal'
-      !> (closed form everywhere) or 'taylor' (the fallback everywhere: a cross-check); set
-      !> before init
-      character(len=16) :: engine = 'auto'
       type(model_t) :: model                          !! the model (own copy)
-      type(reduced_t) :: red                          !! condensed structure and functionals
+      type(open_modes_t) :: om                        !! open structure in modal coordinates
       type(config_t), allocatable :: cfgs(:)          !! configurations built so far
       integer :: ncfg = 0                             !! how many
       type(segment_t) :: sg                           !! the current segment
       integer :: ic = 0                               !! its configuration
-      real(dp) :: climit = cond_limit                 !! eigenvector condition limit
       real(dp) :: period = 0.0_dp, omega = 0.0_dp     !! forcing [s], [rad/s]
       real(dp) :: tol_t = 0.0_dp                      !! event bracket [s]
-      integer :: nc = 0, nb = 0                       !! contacts, functionals
+      integer :: nc = 0, nb = 0, n = 0                !! contacts, functionals, modes
       integer(int64) :: k0 = 0                        !! segment start: periods
       real(dp) :: r0 = 0.0_dp                         !!    and offset [s]
       integer(int64) :: mask = 0                      !! active contacts
@@ -128,14 +133,17 @@ module gapbeam_exact
       integer :: nf = 0                               !! functions in the step-limit list
       real(dp), allocatable :: q(:), fy(:), fy1(:), fy2(:), fb2(:), fb3(:)   !! that list
       logical, allocatable :: done(:)                 !! its processed flags
-      real(dp), allocatable :: xe(:), ae(:), x1(:), s1(:)    !! state workspaces
-      real(dp) :: xg(n_gauss) = 0.0_dp, wg(n_gauss) = 0.0_dp !! Gauss-Legendre rule
+      real(dp), allocatable :: xe(:)                  !! (2n) modal state (eta, v) at the end
+      real(dp), allocatable :: ae(:)                  !! (n) modal acceleration there
+      integer :: search_steps = 0                     !! safe steps in the current segment
+      integer :: search_limit = 200000                !! more in one segment: an error
       type(exact_piece_t) :: piece                    !! handed to the observer
    contains
       procedure :: init => exact_init
       procedure :: advance => exact_advance
       procedure, private :: begin_advance, config_index, run_segment, sweep, step_limit, &
          add, find_flip, watched, refine, decide, sign_d, sign_l, state_derivs, init_signs, &
+         modal_acceleration, stalled, &
          register_switch, clear_bands, update_trackers, start_trackers, contact_functions, &
          emit_window, start_watching, abs_time, tau_of
       ! --- continuation hook (issue 14): the Jacobian of the flow, in submodule
@@ -163,7 +171,7 @@ module gapbeam_exact
 
 contains
 
-   !> Condense the massless dofs, set up the functionals and the workspaces.
+   !> Check the model, build the open structure's modes, set up the workspaces.
    subroutine exact_init(self, model, cfg, err)
       class(exact_integrator_t), intent(inout) :: self   !! integrator
       type(model_t), intent(in) :: model                 !! model (bilinear stops only)
@@ -199,27 +207,17 @@ contains
             // 'integrator can represent; use a physical amplitude')
          return
       end if
-      select case (self%engine)
-      case ('auto');   self%climit = cond_limit
-      case ('modal');  self%climit = huge(1.0_dp)
-      case ('taylor'); self%climit = -1.0_dp
-      case default
-         call fatal_error(err, 'gapbeam_exact: engine must be ''auto'', ''modal'' or ' &
-            // '''taylor'', got ''' // trim(self%engine) // '''')
-         return
-      end select
       self%model = model
-      call setup_reduction(model, self%red, err)
+      call build_open_modes(model, self%om, err)
       if (allocated(err)) return
-      nb = self%red%nb;  nr = self%red%nr
-      self%nc = nc;  self%nb = nb
+      nb = self%om%nb;  nr = self%om%nr
+      self%nc = nc;  self%nb = nb;  self%n = nr
       self%omega = model%omega
       self%period = 2.0_dp * pi / model%omega
       ! event brackets: time_tol of the shorter of the forcing period and the first open period
       self%tol_t = time_tol * self%period
       if (model%f1_open_hz > 0.0_dp) self%tol_t = time_tol * min(self%period, &
                                                                  1.0_dp / model%f1_open_hz)
-      call gauss_legendre(self%xg, self%wg)
       allocate(self%val(0:3, nb), self%bnd(0:4, nb), self%need(nb))
       allocate(self%sig_d(nc), self%sig_l(nc), self%sig_w(nc), self%del_d(nc), self%del_l(nc), &
                self%del_w(nc), self%n_roots(nc), self%roots(max_roots, nc), self%damped(nc), &
@@ -229,7 +227,7 @@ contains
       self%sig_w = 1;  self%del_w = 0.0_dp;  self%n_roots = 0;  self%onset = .false.
       allocate(self%cfgs(4))
       self%ncfg = 0
-      allocate(self%xe(2 * nr), self%ae(nr), self%x1(2 * nr), self%s1(2 * nr))
+      allocate(self%xe(2 * nr), self%ae(nr))
       allocate(self%q(4 * nc + 4), self%fy(4 * nc + 4), self%fy1(4 * nc + 4), &
                self%fy2(4 * nc + 4), self%fb2(4 * nc + 4), self%fb3(4 * nc + 4), &
                self%done(4 * nc + 4))
@@ -248,8 +246,8 @@ contains
       real(dp), intent(in) :: t_target                    !! target time [s]
       class(observer_t), intent(inout), optional :: obs   !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err      !! configuration failure
-      real(dp), allocatable :: x0(:)
-      integer :: outcome, flips
+      real(dp), allocatable :: x0(:), dummy(:)
+      integer :: outcome, flips, n
       integer(int64) :: new_mask
       real(dp) :: tau_end, rem
       call self%begin_advance(state, t_target, obs, x0)
@@ -276,9 +274,10 @@ contains
             self%mask = new_mask
          end if
       end do
-      call expand(self%red, self%xe(1:self%red%nr), state%u)
-      call expand(self%red, self%xe(self%red%nr + 1:), state%v)
-      call expand(self%red, self%ae, state%a)
+      n = self%n
+      call to_physical(self%om, self%xe(1:n), self%xe(n + 1:), state%u, state%v)
+      allocate(dummy(size(state%a)))
+      call to_physical(self%om, self%ae, self%ae, state%a, dummy)
       state%t = t_target
       call contact_forces_at(self%model, state%u, state%v, state%f)
       state%f_prev = state%f
@@ -292,7 +291,7 @@ contains
       type(state_t), intent(in) :: state                  !! start
       real(dp), intent(in) :: t_target                    !! target time [s]
       class(observer_t), intent(in), optional :: obs      !! observer
-      real(dp), allocatable, intent(out) :: x0(:)         !! reduced state (u, v)
+      real(dp), allocatable, intent(out) :: x0(:)         !! modal state (eta, v)
       integer :: c, i
       real(dp) :: d, dd
       call split_time(state%t, self%period, self%k0, self%r0)
@@ -309,7 +308,8 @@ contains
       self%rmin = huge(1.0_dp);  self%rmax = -huge(1.0_dp)
       self%peak = 0.0_dp
       self%onset = .false.
-      x0 = [state%u(self%red%ir), state%v(self%red%ir)]
+      allocate(x0(2 * self%n))
+      call to_modal(self%om, state%u, state%v, x0(1:self%n), x0(self%n + 1:))
       self%mask = 0
       do c = 1, self%nc
          i = self%model%c_dof(c)
@@ -325,20 +325,22 @@ contains
    !> leave the end state in xe, ae.
    subroutine run_segment(self, x0, flips, tau_end, outcome, new_mask, obs, err)
       class(exact_integrator_t), intent(inout), target :: self   !! integrator
-      real(dp), intent(in) :: x0(:)                       !! reduced state at the start
+      real(dp), intent(in) :: x0(:)                       !! modal state at the start
       integer, intent(inout) :: flips                     !! switches at this instant so far
       real(dp), intent(out) :: tau_end                    !! length of the segment [s]
       integer, intent(out) :: outcome                     !! 0, end_switch/horizon/anchor
       integer(int64), intent(out) :: new_mask             !! activity after a switch
       class(observer_t), intent(inout), optional :: obs   !! observer
       type(error_t), allocatable, intent(inout) :: err    !! configuration failure
+      integer :: n
+      n = self%n
       self%ic = self%config_index(self%mask, err)
       if (allocated(err)) return
-      call start_segment(self%cfgs(self%ic), self%red, self%omega, x0, self%r0, self%sg)
+      call start_segment(self%om, self%cfgs(self%ic), self%omega, self%period, x0(1:n), &
+                         x0(n + 1:), self%r0, self%sg)
       ! activity just after the start, in this representation
       call set_need(self, .false.)
-      call eval_seg(self%sg, self%cfgs(self%ic), self%red, 0.0_dp, self%need, self%val, &
-                    self%bnd)
+      call eval_seg(self%sg, 0.0_dp, self%need, self%val, self%bnd)
       call self%state_derivs(x0, self%r0)
       new_mask = self%decide()
       tau_end = 0.0_dp
@@ -352,12 +354,14 @@ contains
       call self%init_signs()
       self%tau_w0 = 0.0_dp
       self%n_roots = 0
-      call self%sweep(tau_end, outcome, new_mask, obs)
+      self%search_steps = 0
+      call self%sweep(tau_end, outcome, new_mask, obs, err)
+      if (allocated(err)) return
       call self%emit_window(self%tau_w0, tau_end, obs)
       self%dt_smallest = min(self%dt_smallest, tau_end)
       self%dt_largest = max(self%dt_largest, tau_end)
-      call segment_state(self%sg, self%cfgs(self%ic), self%red, self%omega, tau_end, self%xe, &
-                         self%ae)
+      call segment_state(self%cfgs(self%ic), self%sg, tau_end, self%xe(1:n), self%xe(n + 1:))
+      call self%modal_acceleration(self%xe, self%r0 + tau_end, self%ae)
    end subroutine run_segment
 
    !> Index of the configuration of `msk`, built on first use.
@@ -376,7 +380,7 @@ contains
       end if
       self%ncfg = self%ncfg + 1
       j = self%ncfg
-      call build_config(self%model, self%red, msk, self%climit, self%cfgs(j), err)
+      call build_config(self%om, self%model, msk, self%cfgs(j), err)
    end function config_index
 
    !> Absolute time of tau in the current segment [s], the horizon and watch instants exact.
@@ -407,7 +411,7 @@ contains
       integer :: b
       real(dp) :: s
       associate (m => self%model)
-         b = self%red%cslot(cc);  s = m%c_sign(cc)
+         b = self%om%cslot(cc);  s = m%c_sign(cc)
          dv = s * self%val(:, b);  dv(0) = dv(0) - m%c_gap(cc)
          db = self%bnd(:, b);  db(0) = db(0) + abs(m%c_gap(cc))
          lv = m%c_k(cc) * dv(0:2) + m%c_c(cc) * dv(1:3)
@@ -444,47 +448,73 @@ contains
       end associate
    end function sign_l
 
-   !> Derivatives 0..3 of every contact's penetration d at the state x (forcing offset r),
-   !> through the equations of motion of the current configuration, and their scales (sum
-   !> of the magnitudes of the terms): free of the cancellations of the modal sums, and the
-   !> same in the representations before and after a switch. bnd must hold the bounds of
-   !> the slots at the same instant.
+   !> Derivatives 0..3 of every contact's penetration d at the modal state x (forcing offset
+   !> r), through the modal equations of motion of the current configuration,
+   !>    a = p sin(W r) - D v - W^2 eta - sum_active psi_c (k_c psi_c'eta + c_c psi_c'v - w_c),
+   !>    a' = p W cos(W r) - D a - W^2 v - sum_active psi_c (k_c psi_c'v + c_c psi_c'a),
+   !> and their scales (sums of the magnitudes of the terms): free of the cancellations of the
+   !> modal sums, and the same in the representations before and after a switch. bnd must hold
+   !> the bounds of the slots at the same instant.
    subroutine state_derivs(self, x, r)
       class(exact_integrator_t), intent(inout) :: self   !! integrator
-      real(dp), intent(in) :: x(:), r                    !! reduced state, forcing offset [s]
-      real(dp) :: xk(0:3), sk(0:3), sn, cs
-      integer :: cc, i, nr, j
-      sn = sin(self%omega * r);  cs = cos(self%omega * r)
-      nr = self%red%nr
-      associate (am => self%cfgs(self%ic)%amat, aa => self%cfgs(self%ic)%absamat, &
-                 bs => self%cfgs(self%ic)%bsv, b0 => self%cfgs(self%ic)%b0v, x1 => self%x1, &
-                 s1 => self%s1, m => self%model)
-         ! x' in full (u' = v needs no product), x'' and x''' only in the contact rows
-         x1(1:nr) = x(nr + 1:);  s1(1:nr) = abs(x(nr + 1:))
-         do j = nr + 1, 2 * nr
-            x1(j) = dot_product(am(j, :), x) + bs(j) * sn + b0(j)
-            s1(j) = dot_product(aa(j, :), abs(x)) + abs(bs(j)) + abs(b0(j))
-         end do
+      real(dp), intent(in) :: x(:), r                    !! modal state (eta, v), offset [s]
+      real(dp) :: acc(self%n), acs(self%n), jrk(self%n), jcs(self%n), xk(0:3), sk(0:3)
+      integer :: cc, n, b
+      n = self%n
+      call self%modal_acceleration(x, r, acc, acs, jrk, jcs)
+      associate (m => self%model, om => self%om)
          do cc = 1, self%nc
-            i = self%red%cpos(cc)
-            xk(0) = x(i);  sk(0) = abs(x(i))
-            xk(1) = x1(i);  sk(1) = s1(i)
-            xk(2) = x1(nr + i);  sk(2) = s1(nr + i)
-            xk(3) = dot_product(am(nr + i, :), x1) + bs(nr + i) * self%omega * cs
-            sk(3) = dot_product(aa(nr + i, :), s1) + abs(bs(nr + i)) * self%omega
+            b = om%cslot(cc)
+            xk(0) = dot_product(om%ell(:, b), x(1:n))
+            sk(0) = dot_product(abs(om%ell(:, b)), abs(x(1:n)))
+            xk(1) = dot_product(om%ell(:, b), x(n + 1:))
+            sk(1) = dot_product(abs(om%ell(:, b)), abs(x(n + 1:)))
+            xk(2) = dot_product(om%ell(:, b), acc)
+            sk(2) = dot_product(abs(om%ell(:, b)), acs)
+            xk(3) = dot_product(om%ell(:, b), jrk)
+            sk(3) = dot_product(abs(om%ell(:, b)), jcs)
             self%dsv(:, cc) = m%c_sign(cc) * xk
-            self%dss(:, cc) = sk
-         end do
-         do cc = 1, self%nc
             self%dsv(0, cc) = self%dsv(0, cc) - m%c_gap(cc)
-            ! u_i and v_i scale only themselves here: their round-off is that of the modal
-            ! sums they come from
-            self%dss(0, cc) = max(self%dss(0, cc), self%bnd(0, self%red%cslot(cc))) &
-                              + abs(m%c_gap(cc))
-            self%dss(1, cc) = max(self%dss(1, cc), self%bnd(1, self%red%cslot(cc)))
+            ! d and d' scale only themselves here: their round-off is that of the modal sums
+            ! they come from
+            self%dss(0, cc) = max(sk(0), self%bnd(0, b)) + abs(m%c_gap(cc))
+            self%dss(1, cc) = max(sk(1), self%bnd(1, b))
+            self%dss(2:3, cc) = sk(2:3)
          end do
       end associate
    end subroutine state_derivs
+
+   !> Modal acceleration at the modal state x (forcing offset r) in the current
+   !> configuration; optionally the scales of its terms, the jerk and its scales.
+   subroutine modal_acceleration(self, x, r, acc, acs, jrk, jcs)
+      class(exact_integrator_t), intent(in) :: self      !! integrator
+      real(dp), intent(in) :: x(:), r                    !! modal state (eta, v), offset [s]
+      real(dp), intent(out) :: acc(:)                    !! (n) acceleration
+      real(dp), intent(out), optional :: acs(:), jrk(:), jcs(:)   !! scales, jerk, scales
+      real(dp) :: sn, cs, pe, pv, pa, fc
+      integer :: i, n
+      n = self%n
+      sn = sin(self%omega * r);  cs = cos(self%omega * r)
+      associate (om => self%om, cf => self%cfgs(self%ic), eta => x(1:n), v => x(n + 1:))
+         acc = om%pload * sn - om%d * v - om%w2 * eta
+         if (present(acs)) acs = abs(om%pload * sn) + abs(om%d * v) + abs(om%w2 * eta)
+         do i = 1, cf%r
+            pe = dot_product(cf%psi(:, i), eta);  pv = dot_product(cf%psi(:, i), v)
+            fc = cf%kc(i) * pe + cf%cc(i) * pv - cf%wgap(i)
+            acc = acc - cf%psi(:, i) * fc
+            if (present(acs)) acs = acs + abs(cf%psi(:, i)) * (abs(cf%kc(i) * pe) &
+                                          + abs(cf%cc(i) * pv) + abs(cf%wgap(i)))
+         end do
+         if (.not. present(jrk)) return
+         jrk = om%pload * self%omega * cs - om%d * acc - om%w2 * v
+         jcs = abs(om%pload * self%omega) + abs(om%d * acc) + abs(om%w2 * v)
+         do i = 1, cf%r
+            pv = dot_product(cf%psi(:, i), v);  pa = dot_product(cf%psi(:, i), acc)
+            jrk = jrk - cf%psi(:, i) * (cf%kc(i) * pv + cf%cc(i) * pa)
+            jcs = jcs + abs(cf%psi(:, i)) * (abs(cf%kc(i) * pv) + abs(cf%cc(i) * pa))
+         end do
+      end associate
+   end subroutine modal_acceleration
 
    !> Signs of the watched functions at the start of a segment, consistent with `mask`;
    !> a function within round-off of zero gets a dead band.
@@ -534,22 +564,24 @@ contains
       class(exact_integrator_t), intent(inout) :: self   !! integrator
       logical, intent(in) :: all                         !! every functional
       self%need = all
-      self%need(1:self%red%n_slots) = .true.
-      if (self%watching) self%need(self%red%b_strain) = .true.
+      self%need(1:self%om%n_slots) = .true.
+      if (self%watching) self%need(self%om%b_strain) = .true.
    end subroutine set_need
 
    !> Sweep the segment from tau = 0: zeros of d', extrema while watching, until a switch, the
    !> horizon or a re-anchoring instant; windows end at the watch instant, at Taylor sub-steps
    !> and when the list of zeros of d' is full.
-   subroutine sweep(self, tau_stop, how, m_new, obs)
+   subroutine sweep(self, tau_stop, how, m_new, obs, err)
       class(exact_integrator_t), intent(inout), target :: self   !! integrator
       real(dp), intent(out) :: tau_stop                   !! where the segment ends [s]
       integer, intent(out) :: how                         !! end_switch, horizon or anchor
       integer(int64), intent(out) :: m_new                !! activity after a switch
       class(observer_t), intent(inout), optional :: obs   !! observer
+      type(error_t), allocatable, intent(inout) :: err    !! the search does not advance
       real(dp) :: tau, target, tl, tr
       logical :: switched
       m_new = self%mask
+      tau_stop = 0.0_dp;  how = end_horizon
       tau = 0.0_dp      ! val, bnd hold the values at tau = 0
       if (self%watching) call self%start_trackers(tau)
       do
@@ -559,7 +591,8 @@ contains
          tr = huge(1.0_dp)
          if (self%watch_due) tr = self%tau_of(self%k_watch, self%r_watch)
          target = max(min(target, tr), tau)
-         call advance_to(self, tau, target, switched, m_new, obs)
+         call advance_to(self, tau, target, switched, m_new, obs, err)
+         if (allocated(err)) return
          if (switched) then
             tau_stop = tau;  how = end_switch
             return
@@ -579,38 +612,37 @@ contains
       end do
    end subroutine sweep
 
-   !> Step from tau towards target with safe steps; stops early at a switch.
-   subroutine advance_to(self, tau, target, switched, m_new, obs)
+   !> Step from tau towards target with safe steps; stops early at a switch. More than
+   !> search_limit steps in one segment is an error naming the time and the cause.
+   subroutine advance_to(self, tau, target, switched, m_new, obs, err)
       class(exact_integrator_t), intent(inout), target :: self   !! integrator
       real(dp), intent(inout) :: tau                      !! current instant [s]
       real(dp), intent(in) :: target                      !! where to go [s]
       logical, intent(out) :: switched                    !! a switch ended the segment
       integer(int64), intent(inout) :: m_new              !! the new activity
       class(observer_t), intent(inout), optional :: obs   !! observer
+      type(error_t), allocatable, intent(inout) :: err    !! the search does not advance
       real(dp) :: tn, h, hf, tt
-      integer :: kind_hit, c_hit
+      integer :: kind_hit, c_hit, n
       logical :: hit
       switched = .false.
+      n = self%n
       associate (cf => self%cfgs(self%ic), sg => self%sg)
          do while (tau < target)
-            if (.not. sg%modal) then
-               if (tau >= sg%tk + cf%hsub) then
-                  call self%emit_window(self%tau_w0, tau, obs)
-                  self%tau_w0 = tau
-                  call taylor_next(sg, cf, self%red)
-               end if
+            self%search_steps = self%search_steps + 1
+            if (self%search_steps > self%search_limit) then
+               call stalled(self, tau, err)
+               return
             end if
             h = min(self%step_limit(), target - tau)
-            if (.not. sg%modal) h = min(h, sg%tk + cf%hsub - tau)
             hf = max(self%tol_t, 4.0_dp * spacing(max(tau, self%period)))
             if (h < hf) h = min(hf, target - tau)
-            if (.not. sg%modal) h = min(h, sg%tk + cf%hsub - tau)
             tn = min(tau + h, target)
-            call eval_seg(sg, cf, self%red, tn, self%need, self%val, self%bnd)
+            call eval_seg(sg, tn, self%need, self%val, self%bnd)
             call self%find_flip(tau, tn, hf, hit, tt, kind_hit, c_hit)
             if (hit) then
                tn = tt
-               call eval_seg(sg, cf, self%red, tn, self%need, self%val, self%bnd)
+               call eval_seg(sg, tn, self%need, self%val, self%bnd)
                if (kind_hit == 3) then
                   ! zero of d' in a contact phase: splits the work integral (a full list
                   ! closes the window here)
@@ -623,7 +655,7 @@ contains
                   end if
                   self%sig_w(c_hit) = -self%sig_w(c_hit);  self%del_w(c_hit) = 0.0_dp
                else
-                  call segment_state(sg, cf, self%red, self%omega, tn, self%xe, self%ae)
+                  call segment_state(cf, sg, tn, self%xe(1:n), self%xe(n + 1:))
                   call self%state_derivs(self%xe, self%r0 + tn)
                   m_new = self%decide()
                   if (m_new /= self%mask) then
@@ -639,11 +671,42 @@ contains
                end if
             end if
             tau = tn
+            ! the last evaluation was at tau: decayed terms leave from here on
+            if (mod(self%search_steps, prune_every) == 0) call prune_seg(sg)
             call self%clear_bands()
             if (self%watching) call self%update_trackers()
          end do
       end associate
    end subroutine advance_to
+
+   !> The error of an event search that does not advance: where, and what to change.
+   subroutine stalled(self, tau, err)
+      class(exact_integrator_t), intent(in) :: self     !! integrator
+      real(dp), intent(in) :: tau                       !! instant in the segment [s]
+      type(error_t), allocatable, intent(inout) :: err  !! the error
+      real(dp) :: fast, slow
+      integer :: j
+      character(len=:), allocatable :: what
+      ! the fastest live terms: those that do not decay, else any
+      fast = 0.0_dp;  slow = 0.0_dp
+      do j = 1, self%sg%nt
+         if (.not. self%sg%live(j) .or. self%sg%root(j) == 0) cycle
+         fast = max(fast, abs(self%sg%mu(j)))
+         if (abs(real(self%sg%mu(j))) <= 1.0e-6_dp * abs(self%sg%mu(j))) &
+            slow = max(slow, abs(self%sg%mu(j)))
+      end do
+      if (slow > 0.0_dp) then
+         what = 'undamped terms up to ' // str(slow) // ' 1/s keep its watched functions ' &
+            // 'oscillating'
+      else
+         what = 'its watched functions carry terms up to ' // str(fast) // ' 1/s'
+      end if
+      call fatal_error(err, 'gapbeam_exact: the event search at t = ' &
+         // str(self%abs_time(tau)) // ' s needs more than ' // str(self%search_limit) &
+         // ' steps in one linear segment (configuration ' // mask_text(self%mask, self%nc) &
+         // '; ' // what // '): add damping (&damping stiffness_coefficient), use fewer ' &
+         // 'elements, or use method = ''newmark''')
+   end subroutine stalled
 
    !> The watch instant is reached at tau: close the window before it, start the statistics.
    subroutine start_watching(self, tau, obs)
@@ -655,7 +718,7 @@ contains
       self%tau_w0 = tau
       self%n_roots = 0
       call set_need(self, .false.)
-      call eval_seg(self%sg, self%cfgs(self%ic), self%red, tau, self%need, self%val, self%bnd)
+      call eval_seg(self%sg, tau, self%need, self%val, self%bnd)
       call self%start_trackers(tau)
    end subroutine start_watching
 
@@ -684,7 +747,7 @@ contains
          end if
       end do
       if (self%watching) then
-         bs = self%red%b_strain
+         bs = self%om%b_strain
          associate (val => self%val, bnd => self%bnd)
             tol = peak_tol * bnd(0, bs)
             call self%add(self%smax + tol - val(0, bs), -val(1, bs), -val(2, bs), bnd(2, bs), &
@@ -771,8 +834,8 @@ contains
       logical :: nd(self%nb)
       integer :: b
       associate (m => self%model)
-         nd = .false.;  b = self%red%cslot(cc);  nd(b) = .true.
-         call eval_seg(self%sg, self%cfgs(self%ic), self%red, tau, nd, v2, b2)
+         nd = .false.;  b = self%om%cslot(cc);  nd(b) = .true.
+         call eval_seg(self%sg, tau, nd, v2, b2)
          s = m%c_sign(cc)
          dv = s * v2(:, b);  dv(0) = dv(0) - m%c_gap(cc)
          select case (kk)
@@ -840,7 +903,7 @@ contains
       class(exact_integrator_t), intent(inout) :: self   !! integrator
       integer :: cc, bs, ks
       real(dp) :: dv(0:3), db(0:4), lv(0:2), lb(0:3)
-      bs = self%red%b_strain
+      bs = self%om%b_strain
       self%smax = max(self%smax, self%val(0, bs))
       self%smin = min(self%smin, self%val(0, bs))
       self%rmax = max(self%rmax, self%val(1, bs))
@@ -860,8 +923,8 @@ contains
       integer :: cc
       real(dp) :: dv(0:3), db(0:4), lv(0:2), lb(0:3)
       call self%update_trackers()
-      call segment_state(self%sg, self%cfgs(self%ic), self%red, self%omega, tau, self%xe, &
-                         self%ae)
+      call segment_state(self%cfgs(self%ic), self%sg, tau, self%xe(1:self%n), &
+                         self%xe(self%n + 1:))
       call self%state_derivs(self%xe, self%r0 + tau)
       do cc = 1, self%nc
          call self%contact_functions(cc, dv, db, lv, lb)
@@ -884,7 +947,7 @@ contains
          return
       end if
       associate (p => self%piece, m => self%model)
-         p%sg => self%sg;  p%cf => self%cfgs(self%ic);  p%red => self%red
+         p%sg => self%sg;  p%cf => self%cfgs(self%ic);  p%om => self%om
          p%model => self%model
          p%omega = self%omega;  p%mask = self%mask
          p%t0 = real(self%k0, dp) * self%period + self%r0
@@ -897,15 +960,8 @@ contains
             do cc = 1, self%nc
                p%peak(cc) = self%peak(m%c_stop(cc))
                if (.not. btest(self%mask, cc - 1)) cycle
-               if (self%sg%modal) then
-                  call modal_window(self%sg, self%red%cslot(cc), m%c_sign(cc), m%c_k(cc), &
-                     m%c_c(cc), m%c_gap(cc), ta, tb, self%roots(1:self%n_roots(cc), cc), &
-                     sf, sf2, sw)
-               else
-                  call taylor_window(self%sg, self%red%cslot(cc), m%c_sign(cc), m%c_k(cc), &
-                     m%c_c(cc), m%c_gap(cc), ta, tb, self%roots(1:self%n_roots(cc), cc), &
-                     self%xg, self%wg, sf, sf2, sw)
-               end if
+               call modal_window(self%sg, self%om%cslot(cc), m%c_sign(cc), m%c_k(cc), &
+                  m%c_c(cc), m%c_gap(cc), ta, tb, self%roots(1:self%n_roots(cc), cc), sf, sf2, sw)
                p%int_f(cc) = sf;  p%int_f2(cc) = sf2;  p%int_work(cc) = sw
                p%t_contact(cc) = tb - ta
             end do
@@ -923,16 +979,16 @@ contains
       real(dp), intent(in) :: t                         !! instant [s]
       real(dp), intent(out) :: strain, rate, tip, tip_velocity   !! outputs
       real(dp), intent(out) :: force(:)                 !! contact force magnitudes [N]
-      real(dp) :: val(0:1, self%red%nb), d, dd
+      real(dp) :: val(0:1, self%om%nb), d, dd
       integer :: c, b
-      call segment_values(self%sg, self%red, t - self%t0, val)
-      strain = val(0, self%red%b_strain);  rate = val(1, self%red%b_strain)
-      tip = val(0, self%red%b_tip);  tip_velocity = val(1, self%red%b_tip)
+      call segment_values(self%sg, t - self%t0, val)
+      strain = val(0, self%om%b_strain);  rate = val(1, self%om%b_strain)
+      tip = val(0, self%om%b_tip);  tip_velocity = val(1, self%om%b_tip)
       associate (m => self%model)
          do c = 1, m%n_contacts
             force(c) = 0.0_dp
             if (.not. btest(self%mask, c - 1)) cycle
-            b = self%red%cslot(c)
+            b = self%om%cslot(c)
             d = m%c_sign(c) * val(0, b) - m%c_gap(c)
             dd = m%c_sign(c) * val(1, b)
             force(c) = max(0.0_dp, m%c_k(c) * d + m%c_c(c) * dd)
@@ -945,10 +1001,9 @@ contains
       class(exact_piece_t), intent(in) :: self          !! piece
       real(dp), intent(in) :: t                         !! instant [s]
       real(dp), intent(out) :: u(:), v(:)               !! state
-      real(dp) :: x(2 * self%red%nr), acc(self%red%nr)
-      call segment_state(self%sg, self%cf, self%red, self%omega, t - self%t0, x, acc)
-      call expand(self%red, x(1:self%red%nr), u)
-      call expand(self%red, x(self%red%nr + 1:), v)
+      real(dp) :: eta(self%om%nr), vel(self%om%nr)
+      call segment_state(self%cf, self%sg, t - self%t0, eta, vel)
+      call to_physical(self%om, eta, vel, u, v)
    end subroutine exact_state
 
    !> A time as whole forcing periods and an offset in [0, T) (a time within 1e-9 T of a

@@ -1,713 +1,272 @@
-!> The closed form of the piecewise-linear gap model between contact switches: the linear
-!> algebra of the exact event-driven integrator (gapbeam_exact), kept apart from its event
-!> search and bookkeeping.
+!> The closed form of one linear segment of the exact event-driven integrator (gapbeam_exact):
+!> the motion between two switches of the contact configuration, from a modal state, as sums
+!> of exponentials; their values, derivative bounds, end state and window statistics.
 !>
-!> Between two switches of the contact configuration (the set of active contacts) the motion
-!> obeys a linear system with constant coefficients. In the state x = (u, v) of the dofs that
-!> carry mass,
+!> From the modal state (eta, v) at the segment start (forcing phase Omega r0) the particular
+!> parts are subtracted, eta_h = eta - eta_s - Re(Y e^{i Omega r0}) (and the same for v), and
+!> the transient is projected with the residue formula of the symmetric quadratic eigenproblem
+!> (no eigenvector matrix is inverted, so its condition plays no part):
 !>
-!>    x' = A x + b_s sin(Omega t) + b_0,   A = [0, I; -M^-1 K_e, -M^-1 C_e],
+!>    eta_h(tau) = sum_a c_a x_a e^{lambda_a tau},   c_a = s_a / nu_a,
+!>    s_a = x_a'[(lambda_a I + D + Psi C_c Psi') eta_h + v_h]
 !>
-!> with K_e = K + sum_active k_c e_c e_c', C_e = C + sum_active c_c e_c e_c' (contact spring and
-!> damper at the contact dof), b_0 = M^-1 sum_active s_c k_c g_c e_c (the gap) and
-!> b_s = M^-1 q (A_pp/2) Omega^2. Its solution is known in closed form,
+!> (x_a = e_j for the open configuration). A block of two nearly coalescing roots (see
+!> gapbeam_exact_config) contributes e^{m tau}[cosh(delta tau) M0 + sinh(delta tau)/delta M1]
+!> with the moments M0, M1 of the Laplace transform Q_c^-1[(lambda + D_c) eta_h + v_h] on the
+!> block's circle (open configuration: M0 = eta_h,j e_j, M1 = (v_h,j - m eta_h,j) e_j).
 !>
-!>    x(t0 + tau) = x_c + Re(X e^{i Omega (t0 + tau)}) + sum_j f_j Re(c_j w_j e^{lambda_j tau}),
+!> Every watched functional l_b (contact dofs, root strain, tip) is then
 !>
-!> with x_c = -A^-1 b_0 (static part), X the harmonic particular solution,
-!> (K_e - Omega^2 M + i Omega C_e) X_u = -i F, and (lambda_j, w_j) the eigenpairs of A (LAPACK
-!> dgeev; one of each complex-conjugate pair is kept, f_j = 2, real eigenvalues f_j = 1). The
-!> eigen decomposition, W^-1, x_c and X are computed once per configuration (`config_t`); a
-!> switch only projects the state on the new basis, c = W^-1 (x - x_c - Re(X e^{i Omega t0})),
-!> with one step of iterative refinement (`start_segment`). The real part of each complex
-!> eigenvalue is replaced by the exact identity of the symmetric quadratic problem,
-!> Re(lambda) = -phi^H C_e phi / (2 phi^H M phi) with phi the computed shape: dgeev's own real
-!> part is off by ~eps ||A|| (an energy drift of ~1e-13 per second without damping); this one is
-!> exactly 0 for an undamped configuration and exact to second order otherwise. The imaginary
-!> part (the frequency) comes from the same shape, sqrt(phi^H K_e phi / phi^H M phi -
-!> Re(lambda)^2), since dgeev's is off by ~eps ||A|| too, and each complex shape gets one step
-!> of inverse iteration, (K_e + mu C_e + mu^2 M) phi' = M phi, before W^-1 is formed.
+!>    phi_b(tau) = l_b'eta_s + Re(h_b e^{i Omega tau}) + Re sum_a a_ab e^{lambda_a tau}
+!>                 + sum_blocks Re(e^{m tau}[A_b C(tau) + B_b S(tau)])
 !>
-!> Every watched quantity (contact penetrations, root strain, tip displacement) is a linear
-!> functional of x, hence a sum of exponentials Re(sum_j a_j e^{mu_j tau}) + a_0 (`segment_t`),
-!> whose derivatives multiply a_j by mu_j^k and whose magnitudes sum_j |a_j e^{mu_j tau}|
-!> |mu_j|^k bound |phi^(k)| on the rest of the segment (`eval_seg`). Integrals of a contact force,
-!> its square and f |d'| over a window follow in closed form (`modal_window`).
-!>
-!> **Massless dofs** (lumped mass without rotary inertia: zero rows of M). With C = beta M +
-!> gamma K, their rows read gamma (K_ss v_s + K_sr v_r) + K_ss u_s + K_sr u_r = 0, i.e.
-!> gamma z' + z = 0 for z = K_ss u_s + K_sr u_r. The initial state is put in equilibrium
-!> (z(0) = z'(0) = 0), so z = 0 for all time: u_s = T u_r, T = -K_ss^-1 K_sr, exactly (static
-!> condensation, `setup_reduction`), and the remaining rows carry K_r = K_rr + K_rs T,
-!> C_r = C_rr + C_rs T = beta M_rr + gamma K_r. Contacts on massless dofs are rejected.
-!>
-!> **Defective configurations.** When the eigenvector matrix is ill-conditioned (row-equilibrated
-!> condition number above the limit, e.g. a critically damped mode), the configuration is
-!> integrated instead by a Taylor expansion of the matrix exponential of the augmented, balanced
-!> system z = (u, v/w_s, a sin, a cos, a), z' = Ahat z, on sub-steps with ||Ahat||_F h <= 1/2
-!> (degree 18, truncation below 1e-22), with the bounds |phi^(k)| <= |l| ||Ahat||^k e^{1/2} |z_k|;
-!> statistics by 16-point Gauss-Legendre on each sub-step. Exact to round-off but slow (about
-!> 6 ||Ahat||_F sub-steps per second): a safety net for a non-generic case.
+!> (`segment_t`, `eval_seg`): its derivatives multiply a_ab by lambda_a^k (blocks:
+!> (A, B) -> (m A + B, delta^2 A + m B)), and sup_{s >= tau} |phi_b^(k)(s)| is bounded by
+!> sum |a_ab| |lambda_a|^k e^{Re lambda_a tau} plus |h_b| Omega^k plus, per block,
+!> |A| L^k e^{sigma tau} + |B| (k L^{k-1} + s* L^k) e^{sigma s*} (L = max|m +- delta|,
+!> sigma = max Re(m +- delta), s* where that bound peaks beyond tau): e^{m s} S(s) is the divided
+!> difference of e^{z s} over [m - delta, m + delta]. A decayed term below prune_tol of every
+!> functional leaves the evaluations (`prune_seg`). Integrals of
+!> a contact force, its square and f |d'| over a window follow in closed form
+!> (`modal_window`; a block there is split into its two exponentials, or expanded about the
+!> window start as e^{m s} times a polynomial when delta is too small for the split).
 module gapbeam_exact_segment
-   use, intrinsic :: iso_fortran_env, only: int64
-   use gapbeam_kinds, only: dp, pi
-   use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: model_t
-   use gapbeam_lapack, only: dgeev, dgesv, dpotrf, dpotrs, zgesv
+   use gapbeam_kinds, only: dp
+   use gapbeam_lapack, only: zgemm
+   use gapbeam_exact_modes, only: open_modes_t
+   use gapbeam_exact_config, only: config_t, config_solve, n_contour
    implicit none
    private
-   public :: reduced_t, config_t, segment_t, setup_reduction, expand, build_config, mask_text, &
-      start_segment, eval_seg, segment_values, segment_state, taylor_next, modal_window, &
-      taylor_window, gauss_legendre, sign_after, band, add_fn, mono_quad, cubic_root
-   public :: zero_tol, cond_limit, n_taylor
+   public :: segment_t, start_segment, eval_seg, prune_seg, segment_values, segment_state, &
+      modal_window, sign_after, band, add_fn, mono_quad, cubic_root
+   public :: zero_tol
 
    real(dp), parameter :: zero_tol = 1.0e-12_dp    !! |phi^(k)| <= zero_tol * scale: zero
    real(dp), parameter :: prune_tol = 1.0e-17_dp   !! a decayed term below this is dropped
-   real(dp), parameter :: cond_limit = 1.0e6_dp    !! eigenvector condition: above, Taylor
-   integer, parameter :: n_taylor = 18             !! Taylor degree of the fallback
+   integer, parameter :: deg_poly = 5               ! polynomial of a block in a window
    real(dp), parameter :: inv_k(10) = 1.0_dp / [1.0_dp, 2.0_dp, 3.0_dp, 4.0_dp, 5.0_dp, &
       6.0_dp, 7.0_dp, 8.0_dp, 9.0_dp, 10.0_dp]
 
-   !> The structure condensed to its dofs with mass.
-   type :: reduced_t
-      integer :: n = 0                         ! all dofs
-      integer :: nr = 0                        ! dofs with mass
-      integer :: ns = 0                        ! massless dofs
-      integer :: nb = 0                        ! watched functionals: slots, strain, tip
-      integer :: n_slots = 0                   ! distinct contact dofs
-      integer :: b_strain = 0                  ! functional index of the root strain
-      integer :: b_tip = 0                     ! functional index of the tip displacement
-      integer, allocatable :: ir(:), is(:)     ! global indices of the two groups
-      integer, allocatable :: cpos(:)          ! reduced index of each contact's dof
-      integer, allocatable :: cslot(:)         ! functional of each contact (its slot)
-      real(dp), allocatable :: t(:, :)         ! (ns, nr) u_s = T u_r
-      real(dp), allocatable :: mr(:, :)        ! M_rr
-      real(dp), allocatable :: mfac(:, :)      ! Cholesky factor of M_rr
-      real(dp), allocatable :: kr(:, :)        ! condensed stiffness
-      real(dp), allocatable :: cr(:, :)        ! condensed damping
-      real(dp), allocatable :: qr(:)           ! load shape
-      real(dp), allocatable :: ell(:, :)       ! (nr, nb) functional rows on u_r
-   end type reduced_t
-
-   !> One contact configuration, closed form (modal) or Taylor fallback.
-   type :: config_t
-      integer(int64) :: mask = 0                    ! active contacts (bit c-1)
-      logical :: modal = .true.                     ! eigen decomposition usable
-      real(dp) :: cond = 0.0_dp                     ! condition of the eigenvector matrix
-      integer :: p = 0                              ! kept eigenvalues (one per pair)
-      complex(dp), allocatable :: mu(:)             ! (p) eigenvalues
-      real(dp), allocatable :: fac(:)               ! (p) 1 (real) or 2 (pair)
-      complex(dp), allocatable :: wh(:, :)          ! (2 nr, p) eigenvectors
-      complex(dp), allocatable :: winv(:, :)        ! (p, 2 nr) rows of W^-1
-      complex(dp), allocatable :: lrow(:, :)        ! (p, nb) functionals of the eigenvectors
-      complex(dp), allocatable :: xh(:)             ! (2 nr) harmonic amplitude
-      complex(dp), allocatable :: lh(:)             ! (nb) functionals of xh
-      real(dp), allocatable :: xc(:)                ! (2 nr) static part
-      real(dp), allocatable :: lc(:)                ! (nb) functionals of xc
-      real(dp), allocatable :: amat(:, :)           ! (2 nr, 2 nr) A
-      real(dp), allocatable :: absamat(:, :)        ! |A|
-      real(dp), allocatable :: bsv(:), b0v(:)       ! (2 nr) forcing and gap vectors
-      ! Taylor fallback
-      real(dp), allocatable :: ahat(:, :)           ! augmented balanced matrix
-      real(dp) :: omega_s = 1.0_dp                  ! velocity scale [1/s]
-      real(dp) :: alpha = 1.0_dp                    ! scale of the forcing entries [m]
-      real(dp) :: nrm = 0.0_dp                      ! ||Ahat||_F
-      real(dp) :: hsub = 0.0_dp                     ! sub-step
-   end type config_t
-
-   !> The current linear segment: coefficients of every watched functional.
+   !> The current linear segment: coefficients of the state and of every watched functional.
    type :: segment_t
-      integer :: ic = 0                             ! configuration
-      logical :: modal = .true.
-      integer :: nt = 0                             ! terms (eigenvalues + harmonic)
-      complex(dp), allocatable :: mu(:)             ! (nt) exponents
-      complex(dp), allocatable :: mp(:, :)          ! (3, nt) mu, mu^2, mu^3
-      real(dp), allocatable :: am(:, :)             ! (0:4, nt) |mu|^k
-      complex(dp), allocatable :: c(:)              ! (nt) state coefficients (f_j c_j)
-      complex(dp), allocatable :: e(:)              ! (nt) e^{mu tau} at the last evaluation
-      complex(dp), allocatable :: a(:, :)           ! (nt, nb) functional coefficients
-      real(dp), allocatable :: absa(:, :)           ! |a|
-      real(dp), allocatable :: a0(:)                ! (nb) constants
-      logical, allocatable :: live(:)               ! not pruned
-      logical, allocatable :: real_term(:)          ! real exponent
-      real(dp), allocatable :: me(:)                ! |e^{mu tau}| at the last evaluation
-      integer :: n_eval = 0
-      integer :: n_recur = 0                        ! evaluations by recurrence in a row
-      real(dp) :: tau_last = 0.0_dp                 ! instant of the last evaluation
-      real(dp) :: mu_max = 0.0_dp                   ! largest |mu|
-      ! Taylor fallback: current sub-step [tk, tk + hsub]
-      real(dp) :: tk = 0.0_dp
-      real(dp), allocatable :: pw(:, :)             ! (na, 0:n_taylor) Ahat^m z_k / m!
-      real(dp), allocatable :: pc(:, :)             ! (0:n_taylor, nb) functional coefficients
-      real(dp), allocatable :: elln(:)              ! (nb) |l|_2
-      real(dp) :: zbound = 0.0_dp                   ! bound of |z| on the sub-step
+      integer :: nt = 0                             !! terms: simple roots, then the harmonic
+      integer, allocatable :: root(:)               !! (nt) root of each term (0: harmonic)
+      complex(dp), allocatable :: mu(:)             !! (nt) exponents [1/s]
+      complex(dp), allocatable :: mp(:, :)          !! (3, nt) mu, mu^2, mu^3
+      real(dp), allocatable :: am(:, :)             !! (0:4, nt) |mu|^k
+      complex(dp), allocatable :: a(:, :)           !! (nt, nb) functional coefficients
+      real(dp), allocatable :: absa(:, :)           !! |a|
+      real(dp), allocatable :: a0(:)                !! (nb) constants (static part)
+      complex(dp), allocatable :: e(:)              !! (nt) e^{mu tau} at the last evaluation
+      real(dp), allocatable :: me(:)                !! |e^{mu tau}| there
+      logical, allocatable :: live(:)               !! not pruned
+      logical, allocatable :: real_term(:)          !! real exponent
+      real(dp), allocatable :: tail(:, :)           !! (0:4, nb) bounds of the pruned terms
+      integer :: n_eval = 0                         !! evaluations
+      integer :: n_recur = 0                        !! evaluations by recurrence in a row
+      real(dp) :: tau_last = 0.0_dp                 !! instant of the last evaluation [s]
+      real(dp) :: mu_max = 0.0_dp                   !! largest |mu| [1/s]
+      real(dp) :: horizon = 0.0_dp                  !! longest the segment can last [s]
+      complex(dp), allocatable :: coef(:)           !! (2n) state coefficient of each root
+      complex(dp), allocatable :: yt(:)             !! (n) Y e^{i Omega r0}
+      real(dp) :: omega = 0.0_dp                    !! forcing [rad/s]
+      ! blocks
+      integer :: nblk = 0                           !! blocks
+      complex(dp), allocatable :: bm(:), bd2(:)     !! (nblk) m, delta^2
+      real(dp), allocatable :: blam(:), bsig(:)     !! (nblk) max |m +- delta|, max Re
+      complex(dp), allocatable :: bm0(:, :), bm1(:, :)  !! (n, nblk) moments M0, M1
+      complex(dp), allocatable :: ba(:, :), bb(:, :)    !! (nblk, nb) A_b, B_b
    end type segment_t
 
 contains
 
-   ! ------------------------------------------------------------------ set-up
+   ! ------------------------------------------------------------------ projection
 
-   !> Condense the massless dofs and set up the watched functionals.
-   subroutine setup_reduction(model, red, err)
-      type(model_t), intent(in) :: model
-      type(reduced_t), intent(out) :: red
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i, j, n, nr, ns, info, c, b
-      real(dp), allocatable :: kss(:, :), rhs(:, :), l(:)
-      real(dp) :: scl
-      n = model%n
-      red%n = n
-      red%ir = pack([(i, i = 1, n)], [(model%sys%m(i, i) /= 0.0_dp, i = 1, n)])
-      red%is = pack([(i, i = 1, n)], [(model%sys%m(i, i) == 0.0_dp, i = 1, n)])
-      nr = size(red%ir);  ns = size(red%is)
-      red%nr = nr;  red%ns = ns
-      if (nr == 0) then
-         call fatal_error(err, 'gapbeam_exact: the model has no mass')
-         return
-      end if
-      allocate(red%t(ns, nr))
-      if (ns > 0) then
-         if (maxval(abs(model%sys%m(red%is, :))) > 0.0_dp) then
-            call fatal_error(err, 'gapbeam_exact: a dof with zero diagonal mass ' &
-               // 'is coupled by the mass matrix; cannot condense it')
-            return
-         end if
-         scl = max(maxval(abs(model%c)), tiny(1.0_dp))
-         if (maxval(abs(model%c(red%is, :) - model%gamma * model%sys%k(red%is, :))) &
-             > 1.0e-12_dp * scl) then
-            call fatal_error(err, 'gapbeam_exact: the damping rows of the massless ' &
-               // 'dofs are not gamma K (Rayleigh): the static condensation does not apply')
-            return
-         end if
-         kss = model%sys%k(red%is, red%is)
-         rhs = -model%sys%k(red%is, red%ir)
-         call dpotrf('U', ns, kss, ns, info)
-         if (info == 0) call dpotrs('U', ns, nr, kss, ns, rhs, ns, info)
-         if (info /= 0) then
-            call fatal_error(err, 'gapbeam_exact: the stiffness of the massless ' &
-               // 'dofs is singular (dpotrf/dpotrs info=' // str(info) // ')')
-            return
-         end if
-         red%t = rhs
-      end if
-      red%mr = model%sys%m(red%ir, red%ir)
-      red%kr = model%sys%k(red%ir, red%ir)
-      red%cr = model%c(red%ir, red%ir)
-      if (ns > 0) then
-         red%kr = red%kr + matmul(model%sys%k(red%ir, red%is), red%t)
-         red%cr = red%cr + matmul(model%c(red%ir, red%is), red%t)
-      end if
-      red%kr = 0.5_dp * (red%kr + transpose(red%kr))
-      red%cr = 0.5_dp * (red%cr + transpose(red%cr))
-      red%qr = model%q(red%ir)
-      red%mfac = red%mr
-      call dpotrf('U', nr, red%mfac, nr, info)
-      if (info /= 0) then
-         call fatal_error(err, 'gapbeam_exact: the mass matrix of the dofs with mass ' &
-            // 'is not positive definite (dpotrf info=' // str(info) // ')')
-         return
-      end if
-      ! contacts and functionals
-      red%n_slots = model%n_slots
-      red%nb = model%n_slots + 2
-      red%b_strain = model%n_slots + 1
-      red%b_tip = model%n_slots + 2
-      allocate(red%cpos(model%n_contacts), red%cslot(model%n_contacts))
-      do c = 1, model%n_contacts
-         red%cpos(c) = 0
-         do j = 1, nr
-            if (red%ir(j) == model%c_dof(c)) red%cpos(c) = j
-         end do
-         if (red%cpos(c) == 0) then
-            call fatal_error(err, 'gapbeam_exact: stop ' // str(model%c_stop(c)) &
-               // ' acts on a massless dof (global dof ' // str(model%c_dof(c)) // '); the ' &
-               // 'exact integrator condenses massless dofs and needs contacts on dofs with mass')
-            return
-         end if
-         red%cslot(c) = model%c_slot(c)
-      end do
-      allocate(red%ell(nr, red%nb), l(n))
-      do b = 1, red%nb
-         l = 0.0_dp
-         if (b <= model%n_slots) then
-            l(model%slot_dof(b)) = 1.0_dp
-         else if (b == red%b_strain) then
-            l = model%sys%strain_row
-         else
-            if (model%sys%tip_dof > 0) l(model%sys%tip_dof) = 1.0_dp
-         end if
-         red%ell(:, b) = l(red%ir)
-         if (ns > 0) red%ell(:, b) = red%ell(:, b) + matmul(transpose(red%t), l(red%is))
-      end do
-   end subroutine setup_reduction
-
-   !> Full vector from the reduced one: x_s = T x_r.
-   pure subroutine expand(red, xr, x)
-      type(reduced_t), intent(in) :: red
-      real(dp), intent(in) :: xr(:)
-      real(dp), intent(out) :: x(:)
-      x(red%ir) = xr
-      if (red%ns > 0) x(red%is) = matmul(red%t, xr)
-   end subroutine expand
-
-   !> Closed form (or Taylor fallback) of the configuration `mask`.
-   subroutine build_config(model, red, mask, climit, cf, err)
-      type(model_t), intent(in) :: model                !! model
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      integer(int64), intent(in) :: mask                !! active contacts (bit c-1)
-      real(dp), intent(in) :: climit                    !! eigenvector condition limit
-      type(config_t), intent(out) :: cf                 !! the configuration
-      type(error_t), allocatable, intent(inout) :: err  !! singular or resonant configuration
-      real(dp), allocatable :: ke(:, :), ce(:, :), b0(:), g(:, :), h(:, :)
-      real(dp) :: amp
-      character(len=:), allocatable :: where
-      where = 'gapbeam_exact: configuration ' // mask_text(mask, model%n_contacts)
-      cf%mask = mask
-      call config_matrices(model, red, mask, ke, ce, b0)
-      amp = model%half_amplitude * model%omega**2
-      call particular_parts(red, ke, ce, b0, model%omega, amp, where, cf, err)
-      if (allocated(err)) return
-      call state_matrix(red, ke, ce, b0, amp, cf, g, h)
-      call eigen_basis(red, climit, where, cf, err)
-      if (allocated(err)) return
-      if (.not. (cf%cond <= climit) .and. climit < huge(1.0_dp)) then
-         call build_taylor(red, model%omega, amp, g, h, b0, cf)
-         return
-      end if
-      call refine_eigenpairs(red, ke, ce, cf)
-      call functional_rows(red, cf)
-   end subroutine build_config
-
-   !> Stiffness, damping and gap load of a configuration: the condensed structure plus the
-   !> spring, damper and gap of every active contact.
-   pure subroutine config_matrices(model, red, mask, ke, ce, b0)
-      type(model_t), intent(in) :: model                !! model
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      integer(int64), intent(in) :: mask                !! active contacts
-      real(dp), allocatable, intent(out) :: ke(:, :), ce(:, :), b0(:)   !! K_e, C_e, gap load
-      integer :: c, i
-      ke = red%kr;  ce = red%cr
-      allocate(b0(red%nr), source=0.0_dp)
-      do c = 1, model%n_contacts
-         if (.not. btest(mask, c - 1)) cycle
-         i = red%cpos(c)
-         ke(i, i) = ke(i, i) + model%c_k(c)
-         ce(i, i) = ce(i, i) + model%c_c(c)
-         b0(i) = b0(i) + model%c_sign(c) * model%c_k(c) * model%c_gap(c)
-      end do
-   end subroutine config_matrices
-
-   !> Static part x_c = (K_e^-1 b0, 0) and harmonic particular solution:
-   !> (K_e - W^2 M + i W C_e) Y = F, u = Re(-i Y e^{iWt}).
-   subroutine particular_parts(red, ke, ce, b0, om, amp, where, cf, err)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: ke(:, :), ce(:, :), b0(:) !! K_e, C_e, gap load
-      real(dp), intent(in) :: om, amp                   !! forcing [rad/s], (A_pp/2) W^2
-      character(len=*), intent(in) :: where             !! for messages
-      type(config_t), intent(inout) :: cf               !! xc, xh set
-      type(error_t), allocatable, intent(inout) :: err  !! singular or resonant
-      real(dp), allocatable :: kf(:, :), a2(:, :), y2(:, :)
-      integer, allocatable :: ipiv(:)
-      integer :: nr, nn, info
-      nr = red%nr;  nn = 2 * nr
-      kf = ke
-      call dpotrf('U', nr, kf, nr, info)
-      allocate(cf%xc(nn), source=0.0_dp)
-      if (info == 0) then
-         cf%xc(1:nr) = b0
-         call dpotrs('U', nr, 1, kf, nr, cf%xc, nr, info)
-      end if
-      if (info /= 0) then
-         call fatal_error(err, where // ': the stiffness is not positive definite (info=' &
-            // str(info) // ')')
-         return
-      end if
-      allocate(cf%xh(nn), source=(0.0_dp, 0.0_dp))
-      if (amp == 0.0_dp) return
-      allocate(a2(nn, nn), y2(nn, 1), ipiv(nn))
-      a2(1:nr, 1:nr) = ke - om**2 * red%mr
-      a2(nr + 1:, nr + 1:) = a2(1:nr, 1:nr)
-      a2(1:nr, nr + 1:) = -om * ce
-      a2(nr + 1:, 1:nr) = om * ce
-      y2 = 0.0_dp
-      y2(1:nr, 1) = amp * red%qr
-      call dgesv(nn, 1, a2, nn, ipiv, y2, nn, info)
-      if (info /= 0) then
-         call fatal_error(err, where // ': the forcing frequency is a natural frequency ' &
-            // 'of an undamped configuration (dgesv info=' // str(info) // '); no ' &
-            // 'periodic particular solution')
-         return
-      end if
-      cf%xh(1:nr) = cmplx(y2(nr + 1:, 1), -y2(1:nr, 1), dp)     ! -i Y
-      cf%xh(nr + 1:) = om * cmplx(y2(1:nr, 1), y2(nr + 1:, 1), dp)   ! i W (-i Y)
-   end subroutine particular_parts
-
-   !> A = [0 I; -M^-1 K_e, -M^-1 C_e] (and |A|), the forcing and gap vectors; g = M^-1 K_e,
-   !> h = M^-1 C_e for the Taylor fallback.
-   subroutine state_matrix(red, ke, ce, b0, amp, cf, g, h)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: ke(:, :), ce(:, :), b0(:) !! K_e, C_e, gap load
-      real(dp), intent(in) :: amp                       !! (A_pp/2) W^2
-      type(config_t), intent(inout) :: cf               !! amat, absamat, bsv, b0v set
-      real(dp), allocatable, intent(out) :: g(:, :), h(:, :)   !! M^-1 K_e, M^-1 C_e
-      integer :: nr, nn, i, info
-      nr = red%nr;  nn = 2 * nr
-      g = ke;  h = ce
-      call dpotrs('U', nr, nr, red%mfac, nr, g, nr, info)
-      call dpotrs('U', nr, nr, red%mfac, nr, h, nr, info)
-      allocate(cf%amat(nn, nn), source=0.0_dp)
-      do i = 1, nr
-         cf%amat(i, nr + i) = 1.0_dp
-      end do
-      cf%amat(nr + 1:, 1:nr) = -g
-      cf%amat(nr + 1:, nr + 1:) = -h
-      cf%absamat = abs(cf%amat)
-      allocate(cf%bsv(nn), cf%b0v(nn), source=0.0_dp)
-      cf%bsv(nr + 1:) = amp * red%qr
-      cf%b0v(nr + 1:) = b0
-      call dpotrs('U', nr, 1, red%mfac, nr, cf%bsv(nr + 1:), nr, info)
-      call dpotrs('U', nr, 1, red%mfac, nr, cf%b0v(nr + 1:), nr, info)
-   end subroutine state_matrix
-
-   !> Eigenpairs of A (dgeev), W^-1, the row-equilibrated condition number of W, and one
-   !> eigenvalue of each complex-conjugate pair kept (mu, fac, wh, winv).
-   subroutine eigen_basis(red, climit, where, cf, err)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: climit                    !! condition limit (< 0: skip)
-      character(len=*), intent(in) :: where             !! for messages
-      type(config_t), intent(inout) :: cf               !! the configuration
-      type(error_t), allocatable, intent(inout) :: err  !! dgeev failure
-      real(dp), allocatable :: amat(:, :), wr(:), wi(:), vr(:, :), vl(:, :), work(:), rs(:)
-      complex(dp), allocatable :: w(:, :), winv(:, :), wcopy(:, :)
-      integer, allocatable :: ipiv(:)
-      integer :: nn, lwork, info, i, j, p
-      real(dp) :: query(1), n1, n2
-      nn = 2 * red%nr
-      amat = cf%amat
-      allocate(wr(nn), wi(nn), vr(nn, nn), vl(1, 1))
-      call dgeev('N', 'V', nn, amat, nn, wr, wi, vl, 1, vr, nn, query, -1, info)
-      lwork = max(1, int(query(1)))
-      allocate(work(lwork))
-      call dgeev('N', 'V', nn, amat, nn, wr, wi, vl, 1, vr, nn, work, lwork, info)
-      if (info /= 0) then
-         call fatal_error(err, where // ': dgeev failed, info=' // str(info))
-         return
-      end if
-      allocate(w(nn, nn))
-      j = 1
-      do while (j <= nn)
-         if (wi(j) == 0.0_dp .or. j == nn) then
-            w(:, j) = cmplx(vr(:, j), 0.0_dp, dp)
-            j = j + 1
-         else
-            w(:, j) = cmplx(vr(:, j), vr(:, j + 1), dp)
-            w(:, j + 1) = conjg(w(:, j))
-            j = j + 2
-         end if
-      end do
-      wcopy = w
-      allocate(winv(nn, nn), source=(0.0_dp, 0.0_dp))
-      do i = 1, nn
-         winv(i, i) = (1.0_dp, 0.0_dp)
-      end do
-      allocate(ipiv(nn))
-      call zgesv(nn, nn, wcopy, nn, ipiv, winv, nn, info)
-      ! row-equilibrated 1-norm condition number
-      allocate(rs(nn))
-      do i = 1, nn
-         rs(i) = max(maxval(abs(w(i, :))), tiny(1.0_dp))
-      end do
-      n1 = 0.0_dp;  n2 = 0.0_dp
-      do j = 1, nn
-         n1 = max(n1, sum(abs(w(:, j)) / rs))
-         n2 = max(n2, rs(j) * sum(abs(winv(:, j))))
-      end do
-      cf%cond = n1 * n2
-      if (info /= 0) cf%cond = huge(1.0_dp)
-      if (.not. (cf%cond <= climit) .and. climit < huge(1.0_dp)) return
-      ! keep one eigenvalue of each pair
-      p = count(wi >= 0.0_dp)
-      allocate(cf%mu(p), cf%fac(p), cf%wh(nn, p), cf%winv(p, nn))
-      p = 0
-      j = 1
-      do while (j <= nn)
-         p = p + 1
-         cf%mu(p) = cmplx(wr(j), wi(j), dp)
-         cf%wh(:, p) = w(:, j)
-         cf%winv(p, :) = winv(j, :)
-         if (wi(j) == 0.0_dp .or. j == nn) then
-            cf%fac(p) = 1.0_dp
-            j = j + 1
-         else
-            cf%fac(p) = 2.0_dp
-            j = j + 2
-         end if
-      end do
-      cf%p = p
-      cf%mu = cf%mu(1:p);  cf%fac = cf%fac(1:p)
-      cf%wh = cf%wh(:, 1:p);  cf%winv = cf%winv(1:p, :)
-   end subroutine eigen_basis
-
-   !> Refine the complex eigenpairs. The real part of a complex eigenvalue of the symmetric
-   !> quadratic problem (lambda^2 M + lambda C + K) phi = 0 is exactly -phi^H C phi /
-   !> (2 phi^H M phi): taken from the computed shape it is accurate to the shape's error
-   !> squared (dgeev's own is off by ~eps ||A||, an energy drift of ~1e-13 per second without
-   !> damping), and it is exactly 0 for an undamped configuration. The imaginary part likewise:
-   !> dgeev's is off by ~eps ||A|| in absolute terms, i.e. by eps omega_max^2 / omega relative
-   !> for a low mode of a stiff model, while the root of phi^H (lambda^2 M + lambda C + K) phi
-   !> = 0 is again accurate to the shape's error squared; it is taken unless the discriminant
-   !> cancels (a nearly critically damped pair). Then one step of inverse iteration on each
-   !> complex shape with the refined eigenvalue, (K + mu C + mu^2 M) phi' = M phi, W^-1 again,
-   !> and the eigenvalues once more from the new shapes.
-   subroutine refine_eigenpairs(red, ke, ce, cf)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: ke(:, :), ce(:, :)        !! K_e, C_e
-      type(config_t), intent(inout) :: cf               !! mu, wh, winv refined
-      complex(dp), allocatable :: qm(:, :), phq(:, :), w(:, :), winv(:, :)
-      integer, allocatable :: ip2(:), jidx(:), ipiv(:)
-      integer :: nr, nn, p, j, i, q, info
-      nr = red%nr;  nn = 2 * nr;  p = cf%p
-      call rayleigh_eigenvalues(red, ke, ce, cf)
-      allocate(qm(nr, nr), phq(nr, 1), ip2(nr))
-      do j = 1, p
-         if (aimag(cf%mu(j)) == 0.0_dp) cycle
-         qm = ke + cf%mu(j) * ce + cf%mu(j)**2 * red%mr
-         phq(:, 1) = matmul(red%mr, cf%wh(1:nr, j))
-         call zgesv(nr, 1, qm, nr, ip2, phq, nr, info)
-         if (info /= 0) cycle
-         if (.not. (maxval(abs(phq)) > 0.0_dp)) cycle
-         phq = phq * (maxval(abs(cf%wh(1:nr, j))) / maxval(abs(phq)))
-         cf%wh(1:nr, j) = phq(:, 1)
-         cf%wh(nr + 1:, j) = cf%mu(j) * phq(:, 1)
-      end do
-      allocate(w(nn, nn), jidx(p), ipiv(nn))
-      q = 0
-      do j = 1, p
-         q = q + 1
-         w(:, q) = cf%wh(:, j)
-         jidx(j) = q
-         if (cf%fac(j) == 2.0_dp) then
-            q = q + 1
-            w(:, q) = conjg(cf%wh(:, j))
-         end if
-      end do
-      allocate(winv(nn, nn), source=(0.0_dp, 0.0_dp))
-      do i = 1, nn
-         winv(i, i) = (1.0_dp, 0.0_dp)
-      end do
-      call zgesv(nn, nn, w, nn, ipiv, winv, nn, info)
-      do j = 1, p
-         cf%winv(j, :) = winv(jidx(j), :)
-      end do
-      call rayleigh_eigenvalues(red, ke, ce, cf)
-   end subroutine refine_eigenpairs
-
-   !> Real and imaginary parts of each complex eigenvalue from its shape (see
-   !> refine_eigenpairs).
-   subroutine rayleigh_eigenvalues(red, ke, ce, cf)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: ke(:, :), ce(:, :)        !! K_e, C_e
-      type(config_t), intent(inout) :: cf               !! mu refined
-      integer :: j, nr
-      real(dp) :: n1, n2, n3, re_mu, im_mu, im2
-      nr = red%nr
-      do j = 1, cf%p
-         if (aimag(cf%mu(j)) == 0.0_dp) cycle
-         n1 = real(dot_product(cf%wh(1:nr, j), matmul(ce, cf%wh(1:nr, j))))
-         n2 = real(dot_product(cf%wh(1:nr, j), matmul(red%mr, cf%wh(1:nr, j))))
-         n3 = real(dot_product(cf%wh(1:nr, j), matmul(ke, cf%wh(1:nr, j))))
-         if (n2 > 0.0_dp) then
-            re_mu = -0.5_dp * n1 / n2
-            im2 = n3 / n2 - re_mu**2
-            im_mu = aimag(cf%mu(j))
-            if (im2 > 0.25_dp * (n3 / n2)) im_mu = sqrt(im2)
-            cf%mu(j) = cmplx(re_mu, im_mu, dp)
-         end if
-      end do
-   end subroutine rayleigh_eigenvalues
-
-   !> The watched functionals on the eigenvectors, the harmonic and the static parts.
-   pure subroutine functional_rows(red, cf)
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      type(config_t), intent(inout) :: cf               !! lrow, lh, lc set
-      integer :: b, j, nr
-      nr = red%nr
-      allocate(cf%lrow(cf%p, red%nb), cf%lh(red%nb), cf%lc(red%nb))
-      do b = 1, red%nb
-         do j = 1, cf%p
-            cf%lrow(j, b) = sum(red%ell(:, b) * cf%wh(1:nr, j))
-         end do
-         cf%lh(b) = sum(red%ell(:, b) * cf%xh(1:nr))
-         cf%lc(b) = sum(red%ell(:, b) * cf%xc(1:nr))
-      end do
-   end subroutine functional_rows
-
-   !> Augmented balanced matrix of the Taylor fallback.
-   subroutine build_taylor(red, om, amp, g, h, b0, cf)
-      type(reduced_t), intent(in) :: red
-      real(dp), intent(in) :: om, amp
-      real(dp), intent(in) :: g(:, :), h(:, :), b0(:)   ! M^-1 Ke, M^-1 Ce, gap load
-      type(config_t), intent(inout) :: cf
-      integer :: nr, na, i, info
-      real(dp), allocatable :: f(:, :)
-      nr = red%nr;  na = 2 * nr + 3
-      cf%modal = .false.
-      cf%omega_s = sqrt(maxval(sum(abs(g), dim=2)))
-      if (.not. (cf%omega_s > 0.0_dp)) cf%omega_s = 1.0_dp
-      cf%alpha = max(maxval(abs(cf%xh(1:nr))), maxval(abs(cf%xc(1:nr))))
-      if (.not. (cf%alpha > 0.0_dp)) cf%alpha = 1.0_dp
-      allocate(f(nr, 2))
-      f(:, 1) = amp * red%qr;  f(:, 2) = b0
-      call dpotrs('U', nr, 2, red%mfac, nr, f, nr, info)
-      allocate(cf%ahat(na, na), source=0.0_dp)
-      do i = 1, nr
-         cf%ahat(i, nr + i) = cf%omega_s
-      end do
-      cf%ahat(nr + 1:2 * nr, 1:nr) = -g / cf%omega_s
-      cf%ahat(nr + 1:2 * nr, nr + 1:2 * nr) = -h
-      cf%ahat(nr + 1:2 * nr, 2 * nr + 1) = f(:, 1) / (cf%omega_s * cf%alpha)
-      cf%ahat(nr + 1:2 * nr, 2 * nr + 3) = f(:, 2) / (cf%omega_s * cf%alpha)
-      cf%ahat(2 * nr + 1, 2 * nr + 2) = om
-      cf%ahat(2 * nr + 2, 2 * nr + 1) = -om
-      cf%nrm = sqrt(sum(cf%ahat**2))
-      cf%hsub = 0.5_dp / cf%nrm
-   end subroutine build_taylor
-
-   !> 'contacts {1, 3} active' style text of a mask.
-   function mask_text(mask, nc) result(s)
-      integer(int64), intent(in) :: mask
-      integer, intent(in) :: nc
-      character(len=:), allocatable :: s
-      integer :: c
-      s = '(active contacts:'
-      do c = 1, nc
-         if (btest(mask, c - 1)) s = s // ' ' // str(c)
-      end do
-      if (mask == 0) s = s // ' none'
-      s = s // ')'
-   end function mask_text
-
-   ! ------------------------------------------------------------------ segments
-
-   !> Coefficients of the segment starting from x0 at forcing offset r0.
-   subroutine start_segment(cf, red, om, x0, r0, sg)
-      type(config_t), intent(in) :: cf
-      type(reduced_t), intent(in) :: red
-      real(dp), intent(in) :: om, x0(:), r0
-      type(segment_t), intent(inout) :: sg
-      integer :: p, nt, j, b, nr, na
+   !> The segment of configuration cf starting from the modal state (eta, vel) at forcing
+   !> offset r0 [s].
+   subroutine start_segment(om, cf, omega, period, eta, vel, r0, sg)
+      type(open_modes_t), intent(in) :: om          !! open structure
+      type(config_t), intent(in) :: cf              !! configuration
+      real(dp), intent(in) :: omega, period         !! forcing [rad/s], [s]
+      real(dp), intent(in) :: eta(:), vel(:)        !! (n) modal state
+      real(dp), intent(in) :: r0                    !! forcing offset [s]
+      type(segment_t), intent(inout) :: sg          !! the segment
       complex(dp) :: ph
-      real(dp), allocatable :: rhs(:), z(:), res(:)
-      nr = red%nr
-      sg%modal = cf%modal
-      sg%n_eval = 0
-      if (.not. cf%modal) then
-         na = 2 * nr + 3
-         if (.not. allocated(sg%pw)) then
-            allocate(sg%pw(na, 0:n_taylor), sg%pc(0:n_taylor, red%nb), sg%elln(red%nb))
-         else if (size(sg%pw, 1) /= na) then
-            deallocate(sg%pw, sg%pc, sg%elln)
-            allocate(sg%pw(na, 0:n_taylor), sg%pc(0:n_taylor, red%nb), sg%elln(red%nb))
-         end if
-         do b = 1, red%nb
-            sg%elln(b) = norm2(red%ell(:, b))
+      real(dp), allocatable :: eh(:), vh(:), cpsi(:)
+      complex(dp), allocatable :: u(:, :), s(:, :)
+      integer :: n, nr, nb, j, k, rho
+      n = cf%n;  nr = cf%nroot;  nb = om%nb
+      ph = cmplx(cos(omega * r0), sin(omega * r0), dp)
+      sg%omega = omega
+      sg%horizon = 2.0_dp * period
+      sg%yt = cf%y * ph
+      eh = eta - cf%eta_s - real(sg%yt)
+      vh = vel - real(cmplx(0.0_dp, omega, dp) * sg%yt)
+      allocate(cpsi(n), source=0.0_dp)
+      if (cf%r > 0) cpsi = matmul(cf%psi, cf%cc * matmul(eh, cf%psi))
+      if (allocated(sg%coef)) deallocate(sg%coef)
+      allocate(sg%coef(nr), source=(0.0_dp, 0.0_dp))
+      if (cf%r == 0) then
+         do rho = 1, nr
+            if (.not. cf%simple(rho)) cycle
+            j = rho;  if (j > n) j = j - n
+            sg%coef(rho) = ((cf%lam(rho) + om%d(j)) * eh(j) + vh(j)) / cf%nu(rho)
          end do
-         allocate(z(na))
-         z(1:nr) = x0(1:nr)
-         z(nr + 1:2 * nr) = x0(nr + 1:) / cf%omega_s
-         z(2 * nr + 1) = cf%alpha * sin(om * r0)
-         z(2 * nr + 2) = cf%alpha * cos(om * r0)
-         z(2 * nr + 3) = cf%alpha
-         sg%tk = 0.0_dp
-         call taylor_load(sg, cf, red, z)
-         return
+      else
+         allocate(u(n, 2), s(nr, 2))
+         u(:, 1) = cmplx(vh + cpsi + om%d * eh, 0.0_dp, dp)
+         u(:, 2) = cmplx(eh, 0.0_dp, dp)
+         call zgemm('T', 'N', nr, 2, n, (1.0_dp, 0.0_dp), cf%x, n, u, n, (0.0_dp, 0.0_dp), s, nr)
+         do rho = 1, nr
+            if (cf%simple(rho)) sg%coef(rho) = (s(rho, 1) + cf%lam(rho) * s(rho, 2)) / cf%nu(rho)
+         end do
       end if
-      p = cf%p
-      nt = p + 1
-      if (allocated(sg%mu)) then
-         if (size(sg%mu) /= nt .or. size(sg%a, 2) /= red%nb) deallocate(sg%mu, sg%mp, sg%am, &
-            sg%c, sg%a, sg%absa, sg%a0, sg%live, sg%real_term, sg%me, sg%e)
-      end if
-      if (.not. allocated(sg%mu)) allocate(sg%mu(nt), sg%mp(3, nt), sg%am(0:4, nt), sg%c(nt), &
-         sg%a(nt, red%nb), sg%absa(nt, red%nb), sg%a0(red%nb), sg%live(nt), sg%real_term(nt), &
-         sg%me(nt), sg%e(nt))
-      sg%nt = nt
-      sg%n_recur = 0;  sg%tau_last = 0.0_dp
-      ph = cmplx(cos(om * r0), sin(om * r0), dp)
-      rhs = x0 - cf%xc - real(cf%xh * ph)
-      sg%mu(1:p) = cf%mu
-      sg%mu(nt) = cmplx(0.0_dp, om, dp)
-      do j = 1, p
-         sg%c(j) = cf%fac(j) * sum(cf%winv(j, :) * rhs)
+      ! terms: the simple roots (one of each complex-conjugate pair, its coefficient doubled:
+      ! Re(a e^{lambda t}) + Re(conj(a) e^{conj(lambda) t}) = Re(2 a e^{lambda t})), then the
+      ! harmonic
+      call size_terms(sg, count(cf%simple .and. .not. (cf%partner > 0 .and. &
+                      cf%partner < [(rho, rho = 1, nr)])) + 1, nb)
+      k = 0
+      do rho = 1, nr
+         if (.not. cf%simple(rho)) cycle
+         if (cf%partner(rho) > 0 .and. cf%partner(rho) < rho) cycle
+         k = k + 1
+         sg%root(k) = rho
+         sg%mu(k) = cf%lam(rho)
+         sg%a(k, :) = sg%coef(rho) * cf%lrow(rho, :)
+         if (cf%partner(rho) > 0) sg%a(k, :) = 2.0_dp * sg%a(k, :)
       end do
-      ! one step of iterative refinement: the residual of the reconstruction, projected again
-      ! (the explicit inverse alone leaves ~cond(W) eps; this brings it to ~eps)
-      res = rhs
-      do j = 1, p
-         res = res - real(sg%c(j) * cf%wh(:, j))
-      end do
-      do j = 1, p
-         sg%c(j) = sg%c(j) + cf%fac(j) * sum(cf%winv(j, :) * res)
-      end do
-      sg%c(nt) = ph
-      do j = 1, nt
-         sg%mp(1, j) = sg%mu(j)
-         sg%mp(2, j) = sg%mu(j)**2
-         sg%mp(3, j) = sg%mu(j)**3
-         sg%am(0, j) = 1.0_dp
-         sg%am(1, j) = abs(sg%mu(j))
-         sg%am(2, j) = sg%am(1, j)**2
-         sg%am(3, j) = sg%am(1, j)**3
-         sg%am(4, j) = sg%am(2, j)**2
-         sg%real_term(j) = aimag(sg%mu(j)) == 0.0_dp
-      end do
-      do b = 1, red%nb
-         sg%a(1:p, b) = sg%c(1:p) * cf%lrow(:, b)
-         sg%a(nt, b) = cf%lh(b) * ph
-         sg%a0(b) = cf%lc(b)
+      k = k + 1
+      sg%root(k) = 0
+      sg%mu(k) = cmplx(0.0_dp, omega, dp)
+      sg%a(k, :) = cf%ly * ph
+      sg%a0 = cf%ls
+      do k = 1, sg%nt
+         sg%mp(1, k) = sg%mu(k)
+         sg%mp(2, k) = sg%mu(k)**2
+         sg%mp(3, k) = sg%mu(k)**3
+         sg%am(0, k) = 1.0_dp
+         sg%am(1, k) = abs(sg%mu(k))
+         sg%am(2, k) = sg%am(1, k)**2
+         sg%am(3, k) = sg%am(1, k)**3
+         sg%am(4, k) = sg%am(2, k)**2
+         sg%real_term(k) = aimag(sg%mu(k)) == 0.0_dp
       end do
       sg%absa = abs(sg%a)
       sg%mu_max = maxval(sg%am(1, :))
-      sg%live = sg%absa(:, 1) >= 0.0_dp
-      sg%live(nt) = cf%lh(1) /= (0.0_dp, 0.0_dp) .or. any(cf%xh /= (0.0_dp, 0.0_dp))
+      sg%live = .true.
+      sg%tail = 0.0_dp
+      sg%n_eval = 0;  sg%n_recur = 0;  sg%tau_last = 0.0_dp
+      call start_blocks(om, cf, eh, vh, cpsi, sg)
    end subroutine start_segment
 
-   !> Values (derivatives 0..3) and bounds (0..4) of the needed functionals at tau.
-   subroutine eval_seg(sg, cf, red, tau, need, val, bnd)
+   !> Allocate the term arrays for nt terms and nb functionals (reused when the sizes match).
+   subroutine size_terms(sg, nt, nb)
       type(segment_t), intent(inout) :: sg
+      integer, intent(in) :: nt, nb
+      if (allocated(sg%mu)) then
+         if (size(sg%mu) /= nt .or. size(sg%a, 2) /= nb) deallocate(sg%root, sg%mu, sg%mp, &
+            sg%am, sg%a, sg%absa, sg%a0, sg%e, sg%me, sg%live, sg%real_term, sg%tail)
+      end if
+      if (.not. allocated(sg%mu)) allocate(sg%root(nt), sg%mu(nt), sg%mp(3, nt), &
+         sg%am(0:4, nt), sg%a(nt, nb), sg%absa(nt, nb), sg%a0(nb), sg%e(nt), sg%me(nt), &
+         sg%live(nt), sg%real_term(nt), sg%tail(0:4, nb))
+      sg%nt = nt
+   end subroutine size_terms
+
+   !> Moments of the blocks: M0 = sum_k w_k e_k, M1 = sum_k w_k (lambda_k - m) e_k with
+   !> e_k = Q_c(lambda_k)^-1 [(lambda_k + D) eta_h + v_h + Psi C_c Psi' eta_h].
+   subroutine start_blocks(om, cf, eh, vh, cpsi, sg)
+      type(open_modes_t), intent(in) :: om
       type(config_t), intent(in) :: cf
-      type(reduced_t), intent(in) :: red
+      real(dp), intent(in) :: eh(:), vh(:), cpsi(:)
+      type(segment_t), intent(inout) :: sg
+      complex(dp), allocatable :: rhs(:), e(:)
+      integer :: ib, k, j, n
+      logical :: ok
+      n = cf%n
+      sg%nblk = cf%nblk
+      if (allocated(sg%bm)) deallocate(sg%bm, sg%bd2, sg%blam, sg%bsig, sg%bm0, sg%bm1, sg%ba, &
+                                       sg%bb)
+      allocate(sg%bm(cf%nblk), sg%bd2(cf%nblk), sg%blam(cf%nblk), sg%bsig(cf%nblk), &
+               sg%bm0(n, cf%nblk), sg%bm1(n, cf%nblk), sg%ba(cf%nblk, om%nb), &
+               sg%bb(cf%nblk, om%nb))
+      if (cf%nblk == 0) return
+      allocate(rhs(n), e(n))
+      do ib = 1, cf%nblk
+         associate (bk => cf%blk(ib))
+            sg%bm(ib) = bk%m;  sg%bd2(ib) = bk%d2
+            sg%blam(ib) = bk%lam_abs;  sg%bsig(ib) = bk%sig
+            sg%bm0(:, ib) = (0.0_dp, 0.0_dp);  sg%bm1(:, ib) = (0.0_dp, 0.0_dp)
+            if (bk%mode > 0) then
+               j = bk%mode
+               sg%bm0(j, ib) = eh(j)
+               sg%bm1(j, ib) = vh(j) - bk%m * eh(j)
+            else
+               do k = 1, n_contour
+                  rhs = (bk%pts(k) + om%d) * eh + vh + cpsi
+                  call config_solve(om, cf, bk%pts(k), rhs, e, ok)
+                  sg%bm0(:, ib) = sg%bm0(:, ib) + bk%wts(k) * e
+                  sg%bm1(:, ib) = sg%bm1(:, ib) + bk%wts(k) * (bk%pts(k) - bk%m) * e
+               end do
+            end if
+         end associate
+         sg%ba(ib, :) = matmul(sg%bm0(:, ib), om%ell)
+         sg%bb(ib, :) = matmul(sg%bm1(:, ib), om%ell)
+      end do
+   end subroutine start_blocks
+
+   ! ------------------------------------------------------------------ evaluation
+
+   !> e^{m tau} cosh(delta tau) and e^{m tau} sinh(delta tau)/delta for delta^2 = d2: entire in
+   !> d2, so exact and smooth through delta = 0 (series for |d2 tau^2| < 1).
+   pure subroutine block_fn(m, d2, tau, ec, es)
+      complex(dp), intent(in) :: m, d2
       real(dp), intent(in) :: tau
-      logical, intent(in) :: need(:)
-      real(dp), intent(out) :: val(0:, :), bnd(0:, :)
-      integer :: j, b, m, k
-      real(dp) :: me, er, ei, zr, zi, mag, s, acc(0:3), fall, dt, v0, v1, v2, v3, u0, u1, u2, &
-         u3, u4
+      complex(dp), intent(out) :: ec, es
+      complex(dp) :: z2, t, c, s, dl, ep, em
+      integer :: k
+      z2 = d2 * tau * tau
+      if (abs(z2) < 1.0_dp) then
+         c = (0.0_dp, 0.0_dp);  s = (0.0_dp, 0.0_dp);  t = (1.0_dp, 0.0_dp)
+         do k = 0, 13
+            c = c + t / fact(2 * k)
+            s = s + t / fact(2 * k + 1)
+            t = t * z2
+         end do
+         ec = exp(m * tau) * c
+         es = exp(m * tau) * tau * s
+      else
+         dl = sqrt(d2)
+         ep = exp((m + dl) * tau);  em = exp((m - dl) * tau)
+         ec = 0.5_dp * (ep + em)
+         es = (ep - em) / (2.0_dp * dl)
+      end if
+   end subroutine block_fn
+
+   !> k! as a real.
+   pure real(dp) function fact(k)
+      integer, intent(in) :: k
+      integer :: i
+      fact = 1.0_dp
+      do i = 2, k
+         fact = fact * real(i, dp)
+      end do
+   end function fact
+
+   !> Values (derivatives 0..3) and bounds (0..4, over the rest of the segment) of the needed
+   !> functionals at tau.
+   subroutine eval_seg(sg, tau, need, val, bnd)
+      type(segment_t), intent(inout) :: sg          !! segment
+      real(dp), intent(in) :: tau                   !! instant [s]
+      logical, intent(in) :: need(:)                !! functionals wanted
+      real(dp), intent(out) :: val(0:, :)           !! (0:3, nb) values and derivatives
+      real(dp), intent(out) :: bnd(0:, :)           !! (0:4, nb) bounds
+      integer :: j, b, k
+      real(dp) :: me, er, ei, zr, zi, mag, dt, v0, v1, v2, v3, u0, u1, u2, u3, u4
       complex(dp) :: zd, ez
       logical :: recur
       val = 0.0_dp;  bnd = 0.0_dp
-      if (.not. sg%modal) then
-         s = tau - sg%tk
-         do b = 1, red%nb
-            if (.not. need(b)) cycle
-            acc = 0.0_dp
-            do m = n_taylor, 0, -1
-               do k = 0, 3
-                  if (m < k) cycle
-                  fall = 1.0_dp
-                  if (k >= 1) fall = real(m, dp)
-                  if (k >= 2) fall = fall * real(m - 1, dp)
-                  if (k >= 3) fall = fall * real(m - 2, dp)
-                  acc(k) = acc(k) * s + fall * sg%pc(m, b)
-               end do
-            end do
-            val(:, b) = acc
-            do k = 0, 4
-               bnd(k, b) = sg%elln(b) * cf%nrm**k * sg%zbound
-            end do
-         end do
-         return
-      end if
       sg%n_eval = sg%n_eval + 1
       ! close to the last instant every e^{mu tau} follows from the last one times the Taylor
       ! series of e^{mu dt} (|mu dt| <= 1/16: degree 10 is exact to 1e-18), at most 4 times in
@@ -743,7 +302,6 @@ contains
          end if
          sg%me(j) = me
       end do
-      ! sums per functional, in scalars
       do b = 1, size(need)
          if (.not. need(b)) cycle
          v0 = sg%a0(b);  v1 = 0.0_dp;  v2 = 0.0_dp;  v3 = 0.0_dp
@@ -765,33 +323,106 @@ contains
             u4 = u4 + mag * sg%am(4, j)
          end do
          val(0, b) = v0;  val(1, b) = v1;  val(2, b) = v2;  val(3, b) = v3
-         bnd(0, b) = u0;  bnd(1, b) = u1;  bnd(2, b) = u2;  bnd(3, b) = u3;  bnd(4, b) = u4
+         bnd(0, b) = u0 + sg%tail(0, b);  bnd(1, b) = u1 + sg%tail(1, b)
+         bnd(2, b) = u2 + sg%tail(2, b);  bnd(3, b) = u3 + sg%tail(3, b)
+         bnd(4, b) = u4 + sg%tail(4, b)
       end do
-      if (mod(sg%n_eval, 8) == 0) call prune(sg)
+      if (sg%nblk > 0) call eval_blocks(sg, tau, need, val, bnd)
    end subroutine eval_seg
 
-   !> Values and first derivatives of every functional at tau, from every term (pruned ones
-   !> included: valid anywhere in the segment, or in the current Taylor sub-step); does not
-   !> touch the segment's evaluation state.
-   pure subroutine segment_values(sg, red, tau, val)
-      type(segment_t), intent(in) :: sg                 !! segment
-      type(reduced_t), intent(in) :: red                !! condensed structure
-      real(dp), intent(in) :: tau                       !! instant in the segment [s]
-      real(dp), intent(out) :: val(0:, :)               !! (0:1, nb) values and derivatives
-      integer :: j, b, m
-      real(dp) :: x, er, ei, zr, zi, me
-      complex(dp) :: e(sg%nt)
-      val = 0.0_dp
-      if (.not. sg%modal) then
-         x = tau - sg%tk
-         do b = 1, red%nb
-            do m = n_taylor, 0, -1
-               val(0, b) = val(0, b) * x + sg%pc(m, b)
-               if (m >= 1) val(1, b) = val(1, b) * x + real(m, dp) * sg%pc(m, b)
+   !> Add the blocks' values and bounds.
+   pure subroutine eval_blocks(sg, tau, need, val, bnd)
+      type(segment_t), intent(in) :: sg
+      real(dp), intent(in) :: tau
+      logical, intent(in) :: need(:)
+      real(dp), intent(inout) :: val(0:, :), bnd(0:, :)
+      integer :: ib, b, k
+      complex(dp) :: ec, es, ca, cb, t
+      real(dp) :: lam, sig, sc, ss, s0, alpha, beta
+      do ib = 1, sg%nblk
+         call block_fn(sg%bm(ib), sg%bd2(ib), tau, ec, es)
+         lam = sg%blam(ib);  sig = sg%bsig(ib)
+         do b = 1, size(need)
+            if (.not. need(b)) cycle
+            ca = sg%ba(ib, b);  cb = sg%bb(ib, b)
+            do k = 0, ubound(val, 1)
+               val(k, b) = val(k, b) + real(ca * ec + cb * es)
+               t = sg%bm(ib) * ca + cb
+               cb = sg%bd2(ib) * ca + sg%bm(ib) * cb
+               ca = t
+            end do
+            do k = 0, ubound(bnd, 1)
+               ! the C part: |A| L^k e^{sigma s}; the S part: |B| (k L^{k-1} + s L^k) e^{sigma s},
+               ! each at its largest over s >= tau
+               alpha = real(k, dp) * lam**max(k - 1, 0)
+               beta = lam**k
+               if (sig < 0.0_dp) then
+                  sc = tau
+                  s0 = -1.0_dp / sig
+                  if (beta > 0.0_dp) s0 = s0 - alpha / beta
+                  ss = max(tau, s0)
+               else
+                  sc = max(tau, sg%horizon);  ss = sc
+               end if
+               bnd(k, b) = bnd(k, b) + abs(sg%ba(ib, b)) * beta * exp(sig * sc) &
+                           + abs(sg%bb(ib, b)) * (alpha + ss * beta) * exp(sig * ss)
             end do
          end do
-         return
-      end if
+      end do
+   end subroutine eval_blocks
+
+   !> Drop the decayed terms that no longer matter to any functional (below prune_tol of its
+   !> scale, value and first derivative) at the last evaluation, which must be at the current
+   !> instant (later evaluations are not earlier). Their value and slope bounds go to the tail
+   !> (the scales of the zero tests); their higher derivatives are dropped from the bounds: such
+   !> a term moves a functional by less than prune_tol of its scale from here on, far below
+   !> the zero tolerance, while |lambda|^k of a fast term (up to 1e11 1/s at 500 elements)
+   !> would keep the curvature bounds, and with them the steps, absurdly small.
+   subroutine prune_seg(sg)
+      type(segment_t), intent(inout) :: sg          !! segment
+      integer :: j, b, nb, k
+      real(dp) :: s0(size(sg%a, 2)), s1(size(sg%a, 2)), mag
+      logical :: keep
+      nb = size(sg%a, 2)
+      do b = 1, nb
+         s0(b) = abs(sg%a0(b));  s1(b) = 0.0_dp
+         do j = 1, sg%nt
+            if (.not. sg%live(j)) cycle
+            s0(b) = s0(b) + sg%absa(j, b) * sg%me(j)
+            s1(b) = s1(b) + sg%absa(j, b) * sg%me(j) * sg%am(1, j)
+         end do
+      end do
+      do j = 1, sg%nt - 1
+         if (.not. sg%live(j) .or. .not. (real(sg%mu(j)) < 0.0_dp)) cycle
+         keep = .false.
+         do b = 1, nb
+            if (sg%absa(j, b) * sg%me(j) > prune_tol * s0(b) .or. &
+                sg%absa(j, b) * sg%me(j) * sg%am(1, j) > prune_tol * s1(b)) then
+               keep = .true.;  exit
+            end if
+         end do
+         if (keep) cycle
+         sg%live(j) = .false.
+         do b = 1, nb
+            mag = sg%absa(j, b) * sg%me(j)
+            do k = 0, 1
+               sg%tail(k, b) = sg%tail(k, b) + mag * sg%am(k, j)
+            end do
+         end do
+      end do
+   end subroutine prune_seg
+
+   !> Values and first derivatives of every functional at tau, from every term (pruned ones
+   !> included: valid anywhere in the segment); does not touch the evaluation state.
+   pure subroutine segment_values(sg, tau, val)
+      type(segment_t), intent(in) :: sg             !! segment
+      real(dp), intent(in) :: tau                   !! instant in the segment [s]
+      real(dp), intent(out) :: val(0:, :)           !! (0:1, nb) values and derivatives
+      integer :: j, b
+      real(dp) :: er, ei, zr, zi, me, bd(0:0, size(val, 2))
+      complex(dp) :: e(sg%nt)
+      logical :: need(size(val, 2))
+      val = 0.0_dp
       do j = 1, sg%nt
          me = exp(real(sg%mu(j)) * tau)
          if (sg%real_term(j)) then
@@ -800,7 +431,7 @@ contains
             e(j) = cmplx(me * cos(aimag(sg%mu(j)) * tau), me * sin(aimag(sg%mu(j)) * tau), dp)
          end if
       end do
-      do b = 1, red%nb
+      do b = 1, size(val, 2)
          val(0, b) = sg%a0(b)
          do j = 1, sg%nt
             er = real(e(j));  ei = aimag(e(j))
@@ -810,128 +441,74 @@ contains
             val(1, b) = val(1, b) + zr * real(sg%mp(1, j)) - zi * aimag(sg%mp(1, j))
          end do
       end do
+      if (sg%nblk > 0) then
+         need = .true.
+         call eval_blocks(sg, tau, need, val, bd)
+      end if
    end subroutine segment_values
 
-   !> Drop the decaying terms that no longer matter to any functional (below prune_tol of
-   !> its current size, value and first derivative).
-   subroutine prune(sg)
-      type(segment_t), intent(inout) :: sg
-      integer :: j, b, nb
-      real(dp) :: s0, s1
-      logical :: keep(sg%nt)
-      nb = size(sg%a, 2)
-      keep = .false.
-      keep(sg%nt) = sg%live(sg%nt)
-      do b = 1, nb
-         s0 = abs(sg%a0(b));  s1 = 0.0_dp
-         do j = 1, sg%nt
-            if (.not. sg%live(j)) cycle
-            s0 = s0 + sg%absa(j, b) * sg%me(j)
-            s1 = s1 + sg%absa(j, b) * sg%me(j) * sg%am(1, j)
-         end do
-         do j = 1, sg%nt - 1
-            if (.not. sg%live(j) .or. keep(j)) cycle
-            if (sg%absa(j, b) * sg%me(j) > prune_tol * s0 .or. &
-                sg%absa(j, b) * sg%me(j) * sg%am(1, j) > prune_tol * s1) keep(j) = .true.
-         end do
+   !> Modal state (eta, v) at tau in the segment (every term).
+   subroutine segment_state(cf, sg, tau, eta, vel)
+      type(config_t), intent(in) :: cf              !! configuration
+      type(segment_t), intent(in) :: sg             !! segment
+      real(dp), intent(in) :: tau                   !! instant [s]
+      real(dp), intent(out) :: eta(:), vel(:)       !! (n) modal state
+      complex(dp), allocatable :: e(:, :), out(:, :)
+      complex(dp) :: ph, ec, es, iw
+      integer :: rho, j, n, nr, ib
+      n = cf%n;  nr = cf%nroot
+      iw = cmplx(0.0_dp, sg%omega, dp)
+      ph = cmplx(cos(sg%omega * tau), sin(sg%omega * tau), dp)
+      eta = cf%eta_s + real(sg%yt * ph)
+      vel = real(iw * sg%yt * ph)
+      allocate(e(nr, 2))
+      do rho = 1, nr
+         e(rho, 1) = (0.0_dp, 0.0_dp)
+         if (sg%coef(rho) /= (0.0_dp, 0.0_dp)) e(rho, 1) = sg%coef(rho) * exp(cf%lam(rho) * tau)
+         e(rho, 2) = e(rho, 1) * cf%lam(rho)
       end do
-      do j = 1, sg%nt - 1
-         if (sg%live(j) .and. real(sg%mu(j)) < 0.0_dp .and. .not. keep(j)) sg%live(j) = .false.
-      end do
-   end subroutine prune
-
-   !> Full reduced state x = (u, v) and acceleration at tau (every term).
-   subroutine segment_state(sg, cf, red, om, tau, x, acc)
-      type(segment_t), intent(in) :: sg
-      type(config_t), intent(in) :: cf
-      type(reduced_t), intent(in) :: red
-      real(dp), intent(in) :: om, tau
-      real(dp), intent(out) :: x(:), acc(:)      ! (2 nr), (nr)
-      integer :: j, nr, m
-      complex(dp) :: e
-      real(dp), allocatable :: zv(:), zd(:)
-      nr = red%nr
-      if (.not. sg%modal) then
-         zv = sg%pw(:, n_taylor);  zd = real(n_taylor, dp) * sg%pw(:, n_taylor)
-         do m = n_taylor - 1, 0, -1
-            zv = zv * (tau - sg%tk) + sg%pw(:, m)
-            if (m >= 1) zd = zd * (tau - sg%tk) + real(m, dp) * sg%pw(:, m)
+      if (cf%r == 0) then
+         do rho = 1, nr
+            j = rho;  if (j > n) j = j - n
+            eta(j) = eta(j) + real(e(rho, 1))
+            vel(j) = vel(j) + real(e(rho, 2))
          end do
-         x(1:nr) = zv(1:nr)
-         x(nr + 1:) = cf%omega_s * zv(nr + 1:2 * nr)
-         acc = cf%omega_s * zd(nr + 1:2 * nr)
-         return
+      else
+         allocate(out(n, 2))
+         call zgemm('N', 'N', n, 2, nr, (1.0_dp, 0.0_dp), cf%x, n, e, nr, (0.0_dp, 0.0_dp), &
+                    out, n)
+         eta = eta + real(out(:, 1))
+         vel = vel + real(out(:, 2))
       end if
-      x = cf%xc
-      acc = 0.0_dp
-      do j = 1, cf%p
-         e = sg%c(j) * exp(sg%mu(j) * tau)
-         x = x + real(e * cf%wh(:, j))
-         acc = acc + real(e * sg%mu(j) * cf%wh(nr + 1:, j))
+      do ib = 1, sg%nblk
+         call block_fn(sg%bm(ib), sg%bd2(ib), tau, ec, es)
+         eta = eta + real(sg%bm0(:, ib) * ec + sg%bm1(:, ib) * es)
+         vel = vel + real((sg%bm(ib) * sg%bm0(:, ib) + sg%bm1(:, ib)) * ec &
+                          + (sg%bd2(ib) * sg%bm0(:, ib) + sg%bm(ib) * sg%bm1(:, ib)) * es)
       end do
-      e = sg%c(sg%nt) * exp(sg%mu(sg%nt) * tau)
-      x = x + real(e * cf%xh)
-      acc = acc + real(e * cmplx(0.0_dp, om, dp) * cf%xh(nr + 1:))
    end subroutine segment_state
-
-   !> Load the Taylor sub-step starting from z.
-   subroutine taylor_load(sg, cf, red, z)
-      type(segment_t), intent(inout) :: sg
-      type(config_t), intent(in) :: cf
-      type(reduced_t), intent(in) :: red
-      real(dp), intent(in) :: z(:)
-      integer :: m, b, nr
-      nr = red%nr
-      sg%pw(:, 0) = z
-      do m = 1, n_taylor
-         sg%pw(:, m) = matmul(cf%ahat, sg%pw(:, m - 1)) / real(m, dp)
-      end do
-      do b = 1, red%nb
-         do m = 0, n_taylor
-            sg%pc(m, b) = sum(red%ell(:, b) * sg%pw(1:nr, m))
-         end do
-      end do
-      sg%zbound = norm2(z) * exp(cf%nrm * cf%hsub)
-   end subroutine taylor_load
-
-   !> Move the Taylor expansion to the next sub-step.
-   subroutine taylor_next(sg, cf, red)
-      type(segment_t), intent(inout) :: sg
-      type(config_t), intent(in) :: cf
-      type(reduced_t), intent(in) :: red
-      real(dp), allocatable :: z(:)
-      integer :: m
-      z = sg%pw(:, n_taylor)
-      do m = n_taylor - 1, 0, -1
-         z = z * cf%hsub + sg%pw(:, m)
-      end do
-      sg%tk = sg%tk + cf%hsub
-      call taylor_load(sg, cf, red, z)
-   end subroutine taylor_next
 
    ! ------------------------------------------------------------------ statistics
 
-   !> Closed-form integrals over [ta, tb] of f, f^2 and f |d'| for one active contact
-   !> (f = k d + c d', d = s u - g), the phase split at the zeros of d' in `roots`.
+   !> Closed-form integrals over [ta, tb] of f, f^2 and f |d'| for one active contact on
+   !> functional b (f = k d + c d', d = s phi_b - g), the phase split at the zeros of d' in
+   !> `roots`. A block enters as its two exponentials, or (delta (tb - ta) < 1e-2, where the
+   !> split would cancel) as e^{m s} times its Taylor polynomial about ta (degree 5: exact to
+   !> (delta (tb - ta))^6 / 6!).
    subroutine modal_window(sg, b, s, kc, cc, gap, ta, tb, roots, sf, sf2, sw)
-      type(segment_t), intent(in) :: sg
-      integer, intent(in) :: b
-      real(dp), intent(in) :: s, kc, cc, gap, ta, tb, roots(:)
-      real(dp), intent(out) :: sf, sf2, sw
-      complex(dp) :: pf(sg%nt), pd(sg%nt)
+      type(segment_t), intent(in) :: sg             !! segment
+      integer, intent(in) :: b                      !! functional of the contact dof
+      real(dp), intent(in) :: s, kc, cc, gap        !! sign, stiffness, damper, gap
+      real(dp), intent(in) :: ta, tb                !! window in the segment [s]
+      real(dp), intent(in) :: roots(:)              !! zeros of d' in the window [s]
+      real(dp), intent(out) :: sf, sf2, sw          !! int f, int f^2, int f |d'|
+      complex(dp), allocatable :: mu(:), pf(:), pd(:), pm(:), cf(:, :), cd(:, :)
       real(dp) :: f0, pa, pb, da, db, sgn, mid
-      integer :: j, k, nt
-      nt = sg%nt
-      do j = 1, nt
-         pf(j) = s * (kc + cc * sg%mu(j)) * sg%a(j, b)
-         pd(j) = s * sg%mu(j) * sg%a(j, b)
-      end do
-      if (.not. sg%live(nt)) then
-         pf(nt) = 0.0_dp;  pd(nt) = 0.0_dp
-      end if
+      integer :: k
+      call window_terms(sg, b, s, kc, cc, ta, tb, mu, pf, pd, pm, cf, cd)
       f0 = kc * (s * sg%a0(b) - gap)
-      sf = lin_integral(sg%mu, pf, f0, ta, tb)
-      sf2 = prod_integral(sg%mu, pf, f0, pf, f0, ta, tb)
+      sf = lin_integral(mu, pf, pm, cf, f0, tb - ta)
+      sf2 = prod_integral(mu, pf, pm, cf, f0, pf, cf, f0, tb - ta)
       sw = 0.0_dp
       pa = ta
       do k = 1, size(roots) + 1
@@ -942,29 +519,109 @@ contains
          end if
          if (pb > pa) then
             mid = 0.5_dp * (pa + pb)
-            sgn = sign(1.0_dp, modal_value(sg%mu, pd, 0.0_dp, mid))
+            sgn = sign(1.0_dp, window_value(mu, pd, pm, cd, 0.0_dp, mid - ta))
             if (cc == 0.0_dp) then
-               da = s * modal_value(sg%mu, sg%a(:, b), sg%a0(b), pa) - gap
-               db = s * modal_value(sg%mu, sg%a(:, b), sg%a0(b), pb) - gap
-               sw = sw + sgn * 0.5_dp * kc * (db**2 - da**2)
+               ! f = k d: int f |d'| = +-(f_b^2 - f_a^2) / (2 k)
+               da = window_value(mu, pf, pm, cf, f0, pa - ta)
+               db = window_value(mu, pf, pm, cf, f0, pb - ta)
+               if (kc > 0.0_dp) sw = sw + sgn * 0.5_dp * (db**2 - da**2) / kc
             else
-               sw = sw + sgn * prod_integral(sg%mu, pf, f0, pd, 0.0_dp, pa, pb)
+               sw = sw + sgn * prod_window(mu, pf, pm, cf, f0, pd, cd, 0.0_dp, pa - ta, pb - ta)
             end if
          end if
          pa = pb
       end do
    end subroutine modal_window
 
-   !> Re(sum_j a_j e^{mu_j tau}) + a0.
-   pure real(dp) function modal_value(mu, a, a0, tau) result(v)
-      complex(dp), intent(in) :: mu(:), a(:)
-      real(dp), intent(in) :: a0, tau
-      integer :: j
-      v = a0
-      do j = 1, size(mu)
-         if (a(j) /= (0.0_dp, 0.0_dp)) v = v + real(a(j) * exp(mu(j) * tau))
+   !> The force f = k d + c d' (minus its constant) and d' of one contact on the window, as
+   !> exponential terms with coefficients at the window start (pf, pd) and polynomial-times-
+   !> exponential terms e^{pm s} sum_k c_k s^k (cf, cd).
+   subroutine window_terms(sg, b, s, kc, cc, ta, tb, mu, pf, pd, pm, cf, cd)
+      type(segment_t), intent(in) :: sg
+      integer, intent(in) :: b
+      real(dp), intent(in) :: s, kc, cc, ta, tb
+      complex(dp), allocatable, intent(out) :: mu(:), pf(:), pd(:), pm(:), cf(:, :), cd(:, :)
+      complex(dp) :: ec, es, ca, cb, dl, u(0:deg_poly + 1), w(0:deg_poly + 1), t, x
+      integer :: j, ib, nsplit, npoly, k, q
+      logical, allocatable :: split(:)
+      allocate(split(sg%nblk))
+      do ib = 1, sg%nblk
+         split(ib) = abs(sqrt(sg%bd2(ib))) * (tb - ta) >= 1.0e-2_dp
       end do
-   end function modal_value
+      nsplit = count(split);  npoly = sg%nblk - nsplit
+      allocate(mu(sg%nt + 2 * nsplit), pf(sg%nt + 2 * nsplit), pd(sg%nt + 2 * nsplit), &
+               pm(npoly), cf(0:deg_poly, npoly), cd(0:deg_poly, npoly))
+      do j = 1, sg%nt
+         mu(j) = sg%mu(j)
+         x = sg%a(j, b) * exp(sg%mu(j) * ta)
+         pf(j) = s * (kc + cc * sg%mu(j)) * x
+         pd(j) = s * sg%mu(j) * x
+      end do
+      j = sg%nt;  q = 0
+      do ib = 1, sg%nblk
+         ! the block about ta: e^{m ta}[A' C(s) + B' S(s)], A' = A C(ta) + B S(ta),
+         ! B' = delta^2 A S(ta) + B C(ta) (e^{m ta} in ec, es)
+         call block_fn(sg%bm(ib), sg%bd2(ib), ta, ec, es)
+         ca = sg%ba(ib, b) * ec + sg%bb(ib, b) * es
+         cb = sg%bd2(ib) * sg%ba(ib, b) * es + sg%bb(ib, b) * ec
+         if (split(ib)) then
+            dl = sqrt(sg%bd2(ib))
+            ! e^{m s}[A' C + B' S] = (A' + B'/delta)/2 e^{(m+delta)s} + (A' - B'/delta)/2 e^{(m-delta)s}
+            do k = 1, 2
+               j = j + 1
+               t = merge(1.0_dp, -1.0_dp, k == 1) * dl
+               mu(j) = sg%bm(ib) + t
+               x = 0.5_dp * (ca + cb / t)
+               pf(j) = s * (kc + cc * mu(j)) * x
+               pd(j) = s * mu(j) * x
+            end do
+         else
+            q = q + 1
+            pm(q) = sg%bm(ib)
+            ! u: the value polynomial A' C(s) + B' S(s); w: its derivative (mA' + B')C +
+            ! (delta^2 A' + m B')S, both as Taylor polynomials in s; f = k d + c d'
+            call block_poly(ca, cb, sg%bd2(ib), u)
+            call block_poly(sg%bm(ib) * ca + cb, sg%bd2(ib) * ca + sg%bm(ib) * cb, &
+                            sg%bd2(ib), w)
+            cf(:, q) = s * (kc * u(0:deg_poly) + cc * w(0:deg_poly))
+            cd(:, q) = s * w(0:deg_poly)
+         end if
+      end do
+   end subroutine window_terms
+
+   !> Taylor coefficients in s of A C(s) + B S(s) (C = cosh(delta s), S = sinh(delta s)/delta).
+   pure subroutine block_poly(ca, cb, d2, c)
+      complex(dp), intent(in) :: ca, cb, d2
+      complex(dp), intent(out) :: c(0:)
+      integer :: k
+      c = (0.0_dp, 0.0_dp)
+      do k = 0, ubound(c, 1)
+         if (mod(k, 2) == 0) then
+            c(k) = ca * d2**(k / 2) / fact(k)
+         else
+            c(k) = cb * d2**(k / 2) / fact(k)
+         end if
+      end do
+   end subroutine block_poly
+
+   !> Re(sum_j p_j e^{mu_j s}) + Re(sum_q e^{pm_q s} sum_k c_kq s^k) + p0 at s.
+   pure real(dp) function window_value(mu, p, pm, c, p0, s) result(v)
+      complex(dp), intent(in) :: mu(:), p(:), pm(:), c(0:, :)
+      real(dp), intent(in) :: p0, s
+      integer :: j, k
+      complex(dp) :: poly
+      v = p0
+      do j = 1, size(mu)
+         if (p(j) /= (0.0_dp, 0.0_dp)) v = v + real(p(j) * exp(mu(j) * s))
+      end do
+      do j = 1, size(pm)
+         poly = (0.0_dp, 0.0_dp)
+         do k = ubound(c, 1), 0, -1
+            poly = poly * s + c(k, j)
+         end do
+         v = v + real(exp(pm(j) * s) * poly)
+      end do
+   end function window_value
 
    !> (e^z - 1) / z, given ez = e^z (series near 0).
    pure complex(dp) function phi1(z, ez)
@@ -982,51 +639,130 @@ contains
       end if
    end function phi1
 
-   !> Integral over [ta, tb] of Re(sum_j p_j e^{mu_j tau}) + p0.
-   pure real(dp) function lin_integral(mu, p, p0, ta, tb) result(s)
-      complex(dp), intent(in) :: mu(:), p(:)
-      real(dp), intent(in) :: p0, ta, tb
+   !> Integrals I_k = int_0^l s^k e^{z s} ds, k = 0..kmax: l^{k+1} J_k(z l) with
+   !> J_k(x) = int_0^1 t^k e^{x t} dt, by 20-point Gauss-Legendre for |x| <= 12 (exact to
+   !> round-off there: the integrand is entire and varies by at most e^12), else by the upward
+   !> recurrence J_k = (e^x - k J_{k-1}) / x, stable for |x| > k.
+   pure subroutine power_integrals(z, l, kmax, ik)
+      complex(dp), intent(in) :: z
+      real(dp), intent(in) :: l
+      integer, intent(in) :: kmax
+      complex(dp), intent(out) :: ik(0:kmax)
+      complex(dp) :: x, ex, e
+      real(dp) :: t(20), w(20)
+      integer :: j, q
+      x = z * l
+      if (abs(x) <= 12.0_dp) then
+         call gauss_legendre(t, w)
+         ik = (0.0_dp, 0.0_dp)
+         do q = 1, size(t)
+            e = w(q) * exp(x * t(q))
+            do j = 0, kmax
+               ik(j) = ik(j) + e * t(q)**j
+            end do
+         end do
+      else
+         ex = exp(x)
+         ik(0) = (ex - 1.0_dp) / x
+         do j = 1, kmax
+            ik(j) = (ex - real(j, dp) * ik(j - 1)) / x
+         end do
+      end if
+      do j = 0, kmax
+         ik(j) = ik(j) * l**(j + 1)
+      end do
+   end subroutine power_integrals
+
+   !> Nodes and weights of n-point Gauss-Legendre on [0, 1].
+   pure subroutine gauss_legendre(t, w)
+      real(dp), intent(out) :: t(:), w(:)
+      integer :: n, i, k, it
+      real(dp) :: z, p0, p1, p2, dp1
+      n = size(t)
+      do i = 1, n
+         z = cos(acos(-1.0_dp) * (real(i, dp) - 0.25_dp) / (real(n, dp) + 0.5_dp))
+         do it = 1, 100
+            p0 = 1.0_dp;  p1 = z
+            do k = 2, n
+               p2 = (real(2 * k - 1, dp) * z * p1 - real(k - 1, dp) * p0) / real(k, dp)
+               p0 = p1;  p1 = p2
+            end do
+            dp1 = real(n, dp) * (z * p1 - p0) / (z**2 - 1.0_dp)
+            z = z - p1 / dp1
+            if (abs(p1 / dp1) < 1.0e-16_dp) exit
+         end do
+         t(i) = 0.5_dp * (1.0_dp - z)
+         w(i) = 1.0_dp / ((1.0_dp - z**2) * dp1**2)
+      end do
+   end subroutine gauss_legendre
+
+   !> Integral over [0, l] of Re(sum_j p_j e^{mu_j s}) + Re(sum_q e^{pm_q s} sum_k c_kq s^k) + p0.
+   pure real(dp) function lin_integral(mu, p, pm, c, p0, l) result(s)
+      complex(dp), intent(in) :: mu(:), p(:), pm(:), c(0:, :)
+      real(dp), intent(in) :: p0, l
+      complex(dp) :: ik(0:ubound(c, 1))
       integer :: j
-      real(dp) :: l
-      l = tb - ta
       s = p0 * l
       do j = 1, size(mu)
          if (p(j) == (0.0_dp, 0.0_dp)) cycle
-         s = s + real(p(j) * exp(mu(j) * ta) * l * phi1(mu(j) * l, exp(mu(j) * l)))
+         s = s + real(p(j) * l * phi1(mu(j) * l, exp(mu(j) * l)))
+      end do
+      do j = 1, size(pm)
+         call power_integrals(pm(j), l, ubound(c, 1), ik)
+         s = s + real(sum(c(:, j) * ik))
       end do
    end function lin_integral
 
-   !> Integral over [ta, tb] of (Re(sum p e^{mu tau}) + p0)(Re(sum q e^{mu tau}) + q0), in
-   !> closed form: Re(a) Re(b) = (Re(a b) + Re(a conj(b))) / 2.
-   pure real(dp) function prod_integral(mu, p, p0, q, q0, ta, tb) result(s)
-      complex(dp), intent(in) :: mu(:), p(:), q(:)
-      real(dp), intent(in) :: p0, q0, ta, tb
+   !> Integral over [0, l] of the product of two window functions sharing their exponents
+   !> (p, c with constant p0 and q, d with constant q0).
+   pure real(dp) function prod_integral(mu, p, pm, c, p0, q, d, q0, l) result(s)
+      complex(dp), intent(in) :: mu(:), p(:), pm(:), c(0:, :), q(:), d(0:, :)
+      real(dp), intent(in) :: p0, q0, l
+      s = prod_window(mu, p, pm, c, p0, q, d, q0, 0.0_dp, l)
+   end function prod_integral
+
+   !> Integral over [sa, sb] (offsets from the window start) of the product of two window
+   !> functions: Re(a) Re(b) = (Re(a b) + Re(a conj(b))) / 2, every pair in closed form.
+   pure real(dp) function prod_window(mu, p, pm, c, p0, q, d, q0, sa, sb) result(s)
+      complex(dp), intent(in) :: mu(:), p(:), pm(:), c(0:, :), q(:), d(0:, :)
+      real(dp), intent(in) :: p0, q0, sa, sb
       complex(dp) :: ea(size(mu)), el(size(mu)), pa(size(mu)), qa(size(mu)), ph(size(mu))
+      complex(dp) :: cs(0:ubound(c, 1), size(pm)), ds(0:ubound(c, 1), size(pm))
+      complex(dp) :: ik(0:2 * ubound(c, 1) + 1), acc
       real(dp) :: l, sp, sq, cut, mp(size(mu)), mq(size(mu)), w
-      integer :: j, k, n
+      integer :: j, k, n, i, m, kd
       logical :: same
-      same = all(p == q) .and. p0 == q0
-      n = size(mu)
-      l = tb - ta
+      same = all(p == q) .and. p0 == q0 .and. all(c == d)
+      n = size(mu);  kd = ubound(c, 1)
+      l = sb - sa
       do j = 1, n
-         ea(j) = exp(mu(j) * ta)
+         ea(j) = exp(mu(j) * sa)
          el(j) = exp(mu(j) * l)
          pa(j) = p(j) * ea(j)
          qa(j) = q(j) * ea(j)
          ph(j) = l * phi1(mu(j) * l, el(j))
       end do
+      ! polynomial terms re-expanded about sa
+      do j = 1, size(pm)
+         call shift_poly(c(:, j), pm(j), sa, cs(:, j))
+         call shift_poly(d(:, j), pm(j), sa, ds(:, j))
+      end do
       do j = 1, n
          mp(j) = abs(real(pa(j))) + abs(aimag(pa(j)))
          mq(j) = abs(real(qa(j))) + abs(aimag(qa(j)))
       end do
-      sp = sum(mp) + abs(p0);  sq = sum(mq) + abs(q0)
+      sp = sum(mp) + abs(p0) + sum(abs(cs));  sq = sum(mq) + abs(q0) + sum(abs(ds))
       cut = 1.0e-18_dp * sp * sq
       s = p0 * q0 * l
       do j = 1, n
          s = s + p0 * real(qa(j) * ph(j)) + q0 * real(pa(j) * ph(j))
       end do
+      do j = 1, size(pm)
+         call power_integrals(pm(j), l, kd, ik(0:kd))
+         s = s + p0 * real(sum(ds(:, j) * ik(0:kd))) + q0 * real(sum(cs(:, j) * ik(0:kd)))
+      end do
       do j = 1, n
-         if (mp(j) * sq <= cut) cycle
+         if (mp(j) * sq <= cut .and. mq(j) * sp <= cut) cycle
          ! a square (p = q) is symmetric in j, k: the pair counted once, twice
          do k = merge(j, 1, same), n
             if (mp(j) * mq(k) <= cut) cycle
@@ -1037,77 +773,58 @@ contains
                 el(j) * conjg(el(k))))
          end do
       end do
-   end function prod_integral
-
-   !> Gauss-Legendre integrals over [ta, tb] (inside the current Taylor sub-step) of f, f^2
-   !> and f |d'| for one active contact, split at the zeros of d'.
-   subroutine taylor_window(sg, b, s, kc, cc, gap, ta, tb, roots, xg, wg, sf, sf2, sw)
-      type(segment_t), intent(in) :: sg
-      integer, intent(in) :: b
-      real(dp), intent(in) :: s, kc, cc, gap, ta, tb, roots(:), xg(:), wg(:)
-      real(dp), intent(out) :: sf, sf2, sw
-      real(dp) :: pa, pb, tau, u, du, d, dd, f, half, mid, x
-      integer :: k, q, m
-      sf = 0.0_dp;  sf2 = 0.0_dp;  sw = 0.0_dp
-      pa = ta
-      do k = 1, size(roots) + 1
-         if (k <= size(roots)) then
-            pb = min(max(roots(k), pa), tb)
-         else
-            pb = tb
-         end if
-         if (pb > pa) then
-            half = 0.5_dp * (pb - pa);  mid = 0.5_dp * (pa + pb)
-            do q = 1, size(xg)
-               tau = mid + half * xg(q)
-               x = tau - sg%tk
-               u = 0.0_dp;  du = 0.0_dp
-               do m = n_taylor, 0, -1
-                  u = u * x + sg%pc(m, b)
-                  if (m >= 1) du = du * x + real(m, dp) * sg%pc(m, b)
-               end do
-               d = s * u - gap;  dd = s * du
-               f = kc * d + cc * dd
-               sf = sf + half * wg(q) * f
-               sf2 = sf2 + half * wg(q) * f**2
-               sw = sw + half * wg(q) * f * abs(dd)
-            end do
-         end if
-         pa = pb
-      end do
-   end subroutine taylor_window
-
-   !> Nodes and weights of n-point Gauss-Legendre on [-1, 1].
-   pure subroutine gauss_legendre(x, w)
-      real(dp), intent(out) :: x(:), w(:)
-      integer :: n, i, k, it
-      real(dp) :: z, p0, p1, p2, dp1
-      n = size(x)
-      do i = 1, n
-         z = cos(pi * (real(i, dp) - 0.25_dp) / (real(n, dp) + 0.5_dp))
-         do it = 1, 100
-            p0 = 1.0_dp;  p1 = z
-            do k = 2, n
-               p2 = (real(2 * k - 1, dp) * z * p1 - real(k - 1, dp) * p0) / real(k, dp)
-               p0 = p1;  p1 = p2
-            end do
-            dp1 = real(n, dp) * (z * p1 - p0) / (z**2 - 1.0_dp)
-            if (abs(p1 / dp1) < 1.0e-16_dp) then
-               z = z - p1 / dp1;  exit
-            end if
-            z = z - p1 / dp1
+      ! pairs with a polynomial term: exponential x polynomial, polynomial x polynomial
+      do i = 1, size(pm)
+         do j = 1, n
+            call power_integrals(mu(j) + pm(i), l, kd, ik(0:kd))
+            acc = pa(j) * sum(ds(:, i) * ik(0:kd)) + qa(j) * sum(cs(:, i) * ik(0:kd))
+            s = s + 0.5_dp * real(acc)
+            call power_integrals(conjg(mu(j)) + pm(i), l, kd, ik(0:kd))
+            acc = conjg(pa(j)) * sum(ds(:, i) * ik(0:kd)) + conjg(qa(j)) * sum(cs(:, i) * ik(0:kd))
+            s = s + 0.5_dp * real(acc)
          end do
-         x(i) = z
-         w(i) = 2.0_dp / ((1.0_dp - z**2) * dp1**2)
+         do m = 1, size(pm)
+            call power_integrals(pm(i) + pm(m), l, 2 * kd, ik)
+            acc = (0.0_dp, 0.0_dp)
+            do j = 0, kd
+               acc = acc + cs(j, i) * sum(ds(:, m) * ik(j:j + kd))
+            end do
+            s = s + 0.5_dp * real(acc)
+            call power_integrals(pm(i) + conjg(pm(m)), l, 2 * kd, ik)
+            acc = (0.0_dp, 0.0_dp)
+            do j = 0, kd
+               acc = acc + cs(j, i) * sum(conjg(ds(:, m)) * ik(j:j + kd))
+            end do
+            s = s + 0.5_dp * real(acc)
+         end do
       end do
-   end subroutine gauss_legendre
+   end function prod_window
+
+   !> Coefficients of e^{z (s0 + s)} sum_k c_k (s0 + s)^k as e^{z s} sum_k cs_k s^k.
+   pure subroutine shift_poly(c, z, s0, cs)
+      complex(dp), intent(in) :: c(0:), z
+      real(dp), intent(in) :: s0
+      complex(dp), intent(out) :: cs(0:)
+      integer :: k, i
+      real(dp) :: binom
+      cs = (0.0_dp, 0.0_dp)
+      do k = 0, ubound(c, 1)
+         binom = 1.0_dp
+         do i = 0, k
+            ! (s0 + s)^k = sum_i binom(k, i) s0^(k-i) s^i
+            cs(i) = cs(i) + c(k) * binom * s0**(k - i)
+            binom = binom * real(k - i, dp) / real(i + 1, dp)
+         end do
+      end do
+      cs = cs * exp(z * s0)
+   end subroutine shift_poly
 
    ! ------------------------------------------------------------------ safe steps
 
    !> Sign of a function just after an instant from its value and derivatives (0 if all are
    !> zero to round-off of their scales).
    pure integer function sign_after(v, scl)
-      real(dp), intent(in) :: v(0:), scl(0:)
+      real(dp), intent(in) :: v(0:), scl(0:)        !! derivatives 0.., their scales
       integer :: k
       sign_after = 0
       do k = 0, ubound(v, 1)
@@ -1120,31 +837,18 @@ contains
 
    !> Dead band of a function starting within round-off of zero on the wrong side.
    pure real(dp) function band(y, scl)
-      real(dp), intent(in) :: y, scl
+      real(dp), intent(in) :: y, scl                !! value, scale
       band = 0.0_dp
       if (y <= 0.0_dp) band = 2.0_dp * abs(y) + zero_tol * scl
    end function band
-
-   !> Largest h with y + y1 s + y2 s^2/2 + ... >= 0 on [0, h] guaranteed by the bounds
-   !> |phi''| <= b2 (quadratic) or |phi'''| <= b3 (cubic).
-   pure real(dp) function root_step(y, y1, y2, b2, b3, cap) result(h)
-      real(dp), intent(in) :: y, y1, y2, b2, b3
-      real(dp), intent(in) :: cap           ! a step this long is enough
-      h = 0.0_dp
-      if (.not. (y > 0.0_dp)) return
-      h = quad_root(y, y1, b2)
-      if (h >= cap) return
-      if (y2 > -0.5_dp * b2 .and. b3 > 0.0_dp) h = max(h, cubic_root(y, y1, 0.5_dp * y2, &
-                                                                      b3 / 6.0_dp, cap))
-   end function root_step
 
    !> Record a function to keep >= 0 for the step choice: value y0, derivatives y1, y2,
    !> |y''| <= b2, |y'''| <= b3, and a step hm known safe otherwise (monotone step of a
    !> running extremum); q gets its quadratic step.
    pure subroutine add_fn(nf, q, fy, fy1, fy2, fb2, fb3, y0, y1, y2, b2, b3, hm)
-      integer, intent(inout) :: nf
-      real(dp), intent(inout) :: q(:), fy(:), fy1(:), fy2(:), fb2(:), fb3(:)
-      real(dp), intent(in) :: y0, y1, y2, b2, b3, hm
+      integer, intent(inout) :: nf                  !! functions so far
+      real(dp), intent(inout) :: q(:), fy(:), fy1(:), fy2(:), fb2(:), fb3(:)   !! the list
+      real(dp), intent(in) :: y0, y1, y2, b2, b3, hm   !! value, derivatives, bounds, step
       nf = nf + 1
       fy(nf) = y0;  fy1(nf) = y1;  fy2(nf) = y2;  fb2(nf) = b2;  fb3(nf) = b3
       q(nf) = hm
@@ -1158,7 +862,7 @@ contains
 
    !> Step on which phi' (value p1, derivative p2, |phi'''| <= b3) keeps its sign.
    pure real(dp) function mono_quad(p1, p2, b3)
-      real(dp), intent(in) :: p1, p2, b3
+      real(dp), intent(in) :: p1, p2, b3            !! phi', phi'', bound of phi'''
       mono_quad = 0.0_dp
       if (p1 /= 0.0_dp) mono_quad = quad_root(abs(p1), sign(1.0_dp, p1) * p2, b3)
    end function mono_quad
@@ -1186,8 +890,8 @@ contains
    !> A point at or below the first positive zero of P(s) = y + a s + b s^2 - c s^3 (y, c > 0),
    !> within 1e-3 relative.
    pure real(dp) function cubic_root(y, a, b, c, cap) result(h)
-      real(dp), intent(in) :: y, a, b, c
-      real(dp), intent(in) :: cap           ! stop once the answer is known to exceed this
+      real(dp), intent(in) :: y, a, b, c            !! coefficients
+      real(dp), intent(in) :: cap                   !! stop once the answer exceeds this
       real(dp) :: lo, hi, disc, s1, s2, mid, plo, phi, pm
       integer :: it, side
       ! P decreases on [lo, hi] from P(lo) > 0 to P(hi) <= 0
@@ -1234,7 +938,7 @@ contains
 
    !> P(s) = y + a s + b s^2 - c s^3.
    pure real(dp) function cubic_value(y, a, b, c, s) result(p)
-      real(dp), intent(in) :: y, a, b, c, s   !! coefficients, argument
+      real(dp), intent(in) :: y, a, b, c, s
       p = y + s * (a + s * (b - c * s))
    end function cubic_value
 end module gapbeam_exact_segment
