@@ -97,6 +97,10 @@ contains
          pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
          pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
          pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
+         pr%normal_work_rate = res%normal_work_rate
+         pr%sliding_distance = res%sliding_distance
+         pr%friction_work_rate = res%friction_work_rate
+         pr%wear_volume_rate = res%wear_volume_rate
          pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
          pr%steps = res%steps_accepted
          call point_diagnostics(model, cfg, diag, res, pr, err)
@@ -123,6 +127,8 @@ contains
       pr%peak_force = spread(nan, 1, ns);  pr%rms_force = pr%peak_force
       pr%contact_fraction = pr%peak_force;  pr%impulse_per_period = pr%peak_force
       pr%work_rate = pr%peak_force
+      pr%normal_work_rate = pr%peak_force;  pr%sliding_distance = pr%peak_force
+      pr%friction_work_rate = pr%peak_force;  pr%wear_volume_rate = pr%peak_force
       pr%p_strain = spread(nan, 1, nrec);  pr%p_strain_rate = pr%p_strain
       if (.not. allocated(pr%lyapunov_running)) allocate(pr%lyapunov_running(0))
       pr%u_end = u0;  pr%v_end = v0

@@ -89,6 +89,9 @@ module gapbeam_settings
       real(dp) :: filter_cutoff_hz = 0.0_dp     !! low-pass before Poincare sampling (0: off) [Hz]
       integer  :: filter_order = 4              !! Butterworth order of that filter [-]
       integer  :: filter_samples_per_period = 256  !! filter sampling rate / forcing frequency [-]
+      !> energy balance over the record (input work, Rayleigh, contact-damper and friction
+      !> dissipation, change of stored energy; Gauss quadrature on the dense output)
+      logical  :: energy_balance = .false.
    end type output_settings_t
 
    !> Initial state relative to the base: at rest, or given values at listed dofs.

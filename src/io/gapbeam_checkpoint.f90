@@ -303,8 +303,21 @@ contains
            real(size(pr%n_impacts), dp), real(pr%n_impacts, dp), pr%peak_force, pr%rms_force, &
            pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
            real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
-           real(size(pr%u_end), dp), pr%u_end, pr%v_end]
+           real(size(pr%u_end), dp), pr%u_end, pr%v_end, &
+           real(size(wear(pr%normal_work_rate)), dp), wear(pr%normal_work_rate), &
+           wear(pr%sliding_distance), wear(pr%friction_work_rate), wear(pr%wear_volume_rate)]
    end function pack_point
+
+   !> A wear array of a point, empty when the point has none.
+   pure function wear(x) result(y)
+      real(dp), allocatable, intent(in) :: x(:)   !! per stop
+      real(dp), allocatable :: y(:)
+      if (allocated(x)) then
+         y = x
+      else
+         allocate(y(0))
+      end if
+   end function wear
 
    !> Inverse of pack_point; ok is false when x is not a well-formed record.
    pure subroutine unpack_point(x, pr, ok)
@@ -333,9 +346,16 @@ contains
       pr%p_strain = x(k + 1:k + nr);  k = k + nr
       pr%p_strain_rate = x(k + 1:k + nr);  k = k + nr + 1
       if (k > size(x)) return
-      n = nint(x(k));  if (n < 0 .or. k + 2 * n /= size(x)) return
+      n = nint(x(k));  if (n < 0 .or. k + 2 * n > size(x)) return
       pr%u_end = x(k + 1:k + n);  k = k + n
-      pr%v_end = x(k + 1:k + n)
+      pr%v_end = x(k + 1:k + n);  k = k + n + 1
+      ! the wear block: its size, then four per-stop arrays
+      if (k > size(x)) return
+      ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns /= size(x)) return
+      pr%normal_work_rate = x(k + 1:k + ns);  k = k + ns
+      pr%sliding_distance = x(k + 1:k + ns);  k = k + ns
+      pr%friction_work_rate = x(k + 1:k + ns);  k = k + ns
+      pr%wear_volume_rate = x(k + 1:k + ns)
       ok = .true.
    end subroutine unpack_point
 end module gapbeam_checkpoint

@@ -16,7 +16,8 @@ module gapbeam_input
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
       stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
       stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
-      beam_rho_a
+      beam_rho_a, dof_v, dof_theta_v, point_force_t, stop_shape_words, end_condition_words, &
+      tip_condition_words, law_hertz
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
@@ -28,10 +29,11 @@ module gapbeam_input
    public :: read_deck, known_groups
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
+   character(len=*), parameter :: dof_words = "'w', 'theta', 'v', 'theta_v'"
 
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
-      'study model_size'
+      'study model_size tip point_forces'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
    integer, parameter :: max_axis = 1000000     !! most values of a sweep axis range (n_frequency)
    integer, parameter :: max_points = 1000000   !! most points of a sweep
@@ -124,15 +126,25 @@ contains
       call read_job(srcs, deck%job, err);              if (failed(err, path)) return
       call read_beam(srcs, deck%structure%beam, err);  if (failed(err, path)) return
       call read_root(srcs, deck%structure%root, err);  if (failed(err, path)) return
-      call read_springs(srcs, deck%structure%beam%n_elem, deck%structure%root, &
-                        deck%structure%springs, err);  if (failed(err, path)) return
+      call read_tip(srcs, deck%structure, err);  if (failed(err, path)) return
+      call read_springs(srcs, deck%structure, deck%structure%springs, err)
+      if (failed(err, path)) return
+      if (deck%structure%root%condition == 'pinned' .and. deck%structure%tip%condition == &
+          'free' .and. size(deck%structure%springs) == 0) then
+         call fatal_error(err, path // ": group &root: condition = 'pinned' with a free tip " &
+            // 'and no &springs is a mechanism (rigid rotation about the root): support the ' &
+            // "tip (&tip condition = 'pinned', ...) or add springs")
+         return
+      end if
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
       if (failed(err, path)) return
       call read_modes(srcs, deck%n_print_modes, err);  if (failed(err, path)) return
       call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
       call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
       call read_damping(srcs, deck%damping, err);  if (failed(err, path)) return
-      call read_forcing(srcs, deck%forcing, err);  if (failed(err, path)) return
+      call read_forcing(srcs, deck%structure, deck%forcing, err);  if (failed(err, path)) return
+      call read_point_forces(srcs, deck%structure, deck%forcing%forces, err)
+      if (failed(err, path)) return
       call read_solver(srcs, deck%solver, err);  if (failed(err, path)) return
       call read_initial(srcs, deck%structure, deck%initial, err);  if (failed(err, path)) return
       call read_output(srcs, deck%output, err);  if (failed(err, path)) return
@@ -193,7 +205,8 @@ contains
       if (deck%job%analysis /= 'sweep') return
       ! per point: Poincare strain and rate, the running Lyapunov estimate, the final state
       per_point = 2_int64 * deck%solver%record_periods + deck%diagnostics%lyapunov_periods &
-                  + 4_int64 * (deck%structure%beam%n_elem + 1) + 8_int64 * size(deck%stops)
+                  + 4_int64 * deck%structure%beam%planes * (deck%structure%beam%n_elem + 1) &
+                  + 16_int64 * size(deck%stops)
       points = int(size(deck%sweep%frequency_hz), int64) * size(deck%sweep%amplitude_pp)
       if (points * per_point > max_values) then
          call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' points x ' &
@@ -571,25 +584,53 @@ contains
       end do
    end subroutine check_gaps
 
-   subroutine require_node(group, var, i, node, dof, n_elem, root, err)
+   !> The node exists and its dof is free: not fixed by the root or tip condition, and a
+   !> second-plane dof ('v', 'theta_v') only with &beam planes = 2.
+   subroutine require_node(group, var, i, node, dof, st, err)
       character(len=*), intent(in) :: group, var
-      integer, intent(in) :: i, node, dof, n_elem
-      type(root_t), intent(in) :: root
+      integer, intent(in) :: i, node, dof
+      type(structure_t), intent(in) :: st
       type(error_t), allocatable, intent(inout) :: err
       character(len=:), allocatable :: v
+      integer :: n_elem
+      logical :: rot
       if (allocated(err)) return
+      n_elem = st%beam%n_elem
       v = var // '(' // str(i) // ')'
       call require_int(group, v, node, 1, n_elem + 1, err, 'the mesh has ' // str(n_elem) &
          // ' elements, nodes 1..' // str(n_elem + 1) // ' from the root')
       if (allocated(err)) return
-      if (node == 1 .and. dof == dof_w) then
-         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'w': the " &
-            // 'root translation is fixed')
-      else if (node == 1 .and. dof == dof_theta .and. root%condition == 'clamped') then
-         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'theta': " &
-            // "the root is clamped (use &root condition='spring')")
+      rot = dof == dof_theta .or. dof == dof_theta_v
+      if ((dof == dof_v .or. dof == dof_theta_v) .and. st%beam%planes < 2) then
+         call fatal_error(err, 'group &' // group // ': ' // v // " with dof '" &
+            // trim(dof_word(dof)) // "': the second plane needs &beam planes = 2")
+      else if (node == 1 .and. .not. rot) then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof '" &
+            // trim(dof_word(dof)) // "': the root translation is fixed")
+      else if (node == 1 .and. rot .and. st%root%condition == 'clamped') then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof '" &
+            // trim(dof_word(dof)) // "': the root is clamped (use &root condition='spring')")
+      else if (node == n_elem + 1 .and. .not. rot .and. st%tip%condition /= 'free') then
+         call fatal_error(err, 'group &' // group // ': ' // v // ' = ' // str(node) &
+            // " with dof '" // trim(dof_word(dof)) // "': the tip translation is fixed " &
+            // "(&tip condition = '" // trim(st%tip%condition) // "')")
+      else if (node == n_elem + 1 .and. rot .and. st%tip%condition == 'clamped') then
+         call fatal_error(err, 'group &' // group // ': ' // v // ' = ' // str(node) &
+            // " with dof '" // trim(dof_word(dof)) // "': the tip is clamped")
       end if
    end subroutine require_node
+
+   !> The deck word of a dof code.
+   pure function dof_word(code) result(w)
+      integer, intent(in) :: code
+      character(len=8) :: w
+      select case (code)
+      case (dof_theta);    w = 'theta'
+      case (dof_v);        w = 'v'
+      case (dof_theta_v);  w = 'theta_v'
+      case default;        w = 'w'
+      end select
+   end function dof_word
 
    ! ---------------------------------------------------------------- group readers
 
@@ -621,17 +662,20 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: length, youngs_modulus, density, width, thickness, area, second_moment, &
          fibre_distance
-      integer :: n_elem
+      integer :: n_elem, planes
+      real(dp) :: added_mass
       character(len=16) :: mass_matrix, rotary_inertia
       type(beam_t) :: trial
       namelist /beam/ length, n_elem, youngs_modulus, density, width, thickness, area, &
-         second_moment, fibre_distance, mass_matrix, rotary_inertia
+         second_moment, fibre_distance, mass_matrix, rotary_inertia, planes, added_mass
+      planes = cfg%planes;  added_mass = cfg%added_mass
       length = cfg%length;  n_elem = cfg%n_elem;  youngs_modulus = cfg%youngs_modulus
       density = cfg%density;  width = cfg%width;  thickness = cfg%thickness
       area = cfg%area;  second_moment = cfg%second_moment;  fibre_distance = cfg%fibre_distance
       mass_matrix = cfg%mass_matrix;  rotary_inertia = cfg%rotary_inertia
       call apply_group(srcs, 'beam', 'length n_elem youngs_modulus density width thickness ' &
-         // 'area second_moment fibre_distance mass_matrix:16 rotary_inertia:16', reader, err)
+         // 'area second_moment fibre_distance mass_matrix:16 rotary_inertia:16 planes ' &
+         // 'added_mass', reader, err)
       if (allocated(err)) return
       call require_positive('beam', 'length', length, err)
       call require_int('beam', 'n_elem', n_elem, 1, 10000, err)
@@ -650,11 +694,14 @@ contains
       end if
       call require_word('beam', 'mass_matrix', mass_matrix, "'lumped', 'consistent'", err)
       call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
+      call require_int('beam', 'planes', planes, 1, 2, err, '1: (w, theta) per node; 2: also ' &
+         // '(v, theta_v)')
+      call require_nonnegative('beam', 'added_mass', added_mass, err)
       if (allocated(err)) return
       trial = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
          density=density, width=width, thickness=thickness, area=area, &
          second_moment=second_moment, fibre_distance=fibre_distance, mass_matrix=mass_matrix, &
-         rotary_inertia=rotary_inertia)
+         rotary_inertia=rotary_inertia, planes=planes, added_mass=added_mass)
       call check_beam_scales(trial, err)
       if (allocated(err)) return
       cfg = trial
@@ -714,7 +761,7 @@ contains
       condition = cfg%condition;  k_theta = cfg%k_theta
       call apply_group(srcs, 'root', 'condition:16 k_theta', reader, err)
       if (allocated(err)) return
-      call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
+      call require_word('root', 'condition', condition, end_condition_words, err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
       if (allocated(err)) return
       cfg = root_t(condition=condition, k_theta=k_theta)
@@ -727,10 +774,39 @@ contains
       end subroutine reader
    end subroutine read_root
 
-   subroutine read_springs(srcs, n_elem, root, list, err)
+   !> &tip: the support of the last node ('free' unless the deck says otherwise).
+   subroutine read_tip(srcs, st, err)
       type(source_t), intent(in) :: srcs(:)
-      integer, intent(in) :: n_elem
-      type(root_t), intent(in) :: root
+      type(structure_t), intent(inout) :: st
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: condition
+      real(dp) :: k_theta
+      namelist / tip / condition, k_theta
+      condition = st%tip%condition;  k_theta = st%tip%k_theta
+      call apply_group(srcs, 'tip', 'condition:16 k_theta', reader, err)
+      if (allocated(err)) return
+      call require_word('tip', 'condition', condition, tip_condition_words, err)
+      if (condition == 'spring') call require_positive('tip', 'k_theta', k_theta, err)
+      if (allocated(err)) return
+      if (condition == 'clamped' .and. st%beam%n_elem < 2 .and. st%root%condition == &
+          'clamped') then
+         call fatal_error(err, "group &tip: condition = 'clamped' with a clamped root and " &
+            // 'n_elem = 1 leaves no free dof')
+         return
+      end if
+      st%tip = root_t(condition=condition, k_theta=k_theta)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=tip, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_tip
+
+   subroutine read_springs(srcs, st, list, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
       type(spring_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: node(nmax), given(nmax), n, i, code
@@ -747,9 +823,9 @@ contains
       if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
-         call require_word('springs', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         call require_word('springs', 'dof(' // str(i) // ')', dof(i), dof_words, err)
          code = dof_code(dof(i))
-         call require_node('springs', 'node', i, node(i), code, n_elem, root, err)
+         call require_node('springs', 'node', i, node(i), code, st, err)
          call require_positive('springs', 'stiffness(' // str(i) // ')', stiffness(i), err)
          if (allocated(err)) return
          list(i) = spring_t(node=node(i), dof=code, stiffness=stiffness(i))
@@ -865,13 +941,20 @@ contains
       character(len=8) :: dof(nmax)
       character(len=16) :: side(nmax), law(nmax)
       real(dp), dimension(nmax) :: gap, stiffness, damping, exponent, rule_factor, &
-         rule_f1_ratio, rule_f1_hz
+         rule_f1_ratio, rule_f1_hz, offset_w, offset_v, friction, tangential_stiffness, &
+         wear_coefficient
+      character(len=16) :: shape(nmax)
       character(len=:), allocatable :: ix
       type(stop_t) :: d
       character(len=*), parameter :: stop_vars = 'node() dof():8 side():16 law():16 gap() ' &
-         // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz()'
+         // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz() ' &
+         // 'shape():16 offset_w() offset_v() friction() tangential_stiffness() ' &
+         // 'wear_coefficient()'
       namelist /stops/ node, dof, side, law, gap, stiffness, damping, exponent, rule_factor, &
-         rule_f1_ratio, rule_f1_hz
+         rule_f1_ratio, rule_f1_hz, shape, offset_w, offset_v, friction, tangential_stiffness, &
+         wear_coefficient
+      shape = d%shape;  offset_w = d%offset_w;  offset_v = d%offset_v;  friction = d%friction
+      tangential_stiffness = d%tangential_stiffness;  wear_coefficient = d%wear_coefficient
       node = -1;  dof = 'w';  side = d%side;  law = d%law;  gap = d%gap
       stiffness = d%stiffness;  damping = d%damping;  exponent = d%exponent
       rule_factor = d%rule_factor;  rule_f1_ratio = d%rule_f1_ratio;  rule_f1_hz = d%rule_f1_hz
@@ -885,9 +968,13 @@ contains
       allocate(list(n))
       do i = 1, n
          ix = '(' // str(i) // ')'
-         call require_word('stops', 'dof' // ix, dof(i), "'w', 'theta'", err)
+         call require_word('stops', 'dof' // ix, dof(i), dof_words, err)
          code = dof_code(dof(i))
-         call require_node('stops', 'node', i, node(i), code, st%beam%n_elem, st%root, err)
+         call require_node('stops', 'node', i, node(i), code, st, err)
+         call require_word('stops', 'shape' // ix, shape(i), stop_shape_words, err)
+         call check_support(st, i, node(i), code, side(i), shape(i), gap(i), offset_w(i), &
+            offset_v(i), friction(i), tangential_stiffness(i), wear_coefficient(i), &
+            rule_factor(i), law(i), err)
          call require_word('stops', 'side' // ix, side(i), stop_side_words, err)
          call require_word('stops', 'law' // ix, law(i), stop_law_words, err)
          call require_nonnegative('stops', 'gap' // ix, gap(i), err)
@@ -917,7 +1004,9 @@ contains
          if (allocated(err)) return
          list(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
             stiffness=stiffness(i), damping=damping(i), exponent=exponent(i), &
-            rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i))
+            rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i), &
+            shape=shape(i), offset_w=offset_w(i), offset_v=offset_v(i), friction=friction(i), &
+            tangential_stiffness=tangential_stiffness(i), wear_coefficient=wear_coefficient(i))
       end do
    contains
       subroutine reader(lines, ios, msg)
@@ -927,6 +1016,79 @@ contains
          read(lines, nml=stops, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_stops
+
+   !> The support variables of stop `ix` ('(i)'): a circular clearance needs two planes, a
+   !> positive gap, a translational node (both planes free there), no side or dof choice and
+   !> no stiffness rule; friction needs two planes (the sliding direction) and a translational
+   !> dof; the hole offset belongs to a circular clearance only.
+   subroutine check_support(st, i, node, code, side, shape, gap, offset_w, offset_v, &
+                            friction, k_t, wear, rule_factor, law, err)
+      type(structure_t), intent(in) :: st
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: side, shape, law
+      integer, intent(in) :: node, code
+      real(dp), intent(in) :: gap, offset_w, offset_v, friction, k_t, wear, rule_factor
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: ix
+      if (allocated(err)) return
+      ix = '(' // str(i) // ')'
+      call require_range('stops', 'friction' // ix, friction, 0.0_dp, 10.0_dp, err)
+      call require_nonnegative('stops', 'tangential_stiffness' // ix, k_t, err)
+      call require_nonnegative('stops', 'wear_coefficient' // ix, wear, err)
+      call require_range('stops', 'offset_w' // ix, offset_w, -1.0e3_dp, 1.0e3_dp, err)
+      call require_range('stops', 'offset_v' // ix, offset_v, -1.0e3_dp, 1.0e3_dp, err)
+      if (allocated(err)) return
+      if (shape == 'circular') then
+         if (st%beam%planes < 2) then
+            call fatal_error(err, 'group &stops: shape' // ix // " = 'circular' needs &beam " &
+               // 'planes = 2 (a circular clearance acts in both transverse planes)')
+         else if (.not. (gap > 0.0_dp)) then
+            call fatal_error(err, 'group &stops: gap' // ix // ' = ' // str(gap) // ": a " &
+               // "circular clearance (shape = 'circular') needs a radial gap > 0")
+         else if (code /= dof_w) then
+            call fatal_error(err, 'group &stops: dof' // ix // " = '" // trim(dof_word(code)) &
+               // "': a circular clearance acts on the node's w and v; leave dof out")
+         else if (side /= 'positive') then
+            call fatal_error(err, 'group &stops: side' // ix // " = '" // trim(side) // "': " &
+               // 'a circular clearance has no side; leave side out')
+         else if (rule_factor > 0.0_dp) then
+            call fatal_error(err, 'group &stops: rule_factor' // ix // ' = ' // str(rule_factor) &
+               // ': the stiffness rule is for flat stops; give stiffness for a circular ' &
+               // 'clearance')
+         else
+            call require_node('stops', 'node', i, node, dof_v, st, err)
+            if (allocated(err)) err%message = err%message // ' (stop' // ix // ' is circular)'
+         end if
+      else if (offset_w /= 0.0_dp .or. offset_v /= 0.0_dp) then
+         call fatal_error(err, 'group &stops: offset_w' // ix // ' = ' // str(offset_w) &
+            // ', offset_v' // ix // ' = ' // str(offset_v) // ": the hole centre offset " &
+            // "belongs to a circular clearance (shape = 'circular')")
+      end if
+      if (allocated(err)) return
+      if (friction > 0.0_dp) then
+         if (st%beam%planes < 2) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // ': friction needs &beam planes = 2 (a planar model has no sliding direction)')
+         else if (code == dof_theta .or. code == dof_theta_v) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // " on a rotation dof: friction acts on the translations ('w' or 'v')")
+         else if (law_code(law) == law_hertz .and. .not. (k_t > 0.0_dp)) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // " with law = 'hertz' needs tangential_stiffness" // ix // ' > 0 [N/m] (the ' &
+               // 'stick stiffness; with the bilinear law it defaults to the normal stiffness)')
+         else if (rule_factor > 0.0_dp) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // ' with rule_factor' // ix // ': give stiffness (and tangential_stiffness) ' &
+               // 'for a stop with friction')
+         else
+            ! the sliding direction: the node's other translation
+            if (code == dof_w) call require_node('stops', 'node', i, node, dof_v, st, err)
+            if (code == dof_v) call require_node('stops', 'node', i, node, dof_w, st, err)
+            if (allocated(err)) err%message = err%message // ' (stop' // ix &
+               // ' has friction: it slides along the other plane)'
+         end if
+      end if
+   end subroutine check_support
 
    subroutine read_damping(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
@@ -984,19 +1146,31 @@ contains
       end subroutine reader
    end subroutine read_damping
 
-   subroutine read_forcing(srcs, cfg, err)
+   subroutine read_forcing(srcs, st, cfg, err)
       type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
       type(forcing_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      real(dp) :: frequency_hz, amplitude_pp
-      namelist /forcing/ frequency_hz, amplitude_pp
+      real(dp) :: frequency_hz, amplitude_pp, direction_deg, phase_v_deg
+      namelist /forcing/ frequency_hz, amplitude_pp, direction_deg, phase_v_deg
       frequency_hz = cfg%frequency_hz;  amplitude_pp = cfg%amplitude_pp
-      call apply_group(srcs, 'forcing', 'frequency_hz amplitude_pp', reader, err)
+      direction_deg = cfg%direction_deg;  phase_v_deg = cfg%phase_v_deg
+      call apply_group(srcs, 'forcing', 'frequency_hz amplitude_pp direction_deg phase_v_deg', &
+         reader, err)
       if (allocated(err)) return
       call require_positive('forcing', 'frequency_hz', frequency_hz, err)
       call require_nonnegative('forcing', 'amplitude_pp', amplitude_pp, err)
+      call require_range('forcing', 'direction_deg', direction_deg, -360.0_dp, 360.0_dp, err)
+      call require_range('forcing', 'phase_v_deg', phase_v_deg, -360.0_dp, 360.0_dp, err)
       if (allocated(err)) return
-      cfg = forcing_t(frequency_hz=frequency_hz, amplitude_pp=amplitude_pp)
+      if ((direction_deg /= 0.0_dp .or. phase_v_deg /= 0.0_dp) .and. st%beam%planes < 2) then
+         call fatal_error(err, 'group &forcing: direction_deg = ' // str(direction_deg) &
+            // ', phase_v_deg = ' // str(phase_v_deg) // ': a base motion out of the w plane ' &
+            // 'needs &beam planes = 2')
+         return
+      end if
+      cfg = forcing_t(frequency_hz=frequency_hz, amplitude_pp=amplitude_pp, &
+         direction_deg=direction_deg, phase_v_deg=phase_v_deg)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -1005,6 +1179,48 @@ contains
          read(lines, nml=forcing, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_forcing
+
+   !> &point_forces: harmonic forces F sin(Omega t + phase) at node dofs, at the forcing
+   !> frequency.
+   subroutine read_point_forces(srcs, st, list, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
+      type(point_force_t), allocatable, intent(out) :: list(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: node(nmax), given(nmax), n, i, code
+      character(len=8) :: dof(nmax)
+      real(dp) :: amplitude(nmax), phase_deg(nmax)
+      character(len=*), parameter :: vars = 'node() dof():8 amplitude() phase_deg()'
+      namelist /point_forces/ node, dof, amplitude, phase_deg
+      node = -1;  dof = 'w';  amplitude = 0.0_dp;  phase_deg = 0.0_dp
+      call apply_group(srcs, 'point_forces', vars, reader, err)
+      if (allocated(err)) return
+      given = node
+      node = -2
+      call apply_group(srcs, 'point_forces', vars, reader, err)
+      call list_entries('point_forces', 'node', given, node, n, err)
+      if (allocated(err)) return
+      allocate(list(n))
+      do i = 1, n
+         call require_word('point_forces', 'dof(' // str(i) // ')', dof(i), dof_words, err)
+         code = dof_code(dof(i))
+         call require_node('point_forces', 'node', i, node(i), code, st, err)
+         call require_range('point_forces', 'amplitude(' // str(i) // ')', amplitude(i), &
+            -1.0e12_dp, 1.0e12_dp, err)
+         call require_range('point_forces', 'phase_deg(' // str(i) // ')', phase_deg(i), &
+            -360.0_dp, 360.0_dp, err)
+         if (allocated(err)) return
+         list(i) = point_force_t(node=node(i), dof=code, amplitude=amplitude(i), &
+                                 phase_deg=phase_deg(i))
+      end do
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=point_forces, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_point_forces
 
    subroutine read_solver(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
@@ -1145,9 +1361,9 @@ contains
       call require_word('initial', 'kind', kind, initial_state_words, err)
       code = 0
       do i = 1, n
-         call require_word('initial', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         call require_word('initial', 'dof(' // str(i) // ')', dof(i), dof_words, err)
          code(i) = dof_code(dof(i))
-         call require_node('initial', 'node', i, node(i), code(i), st%beam%n_elem, st%root, err)
+         call require_node('initial', 'node', i, node(i), code(i), st, err)
       end do
       if (kind == 'given' .and. n == 0 .and. .not. allocated(err)) call fatal_error(err, &
          "group &initial: kind = 'given' needs node, dof, displacement and velocity lists")
@@ -1170,15 +1386,17 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: poincare_phase_deg, filter_cutoff_hz
       integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period
-      logical :: write_text
+      logical :: write_text, energy_balance
       namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
-         filter_cutoff_hz, filter_order, filter_samples_per_period
+         filter_cutoff_hz, filter_order, filter_samples_per_period, energy_balance
+      energy_balance = cfg%energy_balance
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
       filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
       filter_samples_per_period = cfg%filter_samples_per_period
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
-         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period', reader, err)
+         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period energy_balance', &
+         reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
@@ -1202,7 +1420,7 @@ contains
       cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
          samples_per_period=samples_per_period, history_periods=history_periods, &
          write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
-         filter_samples_per_period=filter_samples_per_period)
+         filter_samples_per_period=filter_samples_per_period, energy_balance=energy_balance)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

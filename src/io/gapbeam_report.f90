@@ -152,7 +152,10 @@ contains
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
       type(output_set_t) :: set
-      if (deck%output%write_text) then
+      if (deck%output%write_text .and. model%sys%planes > 1) then
+         call set%begin(deck%job%output, [character(len=14) :: '.h5', '.history.dat', &
+                        '.poincare.dat', '.orbit.dat', '.supports.dat'], err)
+      else if (deck%output%write_text) then
          call set%begin(deck%job%output, [character(len=14) :: '.h5', '.history.dat', &
                         '.poincare.dat'], err)
       else
@@ -162,6 +165,8 @@ contains
       call write_transient_h5(set, deck, model, res, diag, err)
       if (.not. allocated(err) .and. deck%output%write_text) &
          call write_transient_tables(set, deck, model, res, err)
+      if (.not. allocated(err) .and. deck%output%write_text .and. model%sys%planes > 1) &
+         call write_orbit_tables(set, deck, model, res, err)
       call set%finish(err)
    end subroutine write_transient
 
@@ -264,6 +269,8 @@ contains
       if (write_failed(h5, err)) return
       call h5%write('/impacts/first_contact_time', res%first_contact_time, 's', err)
       if (write_failed(h5, err)) return
+      call write_wear_h5(h5, deck, model, res, err)
+      if (allocated(err)) return
       call h5%write('/diagnostics/period', diag%period, 'forcing periods', err)
       if (write_failed(h5, err)) return
       call h5%write('/diagnostics/label', diag%label, 'p >= 1: period p; 0: undecided; ' &
@@ -281,6 +288,117 @@ contains
       call h5%write('/final/time', res%t_end, 's', err);  if (write_failed(h5, err)) return
       call h5%close(err)
    end subroutine write_transient_h5
+
+   !> /wear (per stop, beside /impacts), /orbit and /model/ring_* (two-plane models), /energy
+   !> (when the balance was asked).
+   subroutine write_wear_h5(h5, deck, model, res, err)
+      type(h5_writer_t), intent(inout) :: h5           !! open writer
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      real(dp), allocatable :: coef(:)
+      integer, allocatable :: idof(:)
+      integer :: k
+      coef = [(deck%stops(k)%wear_coefficient, k = 1, size(deck%stops))]
+      call h5%write('/wear/normal_work_rate', res%normal_work_rate, 'W', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/sliding_distance', res%sliding_distance, 'm', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/friction_work', res%friction_work, 'J', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/friction_work_rate', res%friction_work_rate, 'W', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/wear_volume_rate', res%wear_volume_rate, 'm^3/s', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/wear_coefficient', coef, '1/Pa', err)
+      if (write_failed(h5, err)) return
+      call h5%write('/wear/stick_fraction', res%stick_fraction, '-', err)
+      if (write_failed(h5, err)) return
+      if (model%sys%planes > 1) then
+         call h5%write('/orbit/w', res%orbit_w, 'm', err);  if (write_failed(h5, err)) return
+         call h5%write('/orbit/v', res%orbit_v, 'm', err);  if (write_failed(h5, err)) return
+         call h5%write('/orbit/normal_force', res%stop_force, 'N', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/orbit/tangential_force', res%tangential_force, 'N', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/orbit/gap', [(deck%stops(k)%gap, k = 1, size(deck%stops))], 'm', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/orbit/offset_w', [(deck%stops(k)%offset_w, k = 1, size(deck%stops))], &
+                       'm', err);  if (write_failed(h5, err)) return
+         call h5%write('/orbit/offset_v', [(deck%stops(k)%offset_v, k = 1, size(deck%stops))], &
+                       'm', err);  if (write_failed(h5, err)) return
+      end if
+      if (model%n_rings > 0) then
+         idof = model%r_dof(1, :)
+         call h5%write('/model/ring_dof_w', idof, '1-based dof index', err)
+         if (write_failed(h5, err)) return
+         idof = model%r_dof(2, :)
+         call h5%write('/model/ring_dof_v', idof, '1-based dof index', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/model/ring_gap', model%r_gap, 'm', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/model/ring_stiffness', model%r_k, 'N/m', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/model/ring_friction', model%r_mu, '-', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/model/ring_tangential_stiffness', model%r_kt, 'N/m', err)
+         if (write_failed(h5, err)) return
+      end if
+      if (res%has_energy) then
+         call h5%write('/energy/input_work', res%input_work, 'J', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/energy/rayleigh_dissipation', res%rayleigh_dissipation, 'J', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/energy/contact_damping_dissipation', res%contact_damping_dissipation, &
+                       'J', err);  if (write_failed(h5, err)) return
+         call h5%write('/energy/friction_dissipation', res%friction_dissipation, 'J', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/energy/stored_energy_change', res%stored_energy_change, 'J', err)
+         if (write_failed(h5, err)) return
+         call h5%write('/energy/imbalance', res%input_work - res%rayleigh_dissipation &
+            - res%contact_damping_dissipation - res%friction_dissipation &
+            - res%stored_energy_change, 'J', err);  if (write_failed(h5, err)) return
+      end if
+   end subroutine write_wear_h5
+
+   !> PREFIX.orbit.dat (time, then per stop w, v, normal and tangential force) and
+   !> PREFIX.supports.dat (per stop: node, x, gap, hole offset, circular), two-plane models.
+   subroutine write_orbit_tables(set, deck, model, res, err)
+      type(output_set_t), intent(in) :: set            !! the set; files 4 and 5
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      real(dp), allocatable :: cols(:, :)
+      character(len=24), allocatable :: names(:), units(:)
+      integer :: j, ns
+      ns = model%n_stops
+      allocate(cols(size(res%time), 1 + 4 * ns), names(1 + 4 * ns), units(1 + 4 * ns))
+      cols(:, 1) = res%time;  names(1) = 'time';  units(1) = 's'
+      do j = 1, ns
+         cols(:, 4 * j - 2) = res%orbit_w(:, j);  names(4 * j - 2) = 'w_' // str(j)
+         cols(:, 4 * j - 1) = res%orbit_v(:, j);  names(4 * j - 1) = 'v_' // str(j)
+         cols(:, 4 * j) = res%stop_force(:, j);  names(4 * j) = 'normal_force_' // str(j)
+         cols(:, 4 * j + 1) = res%tangential_force(:, j)
+         names(4 * j + 1) = 'tangential_force_' // str(j)
+         units(4 * j - 2:4 * j + 1) = [character(len=24) :: 'm', 'm', 'N', 'N']
+      end do
+      call write_table(set%temp(4), trim(deck%job%title) // ': orbits at the supports', names, &
+                       units, cols, err, in_place=.true.)
+      if (allocated(err)) return
+      deallocate(cols)
+      allocate(cols(ns, 7))
+      do j = 1, ns
+         cols(j, :) = [real(j, dp), real(deck%stops(j)%node, dp), &
+            real(deck%stops(j)%node - 1, dp) * model%sys%element_length, deck%stops(j)%gap, &
+            deck%stops(j)%offset_w, deck%stops(j)%offset_v, &
+            merge(1.0_dp, 0.0_dp, deck%stops(j)%shape == 'circular')]
+      end do
+      call write_table(set%temp(5), trim(deck%job%title) // ': supports', &
+         [character(len=16) :: 'stop', 'node', 'x', 'gap', 'offset_w', 'offset_v', 'circular'], &
+         [character(len=16) :: '-', '-', 'm', 'm', 'm', 'm', '-'], cols, err, in_place=.true.)
+   end subroutine write_orbit_tables
 
    !> PREFIX.history.dat and PREFIX.poincare.dat, under the set's temporary names.
    subroutine write_transient_tables(set, deck, model, res, err)

@@ -98,7 +98,10 @@ contains
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: which                       !! 1 peak, 2 rms, 3 contact fraction,
-                                                         !! 4 impulse per period, 5 work rate
+                                                         !! 4 impulse per period, 5 work rate,
+                                                         !! 6 normal work rate, 7 sliding
+                                                         !! distance, 8 friction work rate,
+                                                         !! 9 wear volume rate
       integer, intent(in) :: ns                          !! stops
       real(dp) :: v(size(points), ns)
       integer :: j, p
@@ -109,6 +112,10 @@ contains
          case (2);  v(j, :) = padded(results(p)%rms_force, ns)
          case (3);  v(j, :) = padded(results(p)%contact_fraction, ns)
          case (4);  v(j, :) = padded(results(p)%impulse_per_period, ns)
+         case (6);  v(j, :) = padded(results(p)%normal_work_rate, ns)
+         case (7);  v(j, :) = padded(results(p)%sliding_distance, ns)
+         case (8);  v(j, :) = padded(results(p)%friction_work_rate, ns)
+         case (9);  v(j, :) = padded(results(p)%wear_volume_rate, ns)
          case default;  v(j, :) = padded(results(p)%work_rate, ns)
          end select
       end do
@@ -144,6 +151,10 @@ contains
          'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
       character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '-', &
          'N s', 'W']
+      character(len=*), parameter :: wear_names(4) = [character(len=18) :: 'normal_work_rate', &
+         'sliding_distance', 'friction_work_rate', 'wear_volume_rate']
+      character(len=*), parameter :: wear_units(4) = [character(len=5) :: 'W', 'm', 'W', &
+         'm^3/s']
 
       m = size(sf%points);  nf = size(sf%grid_frequency_hz)
       call point_sizes(results, sf%points, ns, nr, nl)
@@ -196,6 +207,11 @@ contains
                        impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err)
          if (write_failed(h5, err)) return
       end do
+      do j = 1, size(wear_names)
+         call h5%write('/sweep/wear/' // trim(wear_names(j)), &
+                       impact_stat(results, sf%points, 5 + j, ns), trim(wear_units(j)), err)
+         if (write_failed(h5, err)) return
+      end do
       allocate(r2(nr, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
@@ -224,7 +240,7 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! I/O failure
       integer :: m, ns, nr, nl, j, p, nf
       real(dp), allocatable :: f(:), a(:), cols(:, :), row(:), counts(:, :)
-      character(len=24) :: names(10), units(10)
+      character(len=24) :: names(12), units(12)
 
       m = size(sf%points);  nf = size(sf%grid_frequency_hz)
       call point_sizes(results, sf%points, ns, nr, nl)
@@ -234,7 +250,7 @@ contains
          f(j) = sf%grid_frequency_hz(mod(p - 1, nf) + 1)
          a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
       end do
-      allocate(cols(m, 10))
+      allocate(cols(m, 12))
       cols = 0.0_dp
       cols(:, 1) = f;  cols(:, 2) = a
       do j = 1, m
@@ -247,13 +263,15 @@ contains
             row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
             row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
             row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
+            cols(j, 11) = sum(padded(results(p)%normal_work_rate, ns))
+            cols(j, 12) = sum(padded(results(p)%wear_volume_rate, ns))
          end if
       end do
       names = [character(len=24) :: 'frequency', 'amplitude_pp', 'period', 'label', &
          'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', 'rms_force_stop1', &
-         'work_rate_stop1']
+         'work_rate_stop1', 'normal_work_rate_total', 'wear_volume_rate_total']
       units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
-         'N', 'N', 'W']
+         'N', 'N', 'W', 'W', 'm^3/s']
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
          // ' 0 undecided, -1 chaotic)', names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
@@ -281,7 +299,8 @@ contains
       integer :: total, j, p
       integer, allocatable :: period(:), label(:), status(:)
       real(dp), allocatable :: lyap(:), lerr(:), steps(:), secs(:), cnt(:, :), pk(:, :), &
-         rms(:, :), cf(:, :), imp(:, :), wr(:, :), ps(:, :), pr(:, :), lr(:, :)
+         rms(:, :), cf(:, :), imp(:, :), wr(:, :), ps(:, :), pr(:, :), lr(:, :), &
+         wn(:, :), sd(:, :), fw(:, :), wv(:, :)
       call h5%open(path, err);  if (allocated(err)) return
       call h5%read_text('/deck', sf%deck_text, err);  if (allocated(err)) goto 9
       call h5%read_text('/sweep/title', sf%title, err);  if (allocated(err)) goto 9
@@ -309,6 +328,15 @@ contains
       call h5%read('/sweep/poincare/strain', ps, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/poincare/strain_rate', pr, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/lyapunov_running', lr, err);  if (allocated(err)) goto 9
+      if (h5%exists('/sweep/wear/normal_work_rate')) then
+         call h5%read('/sweep/wear/normal_work_rate', wn, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/sliding_distance', sd, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/friction_work_rate', fw, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/wear_volume_rate', wv, err);  if (allocated(err)) goto 9
+      else
+         allocate(wn, sd, fw, wv, mold=wr)
+         wn = 0.0_dp;  sd = 0.0_dp;  fw = 0.0_dp;  wv = 0.0_dp
+      end if
       if (.not. allocated(results)) allocate(results(total))
       if (size(results) /= total) then
          call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' has ' &
@@ -330,6 +358,8 @@ contains
          results(p)%contact_fraction = cf(j, :);  results(p)%impulse_per_period = imp(j, :)
          results(p)%work_rate = wr(j, :);  results(p)%p_strain = ps(:, j)
          results(p)%p_strain_rate = pr(:, j);  results(p)%lyapunov_running = lr(:, j)
+         results(p)%normal_work_rate = wn(j, :);  results(p)%sliding_distance = sd(j, :)
+         results(p)%friction_work_rate = fw(j, :);  results(p)%wear_volume_rate = wv(j, :)
       end do
 9     call h5%close()
    end subroutine read_sweep

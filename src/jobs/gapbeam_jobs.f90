@@ -42,8 +42,18 @@ contains
             // ' N m/rad (kappa = k_theta L / EI = ' &
             // str(st%root%k_theta * st%beam%length / beam_ei(st%beam)) // ')'
       else
-         write(output_unit, '(a)') 'root: clamped'
+         write(output_unit, '(a)') 'root: ' // trim(st%root%condition)
       end if
+      if (st%tip%condition == 'spring') then
+         write(output_unit, '(a)') 'tip: pinned, rotational spring k_theta = ' &
+            // str(st%tip%k_theta) // ' N m/rad'
+      else if (st%tip%condition /= 'free') then
+         write(output_unit, '(a)') 'tip: ' // trim(st%tip%condition)
+      end if
+      if (st%beam%planes > 1 .or. st%beam%added_mass > 0.0_dp) write(output_unit, '(a)') &
+         'planes of motion: ' // str(st%beam%planes) // '; added mass ' &
+         // str(st%beam%added_mass) // ' kg/m (mass per length ' &
+         // str(beam_rho_a(st%beam) + st%beam%added_mass) // ' kg/m)'
    end subroutine describe_structure
 
    function rotary_text(st) result(t)
@@ -300,7 +310,20 @@ contains
             // str(res%peak_force(j)) // ' N, rms ' // str(res%rms_force(j)) // ' N, contact ' &
             // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
             // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
+         if (model%sys%planes > 1) write(output_unit, '(a)') '        wear: normal work rate ' &
+            // str(res%normal_work_rate(j)) // ' W, sliding ' // str(res%sliding_distance(j)) &
+            // ' m in ' // str(dk%solver%record_periods) // ' periods, friction work rate ' &
+            // str(res%friction_work_rate(j)) // ' W, stick ' &
+            // str(100.0_dp * res%stick_fraction(j)) // ' % of the contact time, wear volume ' &
+            // 'rate ' // str(res%wear_volume_rate(j)) // ' m^3/s'
       end do
+      if (res%has_energy) write(output_unit, '(a)') 'energy over the record: input ' &
+         // str(res%input_work) // ' J = Rayleigh ' // str(res%rayleigh_dissipation) &
+         // ' J + contact dampers ' // str(res%contact_damping_dissipation) // ' J + friction ' &
+         // str(res%friction_dissipation) // ' J + stored ' // str(res%stored_energy_change) &
+         // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
+         - res%contact_damping_dissipation - res%friction_dissipation &
+         - res%stored_energy_change) // ' J'
       call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e)
       if (allocated(e)) return
       write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
