@@ -29,7 +29,7 @@ module gapbeam_stepping
    use gapbeam_ring_contact, only: ring_open, ring_stick, ring_indicators, ring_geometry, &
       update_ring_modes, ring_force, onset_regime
    use gapbeam_newmark, only: half_step_ratio, use_dense
-   use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_lapack, only: dpotrf, dpotrs, dgesv
    implicit none
    private
    public :: stepping_integrator_t, hermite_piece_t, hermite_weights
@@ -797,41 +797,72 @@ contains
    end subroutine init_control
 
    !> Floors of the watched outputs of a model with two planes or extra loads: the largest
-   !> quasi-static response to any one load vector (the w and v base motions, the sin and cos
-   !> parts of the point forces), and with two planes the same floor for an output and its
-   !> mirror in the other plane (an orbit can turn from one plane into the other; a plane at
-   !> rest must not get a zero floor).
+   !> response to any one load vector of the open structure: the quasi-static K^-1 L for the w
+   !> and v base motions (as for a planar model, whose floors a planar deck run with two planes
+   !> keeps), and for the sin and cos parts of the point forces the smaller of that and the
+   !> harmonic (K - Omega^2 M + i Omega C)^-1 L (a force above a resonance moves the structure
+   !> far less than its static response); with two planes the same floor for an
+   !> output and its mirror in the other plane (an orbit can turn from one plane into the other;
+   !> a plane at rest must not get a zero floor).
    subroutine tube_floors(self, model, kf, n_out)
       class(stepping_integrator_t), intent(inout) :: self   !! integrator
       type(model_t), intent(in) :: model                    !! model
       real(dp), intent(in) :: kf(:, :)                      !! Cholesky factor of K
       integer, intent(in) :: n_out                          !! 1 + size(out_dof)
-      real(dp), allocatable :: loads(:, :)
-      real(dp) :: fl(n_out)
-      integer :: j, info, nh, q, i, nl
+      real(dp), allocatable :: loads(:, :), zs(:, :), zd(:, :), a(:, :)
+      integer, allocatable :: ipiv(:)
+      real(dp) :: fl(n_out), ys, yd
+      integer :: j, info, nh, q, i, nl, n, im
+      logical :: point_force(4), harmonic
+      n = model%n
       nl = 1
-      allocate(loads(model%n, 4), source=0.0_dp)
+      point_force = [.false., .false., .true., .true.]
+      allocate(loads(n, 4), source=0.0_dp)
       loads(:, 1) = model%half_amplitude * model%omega**2 * model%q
       if (allocated(model%q_v)) then
          nl = nl + 1;  loads(:, nl) = model%half_amplitude * model%omega**2 * model%q_v
       end if
       if (allocated(model%p_sin)) then
          loads(:, nl + 1) = model%p_sin;  loads(:, nl + 2) = model%p_cos
+         point_force(nl + 1:nl + 2) = .true.
          nl = nl + 2
       end if
-      call dpotrs('U', model%n, nl, kf, model%n, loads, model%n, info)
-      nh = model%n / 2
+      point_force(1:nl - merge(2, 0, allocated(model%p_sin))) = .false.
+      zs = loads(:, 1:nl)
+      call dpotrs('U', n, nl, kf, n, zs, n, info)
+      ! harmonic response: [K - W^2 M, -W C; W C, K - W^2 M] [x; y] = [L; 0], |z| = hypot
+      info = 0
+      if (n <= 1000 .and. any(point_force(1:nl))) then
+         allocate(a(2 * n, 2 * n), ipiv(2 * n))
+         a(1:n, 1:n) = model%sys%k - model%omega**2 * model%sys%m
+         a(n + 1:, n + 1:) = a(1:n, 1:n)
+         a(1:n, n + 1:) = -model%omega * model%c
+         a(n + 1:, 1:n) = model%omega * model%c
+         allocate(zd(2 * n, nl), source=0.0_dp)
+         zd(1:n, :) = loads(:, 1:nl)
+         call dgesv(2 * n, nl, a, 2 * n, ipiv, zd, 2 * n, info)
+         if (info /= 0) zd = 0.0_dp
+      end if
+      nh = n / 2
       fl = 0.0_dp
       do j = 1, nl
-         fl(1) = max(fl(1), abs(dot_product(self%sw, loads(self%si, j))))
-         if (model%sys%planes > 1) fl(1) = max(fl(1), &
-            abs(dot_product(self%sw, loads(self%si + nh, j))))
-         do q = 1, size(self%out_dof)
-            i = self%out_dof(q)
-            fl(1 + q) = max(fl(1 + q), abs(loads(i, j)))
-            ! the same dof in the other plane (the planes are numbered alike, one after the other)
-            if (model%sys%planes > 1) fl(1 + q) = max(fl(1 + q), &
-               abs(loads(merge(i + nh, i - nh, i <= nh), j)))
+         do q = 0, size(self%out_dof)
+            do im = 0, min(1, model%sys%planes - 1)      ! the output, then its mirror
+               harmonic = allocated(a) .and. info == 0 .and. point_force(j)
+               yd = huge(1.0_dp)
+               if (q == 0) then
+                  ys = abs(dot_product(self%sw, zs(self%si + im * nh, j)))
+                  if (harmonic) yd = hypot(dot_product(self%sw, zd(self%si + im * nh, j)), &
+                                           dot_product(self%sw, zd(n + self%si + im * nh, j)))
+               else
+                  i = self%out_dof(q)
+                  ! the same dof in the other plane (the planes are numbered alike)
+                  if (im == 1) i = merge(i + nh, i - nh, i <= nh)
+                  ys = abs(zs(i, j))
+                  if (harmonic) yd = hypot(zd(i, j), zd(n + i, j))
+               end if
+               fl(1 + q) = max(fl(1 + q), min(ys, yd))
+            end do
          end do
       end do
       self%out_floor(1:n_out) = fl

@@ -127,9 +127,11 @@ contains
             d = m%c_sign(c) * self%u(i) - m%c_gap(c)
             dd = m%c_sign(c) * self%v(i)
             f = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), d, dd)
+            ! the damper's share of the work, wherever the spring is compressed (a released
+            ! damped contact, f = 0 at d > 0, returns the spring's energy to nothing)
+            if (self%energy .and. m%c_law(c) == law_bilinear .and. m%c_c(c) > 0.0_dp .and. &
+                d > 0.0_dp) self%e_damp = self%e_damp + wq * (f - m%c_k(c) * d) * dd
             if (f <= 0.0_dp) cycle
-            if (self%energy .and. m%c_law(c) == law_bilinear .and. m%c_c(c) > 0.0_dp) &
-               self%e_damp = self%e_damp + wq * (f - m%c_k(c) * d) * dd
             it = m%c_tdof(c)
             if (it > 0) then
                self%wn(k) = self%wn(k) + wq * f * abs(self%v(it))
@@ -186,17 +188,17 @@ contains
                k = m%r_stop(r)
                x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
-               if (fn <= 0.0_dp) cycle
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
+               if (self%energy .and. m%r_law(r) == law_bilinear .and. m%r_c(r) > 0.0_dp .and. &
+                   d > 0.0_dp) self%e_damp = self%e_damp + wq * (fn - m%r_k(r) * d) * dn
+               if (fn <= 0.0_dp) cycle
                acc_f(k) = acc_f(k) + wq * fn
                acc_f2(k) = acc_f2(k) + wq * fn**2
                acc_work(k) = acc_work(k) + wq * fn * abs(dn)
                self%wn(k) = self%wn(k) + wq * fn * abs(vt)
                if (m%r_mu(r) == 0.0_dp) self%slide(k) = self%slide(k) + wq * abs(vt)
                if (p%r_mode(r) == ring_slip) pw(r) = pw(r) - wq * ft * vt
-               if (self%energy .and. m%r_law(r) == law_bilinear .and. m%r_c(r) > 0.0_dp) &
-                  self%e_damp = self%e_damp + wq * (fn - m%r_k(r) * d) * dn
             end do
          end do
          do r = 1, m%n_rings
