@@ -19,6 +19,8 @@ program main
    use gapbeam_sweep_job, only: run_sweep_job, sweep_prefix, status_interrupted
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_blas_threads, only: serial_blas
+   use gapbeam_usage, only: usage_lines, help_text, version_text
+   use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
    implicit none
    integer, parameter :: status_error = 1, status_usage = 2, status_locked = 4
    type(deck_t) :: deck
@@ -34,13 +36,22 @@ program main
    call ignore_file_size_signal()  ! past `ulimit -f` a write fails (and is reported), no kill
    n_args = command_argument_count()
    if (n_args < 1) then
-      write(error_unit, '(a)') 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [OVERRIDE ...]'
-      write(error_unit, '(a)') '       gapbeam merge OUT.h5 SHARD.h5 ...'
+      write(error_unit, '(a)') usage_lines()
       write(error_unit, '(a)') '  OVERRIDE: a namelist fragment, e.g. ' &
-         // '"&forcing frequency_hz=10.2 /"'
+         // '"&forcing frequency_hz=10.2 /"; gapbeam --help tells more'
       call finish(status_usage)
    end if
    path = argument(1)
+   select case (path)
+   case ('--help', '-h', '-help')
+      write(output_unit, '(a)') help_text()
+      call finish(0)
+   case ('--version', '-V')
+      write(output_unit, '(a)') version_text()
+      call finish(0)
+   end select
+   if (path(1:min(1, len(path))) == '-') call usage_error("unknown option '" // path &
+      // "' (a deck file name comes first)")
    ! overrides (or merge files) of any length: one array as long as the longest
    i = longest_argument()
    allocate(character(len=i) :: overrides(n_args))
@@ -71,6 +82,22 @@ program main
          read(arg, *, iostat=ios) batch%time_limit_s
          if (ios /= 0 .or. .not. (batch%time_limit_s > 0.0_dp)) call fail(path, "--time-limit '" &
             // arg // "': expected a positive number of seconds", lock)
+      else if (arg == '--quiet' .or. arg == '-q') then
+         batch%quiet = .true.
+      else if (arg == '--progress' .or. index(arg, '--progress=') == 1) then
+         if (arg == '--progress') then
+            i = i + 1
+            if (i > n_args) call fail(path, '--progress needs a number of seconds', lock)
+            arg = argument(i)
+         else
+            arg = arg(12:)
+         end if
+         read(arg, *, iostat=ios) batch%progress_interval_s
+         if (ios /= 0 .or. .not. (batch%progress_interval_s > 0.0_dp .and. &
+             batch%progress_interval_s < 1.0e9_dp)) call fail(path, "--progress '" // arg &
+            // "': expected a number of seconds between progress lines, > 0", lock)
+      else if (path /= 'merge' .and. index(arg, '--') == 1) then
+         call usage_error("unknown option '" // arg // "'")
       else
          n_over = n_over + 1;  overrides(n_over) = arg
       end if
@@ -103,13 +130,15 @@ program main
    case ('calibrate')
       call run_calibrate(deck, err)
    case ('transient')
-      call run_transient_analysis(deck, err)
+      call run_transient_analysis(deck, err, batch)
    case ('work_precision')
       call run_work_precision(deck, err)
    case ('stability')
       call run_stability(deck, err)
    case ('model_size')
       call run_model_size(deck, err)
+   case ('continuation')                                     ! issue 14
+      call run_continuation_job(deck, err)
    case ('sweep')
       call run_sweep_job(deck, batch, complete, err)
       if (allocated(err)) call fail(path, err%message, lock)
@@ -144,6 +173,14 @@ contains
          longest_argument = max(longest_argument, l)
       end do
    end function longest_argument
+
+   !> A bad command line: the message and the usage on standard error, exit status 2.
+   subroutine usage_error(message)
+      character(len=*), intent(in) :: message      !! what is wrong
+      write(error_unit, '(a)') 'error: ' // message
+      write(error_unit, '(a)') usage_lines()
+      call finish(status_usage)
+   end subroutine usage_error
 
    !> Read '--shard I/N'.
    subroutine parse_shard(deck_path, text, si, sc, held)

@@ -6,8 +6,9 @@
 #
 # Steps: source scripts/setup.sh (installs what is missing); `fpm build --profile release`, quiet
 # on success (the build log is shown only when the build fails); find the built `gapbeam_bench`
-# executable (`fpm run --profile release --runner echo gapbeam_bench`); run it from the repository
-# root and copy its output (the table) to bench_results/bench.txt (git-ignored, overwritten).
+# example (`fpm run --profile release --example --runner echo gapbeam_bench`: it is an fpm
+# example, so that `fpm run -- DECK` and `fpm install` concern gapbeam alone); run it from the
+# repository root and copy its output (the table) to bench_results/bench.txt (git-ignored).
 #
 # The benchmark (bench/gapbeam_bench.f90) times run_transient on inputs/moon_shaw_10p5hz.nml,
 # 300 + 1000 periods: fixed T/256 condensed without and with event location, fixed T/256 fixed
@@ -54,10 +55,10 @@ exe=""
 while IFS= read -r line; do
    [[ ${line} == /* ]] || line=${root}/${line}
    if [[ -f ${line} && -x ${line} ]]; then exe=${line}; fi
-done < <(fpm run --profile release --runner echo gapbeam_bench 2>>"${build_log}")
+done < <(fpm run --profile release --example --runner echo gapbeam_bench 2>>"${build_log}")
 if [[ -z ${exe} ]]; then
    cat "${build_log}" >&2
-   printf 'bench: error: cannot find the gapbeam_bench executable (fpm run --runner echo; log %s)\n' \
+   printf 'bench: error: cannot find the gapbeam_bench example (fpm run --example --runner echo; log %s)\n' \
       "${build_log}" >&2
    exit 1
 fi

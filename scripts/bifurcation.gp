@@ -1,4 +1,4 @@
-# scripts/bifurcation.gp - bifurcation diagram of a sweep: the Poincare root strain [microstrain]
+# scripts/bifurcation.gp - bifurcation diagram of a sweep: the Poincare root strain ε [µε]
 # (once per forcing period, every recorded period of every sweep point) against the forcing
 # frequency [Hz] or the forcing amplitude [mm peak to peak], from a gapbeam
 # PREFIX.bifurcation.dat (columns: 1 frequency [Hz], 2 amplitude_pp [m], 3 strain [-],
@@ -7,13 +7,13 @@
 # Usage:
 #   gnuplot -e "datafile='x.bifurcation.dat'; outfile='x.bifurcation.png'" scripts/bifurcation.gp
 #   gnuplot -e "datafile='x.bifurcation.dat'; outfile='x.png'; xaxis='amplitude'" scripts/bifurcation.gp
-# Variables: datafile (required), outfile (required, PNG), plottitle (optional),
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional),
 #   xaxis (optional): 'frequency' (default; x = column 1 [Hz]) or 'amplitude' (x = column 2
 #   in mm p-p). scripts/plot.sh picks 'amplitude' when the sweep has a single frequency.
 # A period-p point shows as p dots above its x; a chaotic point as a vertical smear. When the
-# other forcing variable takes more than one value (a grid), the dots are coloured by it
-# (palette, colour box on the right): the diagram of every line of the grid at once.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 1000x650.
+# other forcing variable takes more than one value (a grid), small multiples: one panel per value
+# (at most 16, evenly chosen, the title says how many of how many), on the same axes.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 1000x650.
 
 if (!exists("datafile") || !exists("outfile")) {
    print "bifurcation.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.bifurcation.dat'; outfile='x.png'\" scripts/bifurcation.gp"
@@ -26,11 +26,13 @@ if (xaxis ne "frequency" && xaxis ne "amplitude") {
    exit status 1
 }
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 1000,650 font ",11"
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 1000; height = 650
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
+if (cairo) {
    dotsize = 0.25
 } else {
-   set terminal png noenhanced size 1000,650
    dotsize = 0.4
 }
 
@@ -59,7 +61,7 @@ set output outfile
 set title sprintf("%s\nBifurcation diagram: Poincare root strain once per forcing period (%d points)", \
    plottitle, npts)
 set xlabel byfreq ? "forcing frequency [Hz]" : "forcing amplitude [mm peak to peak]"
-set ylabel "root strain at the Poincare phase [microstrain]"
+set ylabel "root strain at the Poincare phase ε [µε]"
 set format x "%g"
 set format y "%g"
 set grid lc rgb "#d0d0d0"
@@ -67,13 +69,42 @@ set key off
 set tics front
 
 if (colour) {
-   set palette defined (0 "#2c3e9e", 1 "#1e9bd7", 2 "#2fb36b", 3 "#e3b21b", 4 "#d73027")
-   set cbrange [cmin : cmax]
-   set cblabel byfreq ? "forcing amplitude [mm peak to peak]" : "forcing frequency [Hz]"
-   set colorbox vertical user origin screen 0.905, screen 0.12 size screen 0.02, screen 0.72
-   set rmargin at screen 0.86
-   plot datafile using (xval($1, $2)):($3*1.0e6):(cval($1, $2)) \
-      with points pt 7 ps dotsize lc palette notitle
+   # A grid: small multiples, one panel per value of the other forcing variable (at most 16,
+   # evenly chosen when there are more), all on the same axes.
+   set format x "%.15g"
+   set table $bifurcation_c
+   plot datafile using (cval($1, $2)):(1) smooth frequency
+   unset table
+   set format x "%g"
+   cvalues = ""
+   do for [i = 1:|$bifurcation_c|] {
+      line = $bifurcation_c[i]
+      if (strlen(line) > 0 && line[1:1] ne "#" && words(line) >= 2) { cvalues = cvalues . " " . word(line, 1) }
+   }
+   nc = words(cvalues)
+   npanel = (nc > 16) ? 16 : nc
+   pick(k) = (nc <= 16) ? k : 1 + int(floor((k - 1)*(nc - 1.0)/(npanel - 1) + 0.5))
+   ncols = int(ceil(sqrt(npanel)))
+   nrows = int(ceil(npanel*1.0/ncols))
+   same(a, b) = abs(a - b) <= 1.0e-9*(abs(a) + abs(b)) + 1.0e-300
+   cunit = byfreq ? "mm p-p" : "Hz"
+   unset title
+   set multiplot layout nrows, ncols title sprintf("%s\nBifurcation diagrams, one per %s%s (%d points)", \
+      plottitle, byfreq ? "forcing amplitude" : "forcing frequency", \
+      (nc > npanel) ? sprintf(" (%d of %d shown)", npanel, nc) : "", npts) margins 0.07, 0.98, 0.08, 0.90 spacing 0.035, 0.06
+   set xlabel ""
+   set ylabel ""
+   set format x "%g"
+   do for [k = 1:npanel] {
+      cv = real(word(cvalues, pick(k)))
+      set label 1 sprintf("%g %s", cv, cunit) at graph 0.03, graph 0.92 left front font ",9" \
+         textcolor rgb "#404040"
+      if (k > npanel - ncols) { set xlabel byfreq ? "frequency [Hz]" : "amplitude [mm p-p]" } else { set xlabel "" }
+      if ((k - 1) % ncols == 0) { set ylabel "ε [µε]" } else { set ylabel "" }
+      plot datafile using (same(cval($1, $2), cv) ? xval($1, $2) : 1/0):($3*1.0e6) \
+         with points pt 7 ps dotsize lc rgb "#1f4e9c" notitle
+   }
+   unset multiplot
 } else {
    unset colorbox
    plot datafile using (xval($1, $2)):($3*1.0e6) with points pt 7 ps dotsize lc rgb "#1f4e9c" notitle

@@ -7,16 +7,18 @@
 # Usage:
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.chaos_map.png'" scripts/chaos_map.gp
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.png'; plottitle='gap 1 mm'" scripts/chaos_map.gp
-# Variables: datafile (required), outfile (required, PNG), plottitle (optional).
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional).
 # Colours: chaotic red; undecided grey; period 1 blue, 2 green, 3 orange, 4 purple, 5-8 cyan,
 # more than 8 brown. The legend (right) lists the classes present with their point counts. A
 # small white dot with a black ring marks a point whose stop 1 saw no impact in the recorded periods (the linear,
 # non-impacting response; such points are usually 'undecided' as long as the free vibration of
 # the first mode has not died out).
-# Tiles are as wide and as high as the grid spacing (the axis's extent over its number of distinct
-# values less one: exact on a uniform grid). A single frequency or a single amplitude (a line
+# Tiles are as wide and as high as the grid spacing (the axis's extent over its number of values
+# less one: exact on a uniform grid), taken from the whole grid named in the table's title line,
+# so that a shard's points (a part of the grid) get the grid's tiles on the grid's frame. A failed
+# point (NaN exponent) carries a black cross. A single frequency or a single amplitude (a line
 # sweep) gives a strip of tiles in a shorter picture.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 1000x650 (1000x330 for a strip).
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 1000x650 (1000x330 for a strip).
 
 if (!exists("datafile") || !exists("outfile")) {
    print "chaos_map.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/chaos_map.gp"
@@ -40,6 +42,16 @@ nf = STATS_records;  fmin = STATS_min;  fmax = STATS_max
 stats $chaos_map_a using 1 nooutput
 na = STATS_records;  amin = STATS_min;  amax = STATS_max
 
+# The whole grid, from the table's title line ('...; grid: NF frequencies from F1 to F2 Hz, NA
+# amplitudes from A1 to A2 m'): a shard's file holds some points only, and its tiles must have
+# the grid's size and sit on the grid's frame. Without that line, the points' own extent.
+header = system("head -n 1 '" . datafile . "' 2>/dev/null")
+gpos = strstrt(header, "grid: ")
+if (gpos > 0) {
+   g = header[gpos + 6:]
+   nf = int(word(g, 1));  fmin = real(word(g, 4));  fmax = real(word(g, 6))
+   na = int(word(g, 8));  amin = 1.0e3*real(word(g, 11));  amax = 1.0e3*real(word(g, 13))
+}
 # Half-widths of a tile (92 % of the spacing, so that a thin white seam shows between tiles);
 # a single value gets a tile of 2 % of its magnitude (0.05 if zero) on that axis.
 single(v) = (abs(v) > 0) ? 0.02*abs(v) : 0.05
@@ -65,28 +77,21 @@ do for [k = 1:8] {
 stats datafile using (($7 == 0) ? 1 : 0) nooutput
 nquiet = int(STATS_sum)
 npts = STATS_records
+# failed points (their exponent is NaN in the table): marked with a black cross
+stats datafile using (($5 != $5) ? 1 : 0) nooutput
+nfailed = int(STATS_sum)
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   if (strip) {
-      set terminal pngcairo noenhanced size 1000,330 font ",11"
-   } else {
-      set terminal pngcairo noenhanced size 1000,650 font ",11"
-   }
-   ringsize = 1.2
-} else {
-   if (strip) {
-      set terminal png noenhanced size 1000,330
-   } else {
-      set terminal png noenhanced size 1000,650
-   }
-   ringsize = 0.8
-}
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 1000; height = strip ? 330 : 650
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
+ringsize = cairo ? 1.2 : 0.8
 
 set output outfile
 set xrange [fmin - 1.2*hf : fmax + 1.2*hf]
 set yrange [amin - 1.2*ha : amax + 1.2*ha]
 plural(n, one, many) = sprintf("%d %s", n, (n == 1) ? one : many)
-set title sprintf("%s\nChaos map: response class of each of %s (%s x %s)", plottitle, \
+set title sprintf("%s\nChaos map: response class of each of %s (grid %s x %s)", plottitle, \
    plural(npts, "sweep point", "sweep points"), plural(nf, "frequency", "frequencies"), \
    plural(na, "amplitude", "amplitudes"))
 set xlabel "forcing frequency [Hz]"
@@ -106,6 +111,8 @@ plot for [w in present] datafile \
      for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
         with points pt 7 ps ringsize lc rgb "white" notitle, \
      for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
-        with points pt 6 ps ringsize lc rgb "black" title ringtitle
+        with points pt 6 ps ringsize lc rgb "black" title ringtitle, \
+     for [q = 1:(nfailed > 0 ? 1 : 0)] datafile using 1:(($5 != $5) ? $2*1.0e3 : 1/0) \
+        with points pt 2 ps 1.5*ringsize lw 2 lc rgb "black" title sprintf("failed (%d)", nfailed)
 
 unset output

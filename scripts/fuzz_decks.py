@@ -16,7 +16,9 @@ What it does
    directory the sweep creates), a 3-frequency line given as a list, a 3 x 2 grid;
    work-precision studies of 2 levels over 1 period without rk45 (see cheapen) and stability
    charts of 11 points, on 6 elements instead of 15; a model-size ladder of 2 and 3 elements
-   and 1 and 2 modes. These cheap decks run unmutated as the `baseline` class
+   and 1 and 2 modes; continuations: a 100-period transient taken as a period-1 orbit, 4 points
+   a branch, no doubled branches, 3 points a curve. These cheap decks run unmutated as the
+   `baseline` class
    (each must end with exit 0 and finite results).
 2. Mutates them with a random.Random(seed) (default seed 20240611): --per-class decks (default
    24) for each mutation class below, the base deck taken in turn (deck i of class c is base deck
@@ -262,6 +264,14 @@ def cheapen(text):
     if analysis == 'model_size':
         text = set_value(text, 'model_size', 'elements', '2, 3')
         text = set_value(text, 'model_size', 'modes', '1, 2')
+    if analysis == 'continuation':
+        # a short transient taken as a period-1 orbit, 4 points a branch, no doubled branch,
+        # 3 points a curve (issue 14)
+        text = set_value(text, 'continuation', 'transient_periods', '100')
+        text = set_value(text, 'continuation', 'period', '1')
+        text = set_value(text, 'continuation', 'max_points', '4')
+        text = set_value(text, 'continuation', 'switch_period_doubling', '.false.')
+        text = set_value(text, 'continuation', 'curve_max_points', '3')
     return text
 
 

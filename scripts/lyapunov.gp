@@ -7,16 +7,16 @@
 # Usage:
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.lyapunov.png'" scripts/lyapunov.gp
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.png'; xaxis='amplitude'" scripts/lyapunov.gp
-# Variables: datafile (required), outfile (required, PNG), plottitle (optional),
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional),
 #   xaxis (optional): 'frequency' (default; x = column 1 [Hz]) or 'amplitude' (x = column 2
 #   in mm p-p). scripts/plot.sh picks 'amplitude' when the sweep has a single frequency.
 # A black zero line separates contraction (periodic, < 0) from divergence (chaos, > 0).
 # One line of the sweep (the other forcing variable takes one value): points coloured by the
 # program's label, chaotic red, periodic blue, undecided grey, joined by a thin grey line in
-# point order. A grid: one curve per value of the other variable, coloured by that value
-# (palette, colour box on the right) and drawn in grid order; chaotic points filled, the others
-# open.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 1000x600.
+# point order. A grid: a heat map of the exponent over the frequency-amplitude plane (tiles of
+# the grid's spacing, a diverging palette centred on zero), chaotic points dotted, failed points
+# (NaN exponent) crossed.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 1000x600.
 
 if (!exists("datafile") || !exists("outfile")) {
    print "lyapunov.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/lyapunov.gp"
@@ -60,11 +60,13 @@ cmin = real(word(cvalues, 1));  cmax = real(word(cvalues, nc))
 # Same value to 1e-9 relative (the text tables carry 17 digits, the word list 15).
 same(a, b) = abs(a - b) <= 1.0e-9*(abs(a) + abs(b)) + 1.0e-300
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 1000,600 font ",11"
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 1000; height = 600
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
+if (cairo) {
    psz = 0.9
 } else {
-   set terminal png noenhanced size 1000,600
    psz = 1.3
 }
 
@@ -100,25 +102,57 @@ if (nc <= 1) {
         for [w in lpresent] datafile using (xval($1, $2)):((lcls($4) == int(w)) ? $5 : 1/0):6 \
            with yerrorbars pt 7 ps psz lc rgb lcolour[int(w)] title lname[int(w)]
 } else {
-   set palette defined (0 "#2c3e9e", 1 "#1e9bd7", 2 "#2fb36b", 3 "#e3b21b", 4 "#d73027")
-   set cbrange [cmin : cmax]
-   set cblabel byfreq ? "forcing amplitude [mm peak to peak]" : "forcing frequency [Hz]"
-   set colorbox vertical user origin screen 0.905, screen 0.22 size screen 0.02, screen 0.62
-   set rmargin at screen 0.86
-   cv(i) = real(word(cvalues, i))
-   # The rows of each curve, in file (grid) order, tagged with the curve's number: a curve's
-   # rows are then consecutive, so that each is drawn as one unbroken line.
-   set table $lyapunov_curves
-   plot for [i = 1:nc] datafile using (xval($1, $2)):5:(i) with table if (same(cval($1, $2), cv(i)))
+   # A grid: a heat map of the exponent over the frequency-amplitude plane, one tile per point
+   # (the grid's spacing, from the table's title line as in chaos_map.gp), a diverging palette
+   # centred on 0 (blue contracting, red diverging); chaotic points dotted, failed ones crossed.
+   set format x "%.12g"
+   set xrange [-1.0e30 : 1.0e30]
+   set yrange [-1.0e30 : 1.0e30]
+   set table $lyapunov_f
+   plot datafile using 1:(1) smooth frequency
+   set table $lyapunov_a
+   plot datafile using ($2*1.0e3):(1) smooth frequency
    unset table
-   plot for [i = 1:nc] $lyapunov_curves using 1:(($3 == i) ? $2 : 1/0) \
-           with lines lw 1 lc palette cb cv(i) notitle, \
-        for [q = 1:((nchaos < npts) ? 1 : 0)] datafile \
-           using (xval($1, $2)):(($4 != -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
-           pt 6 ps psz lc palette title "periodic or undecided (open)", \
-        for [q = 1:((nchaos > 0) ? 1 : 0)] datafile \
-           using (xval($1, $2)):(($4 == -1) ? $5 : 1/0):6:(cval($1, $2)) with yerrorbars \
-           pt 7 ps psz lc palette title "chaotic (filled)"
+   set format x "%g"
+   stats $lyapunov_f using 1 nooutput
+   nf = STATS_records;  fmin = STATS_min;  fmax = STATS_max
+   stats $lyapunov_a using 1 nooutput
+   na = STATS_records;  amin = STATS_min;  amax = STATS_max
+   header = system("head -n 1 '" . datafile . "' 2>/dev/null")
+   gpos = strstrt(header, "grid: ")
+   if (gpos > 0) {
+      g = header[gpos + 6:]
+      nf = int(word(g, 1));  fmin = real(word(g, 4));  fmax = real(word(g, 6))
+      na = int(word(g, 8));  amin = 1.0e3*real(word(g, 11));  amax = 1.0e3*real(word(g, 13))
+   }
+   single(v) = (abs(v) > 0) ? 0.02*abs(v) : 0.05
+   hf = (nf > 1) ? 0.5*(fmax - fmin)/(nf - 1) : single(fmin)
+   ha = (na > 1) ? 0.5*(amax - amin)/(na - 1) : single(amin)
+   stats datafile using (($5 == $5) ? abs($5) : 0) nooutput
+   lmax = (STATS_max > 0) ? STATS_max : 1.0
+   stats datafile using (($5 != $5) ? 1 : 0) nooutput
+   nfailed = int(STATS_sum)
+   set palette defined (-1 "#2166ac", -0.5 "#92c5de", 0 "#f7f7f7", 0.5 "#f4a582", 1 "#b2182b")
+   set cbrange [-lmax : lmax]
+   set cblabel "largest Lyapunov exponent [1/s]"
+   set colorbox vertical user origin screen 0.885, screen 0.2 size screen 0.02, screen 0.62
+   set rmargin at screen 0.84
+   set xrange [fmin - 1.05*hf : fmax + 1.05*hf]
+   set yrange [amin - 1.05*ha : amax + 1.05*ha]
+   unset xzeroaxis
+   unset grid
+   set xlabel "forcing frequency [Hz]"
+   set ylabel "forcing amplitude [mm p-p]"
+   set title sprintf("%s\nLargest Lyapunov exponent over the frequency-amplitude plane: %d points (%d chaotic)", \
+      plottitle, npts, nchaos)
+   set style fill solid 1.0 noborder
+   set key below horizontal nobox samplen 1 width 1
+   plot datafile using 1:($2*1.0e3):(hf):(ha):(($5 == $5) ? $5 : 1/0) with boxxyerror \
+           lc palette notitle, \
+        for [q = 1:((nchaos > 0) ? 1 : 0)] datafile using 1:(($4 == -1) ? $2*1.0e3 : 1/0) \
+           with points pt 7 ps 0.5 lc rgb "black" title "chaotic (label)", \
+        for [q = 1:((nfailed > 0) ? 1 : 0)] datafile using 1:(($5 != $5) ? $2*1.0e3 : 1/0) \
+           with points pt 2 ps 1.2 lw 2 lc rgb "black" title sprintf("failed (%d)", nfailed)
 }
 
 unset output

@@ -12,7 +12,7 @@
 #           scripts/model_size.gp
 #   gnuplot -e "datafile='x.model_size.dat'; namefile=''; outfile='x.png'; tolerance=0.1; \
 #               plottitle='10.5 Hz'" scripts/model_size.gp
-# Variables: datafile (required), outfile (required, PNG), namefile (optional: without it, or for a
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), namefile (optional: without it, or for a
 #            row whose coordinates disagree with the .dat, a point is labelled #<candidate>),
 #            plottitle (optional), tolerance (optional: the Poincare tolerance [-], 0.05),
 #            verbose (optional: 1 prints the placed labels).
@@ -22,7 +22,7 @@
 # smaller) and its label says so. A dashed line marks the tolerance. Labels are placed by a small
 # greedy search (right, left, above, below the point, then further off with a leader line) that
 # avoids the points, the legend and the labels already placed, and if it can the tolerance line.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 900x600.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 900x600.
 
 if (!exists("datafile") || !exists("outfile")) {
    print "model_size.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.model_size.dat'; namefile='x.model_size.txt'; outfile='x.png'\" scripts/model_size.gp"
@@ -33,11 +33,13 @@ if (!exists("namefile")) { namefile = "" }
 if (!exists("tolerance")) { tolerance = 0.05 }
 tolerance = real(tolerance)
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 900,600 font ",11"
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 900; height = 600
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
+if (cairo) {
    char_w = 6.7; line_h = 14.0
 } else {
-   set terminal png noenhanced size 900,600
    char_w = 7.0; line_h = 14.0
 }
 

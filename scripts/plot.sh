@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
-# scripts/plot.sh - render the PNG plots of one gapbeam run from its gnuplot-ready text files.
+# scripts/plot.sh - render the figures of one gapbeam run from its gnuplot-ready text files.
 #
 # Usage:
-#   scripts/plot.sh ANALYSIS PREFIX
+#   scripts/plot.sh [--format png|pdf|svg] ANALYSIS PREFIX
 #   scripts/plot.sh transient results/moon_shaw_10p5hz
+#   scripts/plot.sh --format pdf sweep results/sweep_line_4mm     (vector figures for a paper)
 #   (scripts/run.sh calls it after a run with the program's `analysis:` and `output:` words)
 #
+# --format (or GAPBEAM_PLOT_FORMAT): png (default), pdf or svg; every figure is written as
+# PREFIX.<figure>.<format> (scripts/terminal.gp sets the terminal). The animation is a GIF
+# whatever the format.
 # ANALYSIS=transient: PREFIX.history.dat  -> PREFIX.history.png  (scripts/strain_history.gp:
 #                                            root strain and stop force against time, paper Fig. 3)
 #                     PREFIX.poincare.dat -> PREFIX.poincare.png (scripts/poincare.gp: strain rate
 #                                            against strain once per period, paper Figs. 4-9)
-# ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies)
+#                     PREFIX.shape.dat    -> PREFIX.animation.gif (scripts/animation.gp: the beam
+#                                            against its stop over the first 3 periods of history;
+#                                            only with &output state_history = .true.)
+# ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies,
+#                     PREFIX.shape_curves.dat for the shapes between the nodes)
 #                                         -> PREFIX.shapes.png   (scripts/mode_shapes.gp)
 # ANALYSIS=sweep:     PREFIX.bifurcation.dat -> PREFIX.bifurcation.png (scripts/bifurcation.gp:
 #                                            Poincare root strain against the forcing frequency,
@@ -35,11 +43,20 @@
 #                                         -> PREFIX.model_size.png (scripts/model_size.gp: Poincare
 #                                            distance to the reference against run time, log-log,
 #                                            acceptable candidates filled, tolerance line)
+# ANALYSIS=continuation: PREFIX.branches.dat (+ .bifurcations.dat) -> PREFIX.diagram.png
+#                                           (scripts/continuation.gp: Poincare root strain of the
+#                                            continued orbits, stable solid, unstable dashed, the
+#                                            bifurcations marked, over the points of the overlay
+#                                            sweep named by &continuation overlay, if it was run)
+#                     PREFIX.multipliers.dat -> PREFIX.multipliers.png (scripts/multipliers.gp)
+#                     PREFIX.curves.dat (if any curve) -> PREFIX.curves.png
+#                                           (scripts/continuation_curves.gp: the curves over the
+#                                            overlay sweep's chaos map)
 # Any other ANALYSIS (calibrate, ...): nothing to plot; prints nothing, exit status 0.
 # Each plot's title is the first line of its .dat file without the leading '# ' (the deck's title).
-# Prints `plot: wrote FILE.png` per PNG written. A .dat file that is missing or holds no data row
+# Prints `plot: wrote FILE` per figure written. A .dat file that is missing or holds no data row
 # (e.g. the deck set `&output write_text = .false.`) is reported on stderr and skipped.
-# A PNG is written under a temporary name and renamed when gnuplot has succeeded.
+# A figure is written under a temporary name and renamed when gnuplot has succeeded.
 # Exit status: 0; 1 when gnuplot is missing or fails; 2 on bad usage.
 set -euo pipefail
 
@@ -49,15 +66,30 @@ if [[ ${1:-} == -h || ${1:-} == --help ]]; then
    sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"
    exit 0
 fi
+fmt=${GAPBEAM_PLOT_FORMAT:-png}
+if [[ ${1:-} == --format ]]; then
+   fmt=${2:-}
+   shift 2 || true
+elif [[ ${1:-} == --format=* ]]; then
+   fmt=${1#--format=}
+   shift
+fi
+case ${fmt} in
+   png | pdf | svg) ;;
+   *)
+      printf "plot: error: format '%s': expected png, pdf or svg\n" "${fmt}" >&2
+      exit 2
+      ;;
+esac
 if [[ $# -ne 2 || -z $2 ]]; then
-   printf 'usage: scripts/plot.sh ANALYSIS PREFIX   (e.g. transient results/moon_shaw_10p5hz)\n' >&2
+   printf 'usage: scripts/plot.sh [--format png|pdf|svg] ANALYSIS PREFIX   (e.g. transient results/moon_shaw_10p5hz)\n' >&2
    exit 2
 fi
 analysis=$1
 prefix=$2
 
 case ${analysis} in
-   transient | modes | sweep | work_precision | stability | model_size) ;;
+   transient | modes | sweep | work_precision | stability | model_size | continuation) ;;
    *) exit 0 ;;
 esac
 
@@ -87,13 +119,15 @@ dat_title() {
    printf '%s' "${line}"
 }
 
-# render SCRIPT PNG GNUPLOT_ASSIGNMENTS: run gnuplot into PNG.part, rename it to PNG on success.
+# render SCRIPT FILE GNUPLOT_ASSIGNMENTS: run gnuplot into FILE.part, rename it to FILE on success.
+# FILE is given with the .png suffix; the suffix of the chosen format replaces it (a .gif stays).
 render() {
    local script=$1 png=$2 assignments=$3
+   if [[ ${png} == *.png ]]; then png="${png%.png}.${fmt}"; fi
    local part="${png}.part"
    local status=0
-   gnuplot -e "${assignments}; outfile=$(gp_quote "${part}")" "${script_dir}/${script}" \
-      || status=$?
+   gnuplot -e "format=$(gp_quote "${fmt}"); ${assignments}; outfile=$(gp_quote "${part}")" \
+      "${script_dir}/${script}" || status=$?
    if [[ ${status} -ne 0 || ! -s ${part} ]]; then
       rm -f -- "${part}"
       printf 'plot: error: gnuplot failed on scripts/%s for %s\n' "${script}" "${png}" >&2
@@ -120,6 +154,13 @@ case ${analysis} in
          render "${script}" "${prefix}.${kind}.png" \
             "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")"
       done
+      # the beam in motion, when the run kept its state history
+      if has_data "${prefix}.shape.dat"; then
+         title=$(dat_title "${prefix}.shape.dat")
+         title=${title%: deflected shape*}
+         render animation.gp "${prefix}.animation.gif" \
+            "datafile=$(gp_quote "${prefix}.shape.dat"); plottitle=$(gp_quote "${title}")"
+      fi
       ;;
    modes)
       shapes="${prefix}.shapes.dat"
@@ -132,8 +173,10 @@ case ${analysis} in
       title=$(dat_title "${shapes}")
       title=${title%: mode shapes (w)}
       if has_data "${modes}"; then modes_arg=${modes}; else modes_arg=""; fi
+      curves="${prefix}.shape_curves.dat"
+      if has_data "${curves}"; then curves_arg=${curves}; else curves_arg=""; fi
       render mode_shapes.gp "${prefix}.shapes.png" \
-         "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); plottitle=$(gp_quote "${title}")"
+         "shapesfile=$(gp_quote "${shapes}"); modesfile=$(gp_quote "${modes_arg}"); curvesfile=$(gp_quote "${curves_arg}"); plottitle=$(gp_quote "${title}")"
       ;;
    sweep)
       points="${prefix}.sweep.dat"
@@ -191,6 +234,41 @@ case ${analysis} in
       title=${title%%: spectral radius*}
       render spectral_radius.gp "${prefix}.spectral_radius.png" \
          "datafile=$(gp_quote "${radius}"); plottitle=$(gp_quote "${title}")"
+      ;;
+   continuation)
+      # The overlay (a sweep prefix, &continuation overlay) is named on the tables' second line.
+      branches="${prefix}.branches.dat"
+      if ! has_data "${branches}"; then
+         skip "${branches}"
+         exit 0
+      fi
+      title=$(dat_title "${branches}")
+      overlay=$(sed -n 's/^# overlay: //p' "${branches}" | head -n 1)
+      sweep_bif=""
+      sweep_pts=""
+      if [[ -n ${overlay} ]] && has_data "${overlay}.bifurcation.dat"; then
+         sweep_bif="${overlay}.bifurcation.dat"
+      fi
+      if [[ -n ${overlay} ]] && has_data "${overlay}.sweep.dat"; then
+         sweep_pts="${overlay}.sweep.dat"
+      fi
+      if [[ -n ${overlay} && -z ${sweep_bif} ]]; then
+         printf 'plot: overlay %s: no sweep tables (run its sweep deck first); none drawn\n' \
+            "${overlay}" >&2
+      fi
+      # branches of a two-parameter run lie at one amplitude: only that row of a grid sweep
+      amp=$(sed -n 's/^# branches at: &forcing amplitude_pp = //p' "${branches}" | head -n 1)
+      [[ -n ${amp} ]] || amp=-1
+      render continuation.gp "${prefix}.diagram.png" \
+         "datafile=$(gp_quote "${branches}"); bifile=$(gp_quote "${prefix}.bifurcations.dat"); sweepfile=$(gp_quote "${sweep_bif}"); sweep_amp=${amp}; plottitle=$(gp_quote "${title}")"
+      if has_data "${prefix}.multipliers.dat"; then
+         render multipliers.gp "${prefix}.multipliers.png" \
+            "datafile=$(gp_quote "${prefix}.multipliers.dat"); plottitle=$(gp_quote "${title}")"
+      fi
+      if has_data "${prefix}.curves.dat"; then
+         render continuation_curves.gp "${prefix}.curves.png" \
+            "datafile=$(gp_quote "${prefix}.curves.dat"); sweepfile=$(gp_quote "${sweep_pts}"); plottitle=$(gp_quote "${title}")"
+      fi
       ;;
    model_size)
       ladder="${prefix}.model_size.dat"

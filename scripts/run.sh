@@ -1,25 +1,40 @@
 #!/usr/bin/env bash
-# scripts/run.sh - build gapbeam (release profile) and run one deck, then plot its results.
+# scripts/run.sh - build gapbeam (release profile), run the main job or one deck, plot the results.
 #
 # Usage:
-#   scripts/run.sh [DECK] [OVERRIDE ...]
+#   scripts/run.sh [--format png|pdf|svg]                 the main job (below)
+#   scripts/run.sh [--format png|pdf|svg] DECK [OVERRIDE ...]   one deck
 #   scripts/run.sh inputs/moon_shaw_10p5hz.nml "&forcing frequency_hz=10.2 /"
-#   scripts/run.sh "&forcing frequency_hz=10.2 /"      (default deck, with an override)
+#   scripts/run.sh "&forcing frequency_hz=10.2 /"   (inputs/moon_shaw_10p5hz.nml with an override)
 #
-# DECK defaults to inputs/moon_shaw_10p5hz.nml if that exists, else inputs/moon_shaw_modes.nml.
-# Each OVERRIDE is a namelist fragment, passed to the program verbatim after the deck (an argument
-# starting with '&' in first place is taken as an override of the default deck).
-# The program runs in the repository root, so a deck's relative output prefix (results/...) lands in
-# the repository's results/ (created if missing) wherever run.sh is called from; a relative DECK is
-# taken from the caller's directory and handed on relative to the root (or absolute if outside it).
+# The main job (no DECK): what gapbeam is for, in about a minute on 2 cores. Into results/main/:
+#   line_4mm_up, line_4mm_down   inputs/sweep_line_4mm.nml over 8.4-11.0 Hz in 261 steps of
+#                                0.01 Hz at 4.0 mm p-p, swept up and down (continuation): the
+#                                bifurcation diagram with its period-doubling cascade and chaotic
+#                                bands, and the hysteresis between the two directions
+#   paper_10p5hz, paper_10p2hz, paper_9p8hz   the paper's three 4-element cases
+#                                (inputs/moon_shaw_*.nml), the 9.8 Hz one with its state history
+#                                (&output state_history: results/main/paper_9p8hz.xdmf for
+#                                ParaView, paper_9p8hz.animation.gif)
+# then scripts/main_summary.py (the paper's claims, inputs/paper_claims.txt, against the labels in
+# the result files: summary.txt, printed) and the summary figure results/main/summary.png
+# (scripts/summary.gp), beside every run's own figures (scripts/plot.sh). The two sweeps run side
+# by side (one thread each), the three cases after the down sweep; the up sweep shows its progress.
+# The last line says how long the job took.
 #
+# One DECK: each OVERRIDE is a namelist fragment passed to the program verbatim after the deck (an
+# argument starting with '&' in first place is taken as an override of
+# inputs/moon_shaw_10p5hz.nml). The program runs in the repository root, so a deck's relative
+# output prefix (results/...) lands in the repository's results/ (created if missing) wherever
+# run.sh is called from; a relative DECK is taken from the caller's directory. The program's
+# `analysis:` and `output:` lines say what scripts/plot.sh should draw.
+#
+# --format: the figures as png (default), pdf or svg (scripts/plot.sh --format).
 # Steps: source scripts/setup.sh (installs what is missing); `fpm build --profile release`, quiet on
-# success (the build log is shown only when the build fails); run the built `gapbeam` executable
-# directly; read the program's `analysis: <word>` and `output: <prefix>` lines and, if
-# scripts/plot.sh exists and is executable, call `scripts/plot.sh <analysis> <prefix>`.
-# OMP_NUM_THREADS is left alone if set (default: the number of available cores);
-# OPENBLAS_NUM_THREADS=1 (OpenMP parallelism is across sweep cases, not inside BLAS).
-# Exit status: the program's; or 1 when the build fails; or plot.sh's when that fails.
+# success (the build log is shown only when the build fails); GAPBEAM_GIT_COMMIT is exported from
+# `git describe --always --dirty` (the result files record it). OMP_NUM_THREADS is left alone if
+# set (default: the number of available cores); OPENBLAS_NUM_THREADS=1.
+# Exit status: the program's; 1 when the build, a run of the main job or a figure fails.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -30,21 +45,36 @@ if [[ ${1:-} == -h || ${1:-} == --help ]]; then
    sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' scripts/run.sh
    exit 0
 fi
+fmt=png
+if [[ ${1:-} == --format ]]; then
+   fmt=${2:-}
+   shift 2 || true
+elif [[ ${1:-} == --format=* ]]; then
+   fmt=${1#--format=}
+   shift
+fi
+case ${fmt} in
+   png | pdf | svg) ;;
+   *)
+      printf "run: error: --format '%s': expected png, pdf or svg\n" "${fmt}" >&2
+      exit 2
+      ;;
+esac
 
 # shellcheck source=setup.sh
 source "${root}/scripts/setup.sh"
 
-# The deck: first argument unless it is an override (or absent).
+main_job=0
 if [[ $# -gt 0 && ${1:0:1} != '&' ]]; then
    deck=$1
    shift
    if [[ ${deck} != /* && ${caller_dir} != "${root}" ]]; then
       deck=$(realpath -m -s --relative-base="${root}" -- "${caller_dir}/${deck}")
    fi
-elif [[ -f inputs/moon_shaw_10p5hz.nml ]]; then
+elif [[ $# -gt 0 ]]; then
    deck=inputs/moon_shaw_10p5hz.nml
 else
-   deck=inputs/moon_shaw_modes.nml
+   main_job=1
 fi
 
 export OPENBLAS_NUM_THREADS=1
@@ -52,6 +82,8 @@ if [[ -z ${OMP_NUM_THREADS+set} ]]; then
    OMP_NUM_THREADS=$(nproc 2>/dev/null || echo 1)
    export OMP_NUM_THREADS
 fi
+GAPBEAM_GIT_COMMIT=$(git -C "${root}" describe --always --dirty 2>/dev/null || echo unknown)
+export GAPBEAM_GIT_COMMIT
 
 # Build, quietly.
 build_log=$(mktemp "${TMPDIR:-/tmp}/gapbeam-build-release-XXXXXX")
@@ -78,6 +110,62 @@ fi
 rm -f "${build_log}"
 
 mkdir -p results
+plot=${root}/scripts/plot.sh
+
+if [[ ${main_job} -eq 1 ]]; then
+   out=results/main
+   mkdir -p "${out}"
+   SECONDS=0
+   line="&sweep frequency_start_hz = 8.4, frequency_end_hz = 11.0, n_frequency = 261, checkpoint = .false. /"
+   printf 'main: the paper'"'"'s three cases and the 4.0 mm line, 8.4-11.0 Hz up and down (2 x 261 points), into %s/\n' "${out}"
+   # the down sweep, then the three cases, in the background (logs in results/main/*.log)
+   (
+      set -e
+      OMP_NUM_THREADS=1 "${exe}" inputs/sweep_line_4mm.nml "${line}" "&sweep direction = 'down' /" \
+         "&job title = 'Reference beam, 4.0 mm p-p, 8.4-11.0 Hz, swept down', output = '${out}/line_4mm_down' /" \
+         --quiet >"${out}/line_4mm_down.log" 2>&1
+      for c in 10p5hz 10p2hz 9p8hz; do
+         extra=()
+         if [[ ${c} == 9p8hz ]]; then extra=("&output state_history = .true. /"); fi
+         OMP_NUM_THREADS=1 "${exe}" "inputs/moon_shaw_${c}.nml" "${extra[@]}" \
+            "&job output = '${out}/paper_${c}' /" --quiet >"${out}/paper_${c}.log" 2>&1
+      done
+   ) &
+   background=$!
+   status=0
+   OMP_NUM_THREADS=1 GFORTRAN_UNBUFFERED_PRECONNECTED=y "${exe}" inputs/sweep_line_4mm.nml \
+      "${line}" "&job title = 'Reference beam, 4.0 mm p-p, 8.4-11.0 Hz, swept up', output = '${out}/line_4mm_up' /" \
+      >"${out}/line_4mm_up.log" || status=$?
+   wait "${background}" || status=$?
+   if [[ ${status} -ne 0 ]]; then
+      printf 'run: error: a run of the main job failed (status %d); its log in %s/*.log:\n' \
+         "${status}" "${out}" >&2
+      grep -h '^error:' "${out}"/*.log >&2 || true
+      exit 1
+   fi
+   for f in "${out}"/*.log; do
+      sed -n "s#^\(attractor\|labels\): #main: $(basename "${f}" .log): #p" "${f}"
+   done
+   PYTHONPATH="${root}/python${PYTHONPATH:+:${PYTHONPATH}}" PYTHONDONTWRITEBYTECODE=1 \
+      python3 scripts/main_summary.py "${out}" || exit 1
+   for p in line_4mm_up line_4mm_down; do "${plot}" --format "${fmt}" sweep "${out}/${p}" || exit 1; done
+   for c in 10p5hz 10p2hz 9p8hz; do
+      "${plot}" --format "${fmt}" transient "${out}/paper_${c}" || exit 1
+   done
+   part="${out}/summary.${fmt}.part"
+   if gnuplot -e "dir='${out}'; format='${fmt}'; outfile='${part}'" scripts/summary.gp \
+      && [[ -s ${part} ]]; then
+      mv -f "${part}" "${out}/summary.${fmt}"
+      printf 'plot: wrote %s\n' "${out}/summary.${fmt}"
+   else
+      rm -f "${part}"
+      printf 'run: error: the summary figure failed (scripts/summary.gp)\n' >&2
+      exit 1
+   fi
+   printf 'main: done in %d s (wall); open %s/summary.%s first; ParaView: %s/paper_9p8hz.xdmf\n' \
+      "${SECONDS}" "${out}" "${fmt}" "${out}"
+   exit 0
+fi
 
 # Run: stdout goes to the terminal and to a file that is scanned for the analysis and output lines.
 stdout_copy=$(mktemp "${TMPDIR:-/tmp}/gapbeam-run-XXXXXX")
@@ -96,14 +184,13 @@ analysis=$(sed -n 's/^[[:space:]]*analysis:[[:space:]]*//p' "${stdout_copy}" | t
 prefix=$(sed -n 's/^[[:space:]]*output:[[:space:]]*//p' "${stdout_copy}" | tail -n 1 \
    | sed 's/[[:space:]]*$//')
 
-plot=${root}/scripts/plot.sh
 if [[ -f ${plot} && -x ${plot} ]]; then
    if [[ -z ${analysis} || -z ${prefix} ]]; then
       printf "run: warning: no 'analysis:' or 'output:' line in the program's output; not plotting\n" >&2
       exit 0
    fi
    status=0
-   "${plot}" "${analysis}" "${prefix}" || status=$?
+   "${plot}" --format "${fmt}" "${analysis}" "${prefix}" || status=$?
    if [[ ${status} -ne 0 ]]; then
       printf 'run: error: scripts/plot.sh %s %s failed with status %d (results are in %s.h5)\n' \
          "${analysis}" "${prefix}" "${status}" "${prefix}" >&2

@@ -66,6 +66,9 @@
 #   GAPBEAM_TIME_LIMIT, GAPBEAM_TIME_MARGIN, GAPBEAM_AUTO_REQUEUE, GAPBEAM_MAX_REQUEUE: see above.
 #   OMP_NUM_THREADS       set to SLURM_CPUS_PER_TASK (1 if unset): threads over sweep points.
 #   OPENBLAS_NUM_THREADS  set to 1 (with threaded BLAS the results change with the thread count).
+#   GAPBEAM_GIT_COMMIT    recorded in the result files; when unset, taken from `git describe` in
+#                         the repository (the commit of the sources there, which should be the
+#                         ones GAPBEAM was built from).
 # Exit status: the program's (0 done; 1 error; 3 time limit reached, checkpoint kept; 4 the
 # output prefix is locked by another run: two tasks were given the same shard); 2 on bad
 # usage or when the executable or shard files are missing.
@@ -251,6 +254,10 @@ task_time_limit() {
 export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}
 export OPENBLAS_NUM_THREADS=1
 export GFORTRAN_UNBUFFERED_PRECONNECTED=y
+if [[ -z ${GAPBEAM_GIT_COMMIT:-} ]]; then
+   GAPBEAM_GIT_COMMIT=$(git -C "${root}" describe --always --dirty 2>/dev/null || echo unknown)
+fi
+export GAPBEAM_GIT_COMMIT
 
 task_id=${SLURM_ARRAY_TASK_ID:-}
 task_min=${SLURM_ARRAY_TASK_MIN:-${task_id}}

@@ -8,7 +8,7 @@
 #           scripts/spectral_radius.gp
 #   gnuplot -e "datafile='x.spectral_radius.dat'; outfile='x.png'; plottitle='4 elements'" \
 #           scripts/spectral_radius.gp
-# Variables: datafile (required), outfile (required, PNG), plottitle (optional).
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional).
 # Axes: omega dt on a log axis from 1e-2 to 1e3; spectral radius linear from 0 to 1.5, larger
 # values clipped at the frame (an unstable method's curve leaves through the top). A dashed line
 # marks radius 1 (neutral stability); dotted vertical lines mark the theoretical stability limits
@@ -16,7 +16,7 @@
 # linear acceleration 2 sqrt(3). Methods whose radius is exactly 1 below their limit share the
 # line at 1: they are drawn widest first, so each shows as a coloured edge.
 # Legend: the method names of the header line (column numbers if the header is missing).
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 900x600.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 900x600.
 
 if (!exists("datafile") || !exists("outfile")) {
    print "spectral_radius.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.spectral_radius.dat'; outfile='x.png'\" scripts/spectral_radius.gp"
@@ -24,11 +24,10 @@ if (!exists("datafile") || !exists("outfile")) {
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: stability of the integrators" }
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 900,600 font ",11"
-} else {
-   set terminal png noenhanced size 900,600
-}
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 900; height = 600
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
 
 # A text as a shell single-quoted word (a quote inside becomes '\'').
 # (Halving recursion: its depth is log2 of the length.)

@@ -5,11 +5,11 @@
 # Usage:
 #   gnuplot -e "datafile='x.history.dat'; outfile='x.history.png'" scripts/strain_history.gp
 #   gnuplot -e "datafile='x.history.dat'; outfile='x.png'; plottitle='10.5 Hz'" scripts/strain_history.gp
-# Variables: datafile (required), outfile (required, PNG), plottitle (optional).
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional).
 # Two panels over the whole recorded history, sharing the time axis: the root strain in
 # microstrain (strain * 1e6) on top, the stop force of every stop (columns 5..) below; without a
 # stop-force column (no stops) the strain panel alone is drawn.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 900x600.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 900x600.
 
 if (!exists("datafile") || !exists("outfile")) {
    print "strain_history.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.history.dat'; outfile='x.png'\" scripts/strain_history.gp"
@@ -17,11 +17,10 @@ if (!exists("datafile") || !exists("outfile")) {
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: strain time history" }
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 900,600 font ",11"
-} else {
-   set terminal png noenhanced size 900,600
-}
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 900; height = 600
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
 
 stats datafile using 1 nooutput
 ncol = STATS_columns
@@ -45,7 +44,7 @@ if (nstops > 0) {
    set bmargin at screen 0.52
    set format x ""
    set xlabel ""
-   set ylabel "root strain [microstrain]"
+   set ylabel "root strain ε [µε]"
    set key off
    set offsets 0, 0, graph 0.05, graph 0.05
    plot datafile using 1:($2*1.0e6) with lines lw 1.2 lc rgb "#1f4e9c" notitle
@@ -67,7 +66,7 @@ if (nstops > 0) {
 } else {
    set title plottitle
    set xlabel "time [s]"
-   set ylabel "root strain [microstrain]"
+   set ylabel "root strain ε [µε]"
    set key off
    set offsets 0, 0, graph 0.05, graph 0.05
    plot datafile using 1:($2*1.0e6) with lines lw 1.2 lc rgb "#1f4e9c" notitle

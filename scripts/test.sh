@@ -10,11 +10,14 @@
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
 # scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
-# concurrent runs, corrupted checkpoints: issue 12) and scripts/test_fuzz.sh (378 mutated decks,
-# under 60 s) on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
+# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
+# under 60 s) and scripts/test_users.sh (--help, --version, options, progress lines, figures in
+# every format, and scripts/test_docs.py: every deck variable documented, the README's length)
+# on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
-# output of that `gapbeam`; PYTHONPATH=python, nothing is pip-installed). Everything goes to the
-# terminal.
+# output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
+# docs/outputs.md; PYTHONPATH=python, nothing is pip-installed). Everything goes to the terminal.
+# GAPBEAM_GIT_COMMIT is exported from `git describe` (the result files record it).
 #
 # Counting: every line starting with `PASS  ` or `FAIL  ` (two spaces) is one check. A program that
 # exits non-zero without printing a FAIL line (a crash, a runtime check, a time-out) adds
@@ -25,7 +28,8 @@
 #   GAPBEAM_TEST_FLAGS    compiler flags (default below); the same string must be given to every
 #                         fpm command, or fpm builds into another folder
 #   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh,
-#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh and test_reader.py
+#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh, test_users.sh and
+#                         test_reader.py
 #                         (default 900)
 #   GAPBEAM_FUZZ_JOBS     parallel runs of the fuzz test (default 2)
 #   OMP_NUM_THREADS       passed through untouched; OPENBLAS_NUM_THREADS is set to 1
@@ -38,6 +42,8 @@ cd "${root}"
 source "${root}/scripts/setup.sh"
 
 export OPENBLAS_NUM_THREADS=1
+GAPBEAM_GIT_COMMIT=$(git -C "${root}" describe --always --dirty 2>/dev/null || echo unknown)
+export GAPBEAM_GIT_COMMIT
 flags=${GAPBEAM_TEST_FLAGS:-"-g -O0 -fcheck=all -fbacktrace -Wall -Wno-unused-dummy-argument"}
 limit=${GAPBEAM_TEST_TIMEOUT:-900}
 
@@ -142,7 +148,7 @@ if [[ -n ${gapbeam_exe} ]]; then
 fi
 count test_sweep_kill.sh "${log}" "${status}"
 
-for script in test_faults.sh test_fuzz.sh; do
+for script in test_faults.sh test_fuzz.sh test_users.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0

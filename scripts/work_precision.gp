@@ -9,15 +9,18 @@
 #   gnuplot -e "prefix='x'; outfile='x.png'; plottitle='4 elements'; errorcolumn=3" \
 #           scripts/work_precision.gp
 # Variables: prefix (required: the deck's &job output; every PREFIX.wp_*.dat is drawn),
-#            outfile (required, PNG), plottitle (optional),
+#            outfile (required; PNG, PDF or SVG by format), plottitle (optional),
 #            errorcolumn (optional: 2, the final-state error (default), or 3, the Poincare error).
 # Series: found with ls; the legend is the series name from the file name (PREFIX.wp_<series>.dat);
 # known series keep a fixed colour and marker across charts; a file without data rows (no run
 # completed) is left out of the legend and named in a note under it. The exact integrator (series 'exact', one point) is a single black star.
+# A run that failed or diverged is listed in PREFIX.work_precision_failed.dat: it is marked with a
+# cross in its series' colour on a dashed line at the top, at its elapsed time, and a note under
+# the legend counts them.
 # Axes: x elapsed time [s], log; y relative error [-], log, a decade beyond the data, floored at
 # 1e-16: an error below 1e-16 (the exact integrator against itself: 0) is drawn on the floor, and a
 # note says so.
-# Terminal: pngcairo if this gnuplot has it, else png (libgd); 900x600.
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 900x600.
 
 if (!exists("prefix") || !exists("outfile")) {
    print "work_precision.gp: set prefix and outfile, e.g. gnuplot -e \"prefix='results/work_precision_4el'; outfile='x.png'\" scripts/work_precision.gp"
@@ -30,11 +33,10 @@ if (errorcolumn != 2 && errorcolumn != 3) {
    exit status 1
 }
 
-if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
-   set terminal pngcairo noenhanced size 900,600 font ",11"
-} else {
-   set terminal png noenhanced size 900,600
-}
+# The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 900; height = 600
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
 
 # A text as a shell single-quoted word (a quote inside becomes '\'').
 # (Halving recursion: its depth is log2 of the length.)
@@ -74,22 +76,28 @@ smarker(k) = (index_of(sname(k), known) > 0) ? int(word(markers, index_of(sname(
 
 # Ranges: the extent of the data (errors above the floor only), a decade or so beyond.
 floor_err = 1.0e-16
-xmin = 1.0e300; xmax = -1.0e300; ymin = 1.0e300; ymax = -1.0e300; nfloor = 0
+xmin = 1.0e300; xmax = -1.0e300; ymin = 1.0e300; ymax = -1.0e300; nfloor = 0; nfailed = 0
 do for [k = 1 : nseries] {
-   stats sfile(k) using 1 nooutput
-   xmin = (STATS_min < xmin) ? STATS_min : xmin
-   xmax = (STATS_max > xmax) ? STATS_max : xmax
+   # (the tests keep a valid value in every row, so that stats never finds no data)
+   stats sfile(k) using (($1 > 0) ? 1 : 0) nooutput
+   if (STATS_sum > 0) {
+      stats sfile(k) using (($1 > 0) ? $1 : NaN) nooutput
+      xmin = (STATS_min < xmin) ? STATS_min : xmin
+      xmax = (STATS_max > xmax) ? STATS_max : xmax
+   }
    stats sfile(k) using (column(errorcolumn) < floor_err ? 1 : 0) nooutput
    nfloor = nfloor + STATS_sum
-   if (STATS_records > STATS_sum) {
-      stats sfile(k) using (column(errorcolumn) >= floor_err ? column(errorcolumn) : NaN) nooutput
+   stats sfile(k) using ((column(errorcolumn) >= floor_err && column(errorcolumn) <= 1.0e300) \
+      ? 1 : 0) nooutput
+   if (STATS_sum > 0) {
+      stats sfile(k) using ((column(errorcolumn) >= floor_err && column(errorcolumn) <= 1.0e300) \
+         ? column(errorcolumn) : NaN) nooutput
       ymin = (STATS_min < ymin) ? STATS_min : ymin
       ymax = (STATS_max > ymax) ? STATS_max : ymax
    }
 }
 if (ymax < ymin) { ymin = 1.0; ymax = 1.0 }
 if (xmax <= 0) { xmin = 1.0e-3; xmax = 1.0 }
-if (xmin <= 0) { xmin = xmax*1.0e-3 }
 decade_down(v) = 10.0**floor(log10(v) - 1.0e-9)
 decade_up(v) = 10.0**ceil(log10(v) + 1.0e-9)
 y_lo = (nfloor > 0) ? floor_err : decade_down(ymin)
@@ -145,8 +153,29 @@ if (words(empty) > 0) {
 clip(v) = (v < floor_err) ? floor_err : ((v > 1.0e300) ? NaN : v)
 lfile(k) = prefix . ".wp_" . word(lines, k) . ".dat"
 lk(k) = index_of(word(lines, k), series)
+# Failed or diverged runs (PREFIX.work_precision_failed.dat: series number, seconds, parameter,
+# steps; its title line ends with the series names in number order) are marked, not dropped: a
+# cross of the series' colour on a dashed line at the top of the chart, at the run's time.
+failfile = prefix . ".work_precision_failed.dat"
+failnames = system("sed -n '1s/.*series numbers: *//p' " . shquote(failfile) . " 2>/dev/null")
+nfailed = int(system("grep -c -v -E '^[[:space:]]*(#|$)' " . shquote(failfile) . " 2>/dev/null || true") + 0)
+y_fail = y_hi/1.6
+# a run that failed before it was timed (0 s) is drawn at the left edge
+x_fail(t) = (t > 0) ? t : x_lo*1.3
+fcolour(i) = (index_of(word(failnames, int(i)), series) > 0) \
+   ? scolour(index_of(word(failnames, int(i)), series)) : "#808080"
+fcol(i) = int(("0x" . fcolour(i)[2:7]) + 0)
+if (nfailed > 0) {
+   set label 3 sprintf("x on the top line:\n%d run%s failed\nor diverged\n(error not finite)", \
+      nfailed, (nfailed == 1) ? "" : "s") at graph 1.03, graph 0.22 left front font ",10" \
+      textcolor rgb "#a00000"
+   set arrow 2 from graph 0, first y_fail to graph 1, first y_fail nohead dt 2 lw 1 \
+      lc rgb "#d0a0a0" back
+}
 plot for [k = 1 : words(lines)] lfile(k) using 1:(clip(column(errorcolumn))) \
         with linespoints lw 2 pt smarker(lk(k)) ps 1.3 lc rgb scolour(lk(k)) title word(lines, k), \
+     for [q = 1 : ((nfailed > 0) ? 1 : 0)] failfile using (x_fail($2)):(y_fail):(fcol($1)) \
+        with points pt 2 ps 2.0 lw 2.5 lc rgb variable notitle, \
      for [k = 1 : has_exact] prefix . ".wp_exact.dat" using 1:(clip(column(errorcolumn))) \
         with points pt 3 ps 3.5 lw 2.5 lc rgb "#000000" title "exact"
 

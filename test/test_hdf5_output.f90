@@ -87,8 +87,9 @@ contains
       call check('write r0', .not. allocated(err), message(err))
       call w%write('/modes/frequency', freq, 'Hz', err)
       call check('write r1', .not. allocated(err), message(err))
-      call w%write('/modes/shape', shape_in, 'm', err)
-      call check('write r2', .not. allocated(err), message(err))
+      call w%write('/modes/shape', shape_in, 'm', err, 'mode shape, w at the nodes', &
+                   'mode node')
+      call check('write r2 with long_name and dimensions', .not. allocated(err), message(err))
       call w%write('/run/n_steps', 100000, '-', err)
       call check('write i0', .not. allocated(err), message(err))
       call w%write('/impacts/step', [3, 17, -42], '-', err)
@@ -185,7 +186,15 @@ contains
       call check_units(r, '/impacts/step', '-')
       call check_units(r, '/sweep/label', '-')
       call check_units(r, '/history/time', 's')
-      call check_units(r, '/input/deck', '-')
+      call check_units(r, '/input/deck', '1')
+      call r%read_attr('/modes/shape', 'long_name', text, err)
+      call check('long_name written and read back', .not. allocated(err) &
+         .and. text == 'mode shape, w at the nodes', message(err) // ' got ' // text)
+      call r%read_attr('/modes/shape', 'dimensions', text, err)
+      call check('dimensions written and read back', .not. allocated(err) &
+         .and. text == 'mode node', message(err) // ' got ' // text)
+      call r%read_attr('/modes/frequency', 'long_name', text, err)
+      call check('no long_name unless given', allocated(err))
       call r%read_attr('/sweep', 'description', text, err)
       call check('read_attr of a group', .not. allocated(err) &
          .and. text == 'cases of the gap sweep', message(err))

@@ -116,18 +116,28 @@ def table(group, length=None):
     return out
 
 
-def _as_stops_by_points(values, m):
+def _dims(q):
+    """The axis names of a dataset (its ``dimensions`` attribute, C order), or None."""
+    d = q.attrs.get("dimensions") if isinstance(q, Quantity) else None
+    return tuple(d.split()) if isinstance(d, str) else None
+
+
+def _as_stops_by_points(values, m, dims=None):
     """A per-stop 2-D array as (n_stops, m), one column per point.
 
-    gapbeam writes the Fortran shape (m, n_stops), which h5py shows as (n_stops, m); an array
-    stored the other way round is transposed. When both axes have length m the h5py view of
-    today's layout is assumed.
+    Files with ``dimensions`` attributes say their axis order ('point stop' since version 0.1.0:
+    one row per point); older files wrote (n_stops, m) in the h5py view. Without the attribute
+    the axis of length m is taken; when both axes have length m the older layout is assumed.
     """
     a = np.asarray(values)
     if a.ndim == 1 and a.shape[0] == m:
         return a.reshape(1, m)
     if a.ndim != 2:
         raise ValueError("expected a 2-D per-stop array, got shape {}".format(a.shape))
+    if dims == ("point", "stop") and a.shape[0] == m:
+        return a.T
+    if dims == ("stop", "point") and a.shape[1] == m:
+        return a
     if a.shape[1] == m:
         return a
     if a.shape[0] == m:
@@ -242,7 +252,7 @@ def _add_per_stop(out, grp, order, m):
     for name in names:
         q = grp[name]
         try:
-            per_stop[name] = (_as_stops_by_points(q.values, m), q)
+            per_stop[name] = (_as_stops_by_points(q.values, m, _dims(q)), q)
         except ValueError:
             continue  # not one value per stop and point: not a column
     n_stops = max((a.shape[0] for a, _ in per_stop.values()), default=0)

@@ -11,8 +11,8 @@ Usage:
 Runs GAPBEAM_EXE on small decks (the decks of inputs/ with short command-line overrides: a few
 forcing periods, a few sweep points, a second stop) in a temporary directory: modes, calibrate,
 transient, sweep (independent, continuation, two shards and their merge), work_precision,
-stability, model_size and the tube deck (two planes, ring supports: /wear, /orbit, /energy). Each output file is read with `gapbeam.load` and independently with raw
-h5py, and compared: the same datasets, equal values (dtype and shape too), the `units` and every
+stability, model_size and the tube deck (two planes, ring supports: /wear, /orbit, /energy).
+Each output file is read with `gapbeam.load` and independently with raw h5py, and compared: the same datasets, equal values (dtype and shape too), the `units` and every
 other attribute, the deck text, path and attribute access. The sweep files also check
 `gapbeam.sweep_table` (equal-length columns, the values of the datasets they come from, per-stop
 columns) and `gapbeam.poincare` (shapes and values per point); the transient file `poincare`.
@@ -20,6 +20,15 @@ A synthetic file with the layout additions to come (root attributes version/comm
 /parameters group, `long_name` attributes, UDUNITS units, variable-length and space-padded
 strings, arrays stored the other way round, a new per-point dataset) checks that the reader takes
 them.
+
+Every file is also checked for what makes it self-describing (check_conventions): every `units`
+attribute parses with the small UDUNITS-2 grammar of python/tests/udunits.py (but the mass-
+normalised modal units listed in NOT_UDUNITS, which UDUNITS-2 cannot write), every dataset has
+a `long_name`, every 2-D dataset names its axes, the root attributes (version as in fpm.toml,
+deck_crc32 = zlib.crc32 of /deck, an ISO 8601 creation time), attributes read as str, a
+/parameters group. A transient with `&output state_history` checks `gapbeam.motion` (the shape
+through the nodes) and the .xdmf file: well-formed, every HDF5 item an existing dataset of that
+shape, hyperslabs in range, the times those of /history/time.
 
 Output: one line per check, `PASS  python: ...` or `FAIL  python: ... (why)`, then a summary line
 `test_reader.py: N checks, M failed`; exit status 1 if a check failed, 2 on bad usage. The runs
@@ -85,7 +94,19 @@ CASES = {
     "stability": ("inputs/stability_4el.nml", ["&study n_omega_dt = 11 /"], "stability", 1, []),
     "model_size": ("inputs/model_size_10p5hz.nml", [MODEL_SIZE, *SHORT], "model_size", 1, []),
     "tube": ("inputs/tube_multispan.nml", list(TUBE), "tube", 2, []),
+    "transient_state": ("inputs/moon_shaw_9p8hz.nml",
+                        [*SHORT, "&output history_periods = 2, samples_per_period = 16, "
+                         "state_history = .true., shape_points = 4 /"], "transient", 1, []),
 }
+
+# Units that UDUNITS-2 cannot write (it has integer powers only): the mass-normalised modal
+# quantities, documented in docs/outputs.md. Any other units attribute must parse.
+NOT_UDUNITS = {
+    "/modes/shapes": "kg-1/2", "/modes/node_w": "kg-1/2", "/modes/shape_w": "kg-1/2",
+    "/modes/participation": "kg1/2",
+}
+ROOT_ATTRIBUTES = ("program", "version", "git_commit", "compiler", "creation_time", "analysis",
+                   "deck_crc32", "units_convention", "axis_order")
 
 
 class Checks:
@@ -300,19 +321,19 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
             bad.append("label_text")
         for stat in ("count", "peak_force", "rms_force", "contact_fraction",
                      "impulse_per_period", "work_rate"):
-            raw = data["/sweep/impacts/" + stat][0]          # h5py: (n_stops, m)
+            raw = data["/sweep/impacts/" + stat][0]          # h5py: (m, n_stops), point first
             for s in range(n_stops):
-                if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[s], equal_nan=True):
+                if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[:, s], equal_nan=True):
                     bad.append("{}_{}".format(stat, s + 1))
         for stat in ("normal_work_rate", "sliding_distance", "friction_work_rate",
                      "wear_volume_rate"):
-            raw = data["/sweep/wear/" + stat][0]             # h5py: (n_stops, m)
+            raw = data["/sweep/wear/" + stat][0]             # h5py: (m, n_stops), point first
             for s in range(n_stops):
-                if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[s], equal_nan=True):
+                if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[:, s], equal_nan=True):
                     bad.append("{}_{}".format(stat, s + 1))
         return (not bad, "differ: {}".format(bad))
 
-    c.run("{}: sweep_table columns equal the h5py datasets (per stop: rows of "
+    c.run("{}: sweep_table columns equal the h5py datasets (per stop: columns of "
           "/sweep/impacts/* and /sweep/wear/*)".format(name), values)
 
     def stops():
@@ -358,7 +379,7 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
         s = gapbeam.poincare(res)
         return (s.strain.shape == (m, RECORD_PERIODS) and s.strain_rate.shape == (m, RECORD_PERIODS)
                 and np.array_equal(s.strain, data["/sweep/poincare/strain"][0])
-                and s.frequency_hz.shape == (m,) and s.units["strain_rate"] == "1/s",
+                and s.frequency_hz.shape == (m,) and s.units["strain_rate"] == "s-1",
                 "shape {}".format(s.strain.shape))
 
     c.run("{}: poincare() of the whole sweep has shape ({}, {})".format(name, m, RECORD_PERIODS),
@@ -395,7 +416,7 @@ def check_transient(c, gapbeam, res, n_stops):
                 and np.array_equal(y, data["/poincare/strain_rate"][0])
                 and np.array_equal(s.time, data["/poincare/time"][0])
                 and abs(s.frequency_hz - 10.5) < 1e-9 and abs(s.amplitude_pp - 3.7e-3) < 1e-12
-                and s.units == {"strain": "-", "strain_rate": "1/s", "time": "s"},
+                and s.units == {"strain": "1", "strain_rate": "s-1", "time": "s"},
                 "shape {}, f {}, A {}".format(x.shape, s.frequency_hz, s.amplitude_pp))
 
     c.run("transient: poincare() gives ({},) strain and strain rate equal to /poincare/* and "
@@ -409,8 +430,10 @@ def check_transient(c, gapbeam, res, n_stops):
         return (False, "no ValueError")
 
     c.run("transient: poincare(point=1) is a ValueError", point_refused)
-    c.check("transient: /history/stop_force holds {} stops (h5py shape (n_stops, n_hist))"
-            .format(n_stops), res.history.stop_force.shape[0] == n_stops,
+    c.check("transient: /history/stop_force holds {} stops (h5py shape (n_hist, n_stops), "
+            "dimensions 'sample stop')".format(n_stops),
+            res.history.stop_force.shape[1] == n_stops
+            and res.history.stop_force.attrs.get("dimensions") == "sample stop",
             str(res.history.stop_force.shape))
 
 
@@ -434,11 +457,11 @@ def check_tube(c, res, n_stops):
     def orbit():
         n_hist = data["/history/time"][0].shape[0]
         bad = [k for k in ("w", "v", "normal_force", "tangential_force")
-               if data["/orbit/" + k][0].shape != (n_stops, n_hist)]
+               if data["/orbit/" + k][0].shape != (n_hist, n_stops)]
         return (not bad and res["/orbit/gap"].shape == (n_stops,), "shapes: {}".format(bad))
 
-    c.run("tube: /orbit/* holds (supports, samples) and the gaps", orbit)
-    c.check("tube: the wear outputs carry units", res["/wear/wear_volume_rate"].units == "m^3/s"
+    c.run("tube: /orbit/* holds (samples, supports) and the gaps", orbit)
+    c.check("tube: the wear outputs carry units", res["/wear/wear_volume_rate"].units == "m3 s-1"
             and res["/wear/normal_work_rate"].units == "W")
     c.check("tube: /energy is there with its imbalance", "/energy/imbalance" in data)
 
@@ -584,6 +607,144 @@ def run_cases(c, exe, workdir, timeout):
     return files
 
 
+def check_conventions(c, name, path, analysis):
+    """Self-describing files: units that UDUNITS-2 parses, long_name on every dataset, axis
+    names on every 2-D dataset, root attributes (version as in fpm.toml, the deck's CRC-32, an
+    ISO 8601 time), attributes that h5py reads as str, and the /parameters group."""
+    import re
+    import zlib
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import udunits
+
+    bad_units, no_long, no_dims, not_str = [], [], [], []
+    with h5py.File(path, "r") as f:
+        root = dict(f.attrs)
+
+        def visit(n, obj):
+            p = "/" + n
+            for k, v in obj.attrs.items():
+                if not isinstance(v, str):
+                    not_str.append("{}@{}".format(p, k))
+            if not isinstance(obj, h5py.Dataset):
+                return
+            u = obj.attrs.get("units")
+            try:
+                udunits.parse(u)
+            except ValueError as exc:
+                if NOT_UDUNITS.get(p) != u:
+                    bad_units.append("{} {!r}: {}".format(p, u, exc))
+            if not obj.attrs.get("long_name"):
+                no_long.append(p)
+            if obj.ndim >= 2 and len(str(obj.attrs.get("dimensions", "")).split()) != obj.ndim:
+                no_dims.append(p)
+
+        f.visititems(visit)
+        deck = f["/deck"][()]
+        deck = deck.decode("utf-8") if isinstance(deck, bytes) else deck
+        has_parameters = "parameters" in f and len(f["parameters"]) > 0
+    c.check("{}: every units attribute parses as UDUNITS-2 (but the documented "
+            "mass-normalised ones)".format(name), not bad_units, "; ".join(bad_units[:5]))
+    c.check("{}: every dataset has a long_name".format(name), not no_long, str(no_long[:8]))
+    c.check("{}: every 2-D dataset names its axes (dimensions)".format(name), not no_dims,
+            str(no_dims))
+    c.check("{}: every attribute reads as str in h5py (UTF-8, variable length)".format(name),
+            not not_str, str(not_str[:5]))
+    missing = [k for k in ROOT_ATTRIBUTES if k not in root]
+    version = re.search(r'^version\s*=\s*"([^"]+)"', (ROOT / "fpm.toml").read_text(), re.M)
+    c.check("{}: root attributes {} present, analysis '{}', version as in fpm.toml".format(
+        name, "/".join(ROOT_ATTRIBUTES), analysis),
+        not missing and root.get("analysis") == analysis and version is not None
+        and root.get("version") == version.group(1),
+        "missing {}, analysis {!r}, version {!r}".format(missing, root.get("analysis"),
+                                                         root.get("version")))
+    c.check("{}: deck_crc32 is zlib's CRC-32 of /deck".format(name),
+            root.get("deck_crc32") == "{:08x}".format(zlib.crc32(deck.encode("utf-8"))),
+            "{} vs {:08x}".format(root.get("deck_crc32"), zlib.crc32(deck.encode("utf-8"))))
+    c.check("{}: creation_time is ISO 8601 with its UTC offset".format(name),
+            re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d[+-]\d\d:\d\d",
+                         str(root.get("creation_time"))) is not None,
+            str(root.get("creation_time")))
+    c.check("{}: /parameters holds the resolved model".format(name), has_parameters)
+
+
+def check_state(c, gapbeam, path):
+    """The state history: the Hermite shape through the nodes, the XDMF file beside the HDF5
+    file well-formed and pointing at datasets that exist, with matching sizes and times."""
+    import xml.etree.ElementTree as ET
+
+    res = gapbeam.load(path)
+    m = gapbeam.motion(res)
+    per = (len(m.x) - 1) // (len(m.node_x) - 1)
+    c.check("transient_state: motion() shape passes through the nodes and ends at the tip",
+            np.allclose(m.w[:, ::per], m.node_w, rtol=0, atol=1e-15)
+            and np.allclose(m.w[:, -1], res.history.tip_displacement.values, rtol=0, atol=1e-15)
+            and m.w.shape == (len(m.time), len(m.x)),
+            "shapes {} {}".format(m.w.shape, m.node_w.shape))
+    p = gapbeam.parameters(res)
+    c.check("transient_state: parameters() gives the beam with units",
+            p["beam/length"].units == "m" and abs(float(p["beam/length"]) - 0.2) < 1e-12
+            and p["root/kappa"].units == "1", str(sorted(p)[:5]))
+    xdmf = path[:-3] + ".xdmf"
+    try:
+        tree = ET.parse(xdmf)
+    except (OSError, ET.ParseError) as exc:
+        c.check("transient_state: the .xdmf file is well-formed XML", False, str(exc))
+        return
+    c.check("transient_state: the .xdmf file is well-formed XML", True)
+    problems = []
+    grids = tree.getroot().findall("./Domain/Grid/Grid")
+    times = [float(g.find("Time").get("Value")) for g in grids]
+    if not np.allclose(times, res.history.time.values, rtol=1e-15, atol=0):
+        problems.append("times differ from /history/time")
+    with h5py.File(path, "r") as f:
+        for g in grids:
+            for item in g.iter("DataItem"):
+                if item.get("Format") != "HDF":
+                    continue
+                fname, _, dset = item.text.strip().partition(":")
+                dims = tuple(int(d) for d in item.get("Dimensions").split())
+                if Path(fname).name != Path(path).name or "/" in fname:
+                    problems.append("names file {}".format(fname))
+                elif dset not in f:
+                    problems.append("no dataset {}".format(dset))
+                elif f[dset].shape != dims:
+                    problems.append("{} has shape {}, the XDMF says {}".format(
+                        dset, f[dset].shape, dims))
+            for slab in g.iter("DataItem"):
+                if slab.get("ItemType") != "HyperSlab":
+                    continue
+                sel, src = list(slab)
+                n = int(src.get("Dimensions").split()[0])
+                start = int(sel.text.split()[0])
+                if not 0 <= start < n:
+                    problems.append("hyperslab start {} outside 0..{}".format(start, n - 1))
+    c.check("transient_state: every HDF5 item of the .xdmf exists with its shape, every "
+            "hyperslab in range, times equal /history/time ({} grids)".format(len(grids)),
+            not problems and len(grids) == len(res.history.time.values), str(problems[:5]))
+
+
+def check_documented(c, files):
+    """Every dataset the program wrote is documented in docs/outputs.md, as `/path` (the
+    work-precision series as `/work_precision/<series>/...`)."""
+    docs = ROOT / "docs" / "outputs.md"
+    text = docs.read_text(encoding="utf-8") if docs.exists() else ""
+    paths = set()
+    for path in files.values():
+        with h5py.File(path, "r") as f:
+            def visit(n, obj):
+                if isinstance(obj, h5py.Dataset):
+                    parts = ("/" + n).split("/")
+                    if len(parts) > 3 and parts[1] == "work_precision":
+                        parts[2] = "<series>"
+                    paths.add("/".join(parts))
+            f.visititems(visit)
+    missing = sorted(p for p in paths if "`{}`".format(p) not in text)
+    c.check("every dataset written ({} paths over every analysis) is documented in "
+            "docs/outputs.md".format(len(paths)), bool(text) and not missing,
+            "missing: {}".format(", ".join(missing[:12])))
+
+
 def run_all(c, exe):
     import gapbeam
 
@@ -603,15 +764,18 @@ def run_all(c, exe):
                              "transient" if analysis == "tube" else analysis)
             if res is None:
                 continue
+            check_conventions(c, name, path, "transient" if analysis == "tube" else analysis)
             if analysis == "tube":
                 check_tube(c, res, n_stops)
                 continue
+            if name == "transient_state":
+                check_state(c, gapbeam, path)
             if analysis == "sweep":
                 points = {"sweep_shard_1": [1, 3, 5], "sweep_shard_2": [2, 4, 6]}.get(name)
                 tables[name] = check_sweep(c, gapbeam, name, res, n_stops, points)
-            elif analysis == "transient":
+            elif name == "transient":
                 check_transient(c, gapbeam, res, n_stops)
-            else:
+            elif analysis != "transient":
                 check_no_poincare(c, gapbeam, name, res)
             if analysis == "model_size":
                 t = gapbeam.table(res.model_size)
@@ -622,6 +786,7 @@ def run_all(c, exe):
                 t = gapbeam.table(res.work_precision.rk45)
                 c.check("work_precision: table(rk45) has one row per level (2)",
                         t.n_rows == 2 and t.units["seconds"] == "s", repr(t))
+        check_documented(c, files)
         if "sweep_merged" in tables and "sweep_independent" in tables:
             a, b = tables["sweep_merged"], tables["sweep_independent"]
             differ = [k for k in b if k != "seconds"

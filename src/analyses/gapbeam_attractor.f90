@@ -24,20 +24,23 @@ module gapbeam_attractor
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
    use gapbeam_diagnostics, only: detect_period, classify
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_progress, only: monitor_t
    implicit none
    private
    public :: largest_lyapunov, point_diagnostics
 
 contains
 
-   !> Period, Lyapunov exponent and label of a finished transient run.
-   subroutine point_diagnostics(model, cfg, diag, res, pr, err)
+   !> Period, Lyapunov exponent and label of a finished transient run. A `monitor` is told the
+   !> forcing periods integrated by the exponent's two trajectories (2 per period).
+   subroutine point_diagnostics(model, cfg, diag, res, pr, err, monitor)
       type(model_t), intent(in) :: model                !! model at this forcing
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
       type(transient_result_t), intent(in) :: res        !! the run
       type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
       type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
+      class(monitor_t), intent(inout), optional :: monitor   !! told the progress
       type(lyapunov_t) :: lyap
       real(dp) :: sx, sy
       sx = res%strain_max - res%strain_min
@@ -47,7 +50,7 @@ contains
       pr%u_end = res%u;  pr%v_end = res%v
       if (diag%lyapunov_periods > 0) then
          call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
-            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err)
+            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err, monitor)
          if (allocated(err)) return
          pr%lyapunov = lyap%exponent
          pr%lyapunov_error = lyap%uncertainty
@@ -60,7 +63,7 @@ contains
 
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary.
    subroutine largest_lyapunov(model, cfg, u, v, n_periods, perturbation, lyap, u_end, v_end, &
-                               err)
+                               err, monitor)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
@@ -69,6 +72,7 @@ contains
       type(lyapunov_t), intent(out) :: lyap            !! result
       real(dp), allocatable, intent(out) :: u_end(:), v_end(:)  !! reference state at the end
       type(error_t), allocatable, intent(out) :: err   !! solver failure
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:)
@@ -106,6 +110,7 @@ contains
             logs(k) = log(d / d0)
          end if
          lyap%running(k) = sum(logs(1:k)) / (real(k, dp) * period)
+         if (present(monitor)) call monitor%update(real(2 * k, dp))
       end do
       lyap%exponent = lyap%running(n_periods)
       lyap%uncertainty = block_standard_error(logs, period)

@@ -136,8 +136,11 @@ contains
 
    !> Run work items `items` in parallel (OpenMP, dynamic schedule, one item per thread at a
    !> time); results(p) is written only by the thread that runs point p. No I/O in here.
-   !> In continuation mode `u_start`, `v_start` (n, n_items) hold each line's starting state.
-   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results)
+   !> In continuation mode a line's first point starts from (u0, v0) and every later one from
+   !> the final state of the point before; with `first`, `last` only positions first..last of
+   !> each line are run, the point before `first` having been run already (its final state is
+   !> in `results`), so a line run in several calls gives the same results as in one.
+   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results, first, last)
       type(model_t), intent(in) :: base                !! model
       type(sweep_settings_t), intent(in) :: sw           !! sweep
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
@@ -146,17 +149,25 @@ contains
       integer, intent(in) :: items(:)                    !! work items to run
       real(dp), intent(in) :: u0(:), v0(:)               !! initial state of every item
       type(point_result_t), intent(inout) :: results(:)  !! indexed by point
-      integer :: i, j, p
+      integer, intent(in), optional :: first, last       !! positions along each line to run
+      integer :: i, j, p, j1, j2
       integer, allocatable :: pts(:)
       real(dp), allocatable :: u(:), v(:)
       real(dp) :: f_hz, a_pp
+      j1 = 1;  j2 = huge(1)
+      if (present(first)) j1 = max(1, first)
+      if (present(last)) j2 = last
       !$omp parallel do default(none) schedule(dynamic, 1) &
-      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results) &
+      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results, j1, j2) &
       !$omp private(i, j, p, pts, u, v, f_hz, a_pp)
       do i = 1, size(items)
          pts = item_points(sw, items(i))
-         u = u0;  v = v0
-         do j = 1, size(pts)
+         if (j1 > 1 .and. j1 <= size(pts) .and. sw%mode == 'continuation') then
+            u = results(pts(j1 - 1))%u_end;  v = results(pts(j1 - 1))%v_end
+         else
+            u = u0;  v = v0
+         end if
+         do j = j1, min(j2, size(pts))
             p = pts(j)
             call point_forcing(sw, p, f_hz, a_pp)
             call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p))

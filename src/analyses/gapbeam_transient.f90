@@ -1,5 +1,9 @@
 !> A transient run with any method: the deck's integrator advances the model from the initial
 !> state over the transient and recorded forcing periods while the recorder watches.
+!>
+!> Progress: with a monitor (gapbeam_progress), the recorder is wrapped in a watcher that tells
+!> the monitor every `watch_every` pieces how many forcing periods are done, the time and the
+!> step; without one the plain recorder runs, exactly as before.
 module gapbeam_transient
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
@@ -11,17 +15,41 @@ module gapbeam_transient
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method, &
       tube_refusal
    use gapbeam_recorder, only: recorder_t
+   use gapbeam_observer, only: piece_t
+   use gapbeam_progress, only: monitor_t
    use gapbeam_clock, only: thread_cpu_seconds, wall_seconds
    implicit none
    private
    public :: integrate
 
+   !> Accepted pieces between two progress updates (a clock read each: negligible).
+   integer, parameter :: watch_every = 64
+
+   !> The recorder, telling a monitor how far the run has got.
+   type, extends(recorder_t) :: watched_recorder_t
+      class(monitor_t), pointer :: monitor => null()   !! told the periods done
+      integer :: pieces = 0                            !! pieces seen
+   contains
+      procedure :: observe => watched_observe
+   end type watched_recorder_t
+
 contains
+
+   !> Record the piece, and every `watch_every` pieces tell the monitor where the run is.
+   subroutine watched_observe(self, piece)
+      class(watched_recorder_t), intent(inout) :: self   !! recorder with a monitor
+      class(piece_t), intent(in) :: piece                 !! the piece
+      call self%recorder_t%observe(piece)
+      self%pieces = self%pieces + 1
+      if (mod(self%pieces, watch_every) == 0) &
+         call self%monitor%update(piece%tb / self%period, piece%tb, piece%tb - piece%ta)
+   end subroutine watched_observe
 
    !> Integrate from (u0, v0) at t = 0 over the settings' transient and recorded periods, with
    !> the settings' method, or with `integrator` when given (an integrator of a chosen type with
-   !> options set, initialised here).
-   subroutine integrate(model, cfg, out, u0, v0, res, err, integrator)
+   !> options set, initialised here). A `monitor` is told the forcing periods done as the run
+   !> goes (see the module header).
+   subroutine integrate(model, cfg, out, u0, v0, res, err, integrator, monitor)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! method and settings
       type(output_settings_t), intent(in) :: out       !! what to record
@@ -29,6 +57,7 @@ contains
       type(transient_result_t), intent(out) :: res     !! results
       type(error_t), allocatable, intent(out) :: err   !! numerical failure
       class(integrator_t), intent(inout), optional :: integrator   !! the integrator to use
+      class(monitor_t), intent(inout), optional, target :: monitor !! told the progress
       class(integrator_t), allocatable :: integ
       type(solver_settings_t) :: eff
       character(len=:), allocatable :: reason, why
@@ -44,19 +73,20 @@ contains
          call integrator%init(model, eff, err)
          if (allocated(err)) return
          integrator%reason = reason
-         call record(model, cfg, out, u0, v0, integrator, res, err)
+         call record(model, cfg, out, u0, v0, integrator, res, err, monitor)
       else
          call make_integrator(model, cfg, integ, err)
          if (allocated(err)) return
-         call record(model, cfg, out, u0, v0, integ, res, err)
+         call record(model, cfg, out, u0, v0, integ, res, err, monitor)
       end if
       if (allocated(err)) return
       res%cpu_seconds = thread_cpu_seconds() - cpu0
       res%wall_seconds = wall_seconds() - wall0
    end subroutine integrate
 
-   !> Advance from (u0, v0) at t = 0 with an initialised integrator while a recorder watches.
-   subroutine record(model, cfg, out, u0, v0, integ, res, err)
+   !> Advance from (u0, v0) at t = 0 with an initialised integrator while a recorder watches
+   !> (a watched recorder when a monitor is given).
+   subroutine record(model, cfg, out, u0, v0, integ, res, err, monitor)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! horizon
       type(output_settings_t), intent(in) :: out       !! what to record
@@ -64,9 +94,19 @@ contains
       class(integrator_t), intent(inout) :: integ      !! integrator
       type(transient_result_t), intent(out) :: res     !! results
       type(error_t), allocatable, intent(out) :: err   !! numerical failure
-      type(recorder_t) :: rec
+      class(monitor_t), intent(inout), optional, target :: monitor !! told the progress
+      class(recorder_t), allocatable :: rec
       type(state_t) :: state
       real(dp) :: period
+      if (present(monitor)) then
+         allocate(watched_recorder_t :: rec)
+         select type (rec)
+         type is (watched_recorder_t)
+            rec%monitor => monitor
+         end select
+      else
+         allocate(recorder_t :: rec)
+      end if
       call rec%init(model, out, cfg%transient_periods, cfg%record_periods, err)
       if (allocated(err)) return
       call start_state(model, 0.0_dp, u0, v0, state)

@@ -8,6 +8,7 @@ module gapbeam_deck
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, sweep_settings_t, reduction_settings_t, &
       study_settings_t, model_size_settings_t
+   use gapbeam_continuation_types, only: continuation_settings_t
    implicit none
    private
    public :: deck_t
@@ -31,5 +32,6 @@ module gapbeam_deck
       type(reduction_settings_t) :: reduction        !! &reduction
       type(study_settings_t) :: study                !! &study
       type(model_size_settings_t) :: model_size      !! &model_size
+      type(continuation_settings_t) :: continuation  !! &continuation
    end type deck_t
 end module gapbeam_deck

@@ -32,6 +32,9 @@ module gapbeam_results
       real(dp), allocatable :: strain_rate(:)       !! root strain rate [1/s]
       real(dp), allocatable :: tip_displacement(:)  !! tip w relative to the base [m]
       real(dp), allocatable :: stop_force(:, :)     !! (samples, stops) contact force [N]
+      !> (dofs, samples) every dof at the history samples (&output state_history), else
+      !> unallocated [m, rad]
+      real(dp), allocatable :: history_u(:, :)
       real(dp), allocatable :: p_time(:)            !! Poincare sample times [s]
       real(dp), allocatable :: p_strain(:)          !! Poincare root strain [-]
       real(dp), allocatable :: p_strain_rate(:)     !! Poincare root strain rate [1/s]

@@ -21,7 +21,7 @@ module gapbeam_settings
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
    character(len=*), parameter :: initial_state_words = "'rest', 'given'"
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
-      // "'sweep', 'work_precision', 'stability', 'model_size'"
+      // "'sweep', 'work_precision', 'stability', 'model_size', 'continuation'"
    character(len=*), parameter :: calibration_words = &
       "'root_k_theta', 'spring', 'thickness', 'width'"
    character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
@@ -92,6 +92,8 @@ module gapbeam_settings
       !> energy balance over the record (input work, Rayleigh, contact-damper and friction
       !> dissipation, change of stored energy; Gauss quadrature on the dense output)
       logical  :: energy_balance = .false.
+      logical  :: state_history = .false.       !! keep every dof at the history samples
+      integer  :: shape_points = 8              !! points per element of the deflected shape [-]
    end type output_settings_t
 
    !> Initial state relative to the base: at rest, or given values at listed dofs.
@@ -158,10 +160,13 @@ module gapbeam_settings
       integer :: n_omega_dt = 101                   !! points of the chart [-]
    end type study_settings_t
 
-   !> Batch options from the command line (not the deck): a job array's shard and a time limit.
+   !> Options from the command line (not the deck): a job array's shard, a time limit, and
+   !> the progress lines.
    type :: batch_options_t
       integer :: shard_index = 1                     !! this process's shard (--shard I/N)
       integer :: shard_count = 1                     !! number of shards
       real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none
+      logical :: quiet = .false.                     !! no progress lines (--quiet)
+      real(dp) :: progress_interval_s = 0.0_dp       !! between progress lines [s], 0: default
    end type batch_options_t
 end module gapbeam_settings

@@ -20,6 +20,9 @@ module gapbeam_state
       real(dp), allocatable :: a(:)              !! acceleration [m/s^2, rad/s^2]
       real(dp), allocatable :: f(:)              !! contact force magnitudes [N]
       real(dp), allocatable :: f_prev(:)         !! contact forces one step earlier [N]
+      !> the rounding u and v carry under compensated (Kahan) summation of the increments,
+      !> where a method uses it (Newmark's acceleration form); unallocated: none
+      real(dp), allocatable :: cu(:), cv(:)
       real(dp) :: dt_prev = 0.0_dp               !! length of the last step [s] (0: none yet)
       integer :: level = 0                       !! step-size level of the step control [-]
       integer :: comfortable = 0                 !! comfortable steps at this level [-]

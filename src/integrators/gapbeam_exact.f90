@@ -138,7 +138,28 @@ module gapbeam_exact
          add, find_flip, watched, refine, decide, sign_d, sign_l, state_derivs, init_signs, &
          register_switch, clear_bands, update_trackers, start_trackers, contact_functions, &
          emit_window, start_watching, abs_time, tau_of
+      ! --- continuation hook (issue 14): the Jacobian of the flow, in submodule
+      !     gapbeam_exact_jacobian (src/integrators/gapbeam_exact_jacobian.f90)
+      procedure :: advance_jacobian => exact_advance_jacobian
+      ! --- end of the continuation hook
    end type exact_integrator_t
+
+   ! --- continuation hook (issue 14)
+   interface
+      !> Carry `state` to t_target as `advance` does, and return the Jacobian of the end state
+      !> with respect to the start state, jac = d x(t_target) / d x(state%t), in the reduced
+      !> coordinates x = (u_r, v_r) of the dofs with mass (gapbeam_transition: mass_dofs;
+      !> massless dofs follow by static condensation): the state-transition matrices of the
+      !> linear segments and the saltation matrices of the contact switches.
+      module subroutine exact_advance_jacobian(self, state, t_target, jac, err)
+         class(exact_integrator_t), intent(inout), target :: self   !! integrator
+         type(state_t), intent(inout) :: state            !! state, at t_target on return
+         real(dp), intent(in) :: t_target                 !! target time [s]
+         real(dp), allocatable, intent(out) :: jac(:, :)  !! (2 nr, 2 nr) Jacobian
+         type(error_t), allocatable, intent(out) :: err   !! configuration failure
+      end subroutine exact_advance_jacobian
+   end interface
+   ! --- end of the continuation hook
 
 contains
 

@@ -15,7 +15,7 @@
 !> only, never an implementation.
 module gapbeam_integrator
    use, intrinsic :: iso_fortran_env, only: int64
-   use gapbeam_kinds, only: dp
+   use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
    use gapbeam_description, only: dof_name, law_bilinear
@@ -31,6 +31,10 @@ module gapbeam_integrator
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
       dof_label, resolve_method, tube_refusal, ring_load
 
+   !> the tolerance below which 'auto' considers rk45 for a Hertz stop: Newmark's error
+   !> levels off near 1e-8 .. 1e-7 in double precision (work-precision study)
+   real(dp), parameter :: newmark_floor = 1.0e-7_dp
+
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t
       character(len=:), allocatable :: method      !! the deck's method word
@@ -45,6 +49,10 @@ module gapbeam_integrator
    contains
       procedure(init_interface), deferred :: init        !! build for a model
       procedure(advance_interface), deferred :: advance  !! carry a state to a time
+      ! --- continuation hook (issue 14): the Jacobian of the flow where an integrator has one
+      !     (the exact integrator overrides it); the default says there is none
+      procedure :: advance_jacobian => advance_jacobian_none
+      ! --- end of the continuation hook
    end type integrator_t
 
    !> One step of a one-step method at one step size.
@@ -125,6 +133,22 @@ module gapbeam_integrator
 
 contains
 
+   ! --- continuation hook (issue 14)
+   !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with
+   !> mass (see gapbeam_exact_jacobian); this integrator has no such Jacobian: an error, the
+   !> state unchanged. Callers use finite differences of `advance` instead.
+   subroutine advance_jacobian_none(self, state, t_target, jac, err)
+      class(integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state            !! state (unchanged)
+      real(dp), intent(in) :: t_target                 !! target time [s]
+      real(dp), allocatable, intent(out) :: jac(:, :)  !! not allocated
+      type(error_t), allocatable, intent(out) :: err   !! always set
+      allocate(err)
+      err%message = "gapbeam_integrator: method '" // self%method // "' gives no exact " &
+         // "Jacobian of its flow (use &continuation jacobian = 'finite_difference')"
+   end subroutine advance_jacobian_none
+   ! --- end of the continuation hook
+
    !> The settings a run uses: method 'auto' resolved (the exact integrator when every stop is
    !> piecewise linear, else Newmark with error control) and step_control 'auto' resolved
    !> ('error' for the methods with an error estimate, 'fixed' for the others; 'embedded' is
@@ -152,6 +176,11 @@ contains
             eff%method = 'exact'
             reason = "method 'auto': every stop is piecewise linear, so the exact " &
                // 'event-driven integrator'
+         else if (cfg%tolerance < newmark_floor .and. rk45_cheaper(model, cfg%tolerance)) then
+            eff%method = 'rk45'
+            reason = "method 'auto': a stop is not piecewise linear (Hertz) and the tolerance " &
+               // 'is below what Newmark reaches in double precision (about 1e-7), so the ' &
+               // 'embedded Runge-Kutta method rk45 (estimated cheaper for this model)'
          else
             eff%method = 'newmark'
             reason = "method 'auto': a stop is not piecewise linear (Hertz), so Newmark with " &
@@ -235,6 +264,28 @@ contains
          t = t // ' ' // trim(items(k))
       end do
    end function tube_physics_text
+
+   !> Whether rk45 is expected to cost less than Newmark at `tol` on this model: flops per
+   !> forcing period from the step counts measured on the reference beam (Newmark about
+   !> 100 tol^(-1/2) steps, rk45 60 tol^(-1/5) or its stability limit T |lambda|_max / 3.3,
+   !> whichever is more, |lambda|_max = max(omega_max, beta + gamma omega_max^2): Rayleigh
+   !> damping makes the high modes overdamped and stiff) and the work of a step (Newmark 4 n^2 dense or 40 n banded, rk45 seven
+   !> stages of dense products, 21 n^2). Explicit methods need a mass at every dof.
+   pure logical function rk45_cheaper(model, tol) result(yes)
+      type(model_t), intent(in) :: model              !! model
+      real(dp), intent(in) :: tol                     !! tolerance
+      real(dp) :: n, period, cost_nm, cost_rk
+      yes = .false.
+      if (.not. allocated(model%sys%m_band)) return
+      if (any(model%sys%m_band(model%sys%kd + 1, :) <= 0.0_dp)) return
+      n = real(model%n, dp)
+      period = 2.0_dp * pi / model%omega
+      cost_nm = 100.0_dp * tol**(-0.5_dp) * merge(4.0_dp * n**2, 40.0_dp * n, model%n <= 60)
+      ! the stiffest eigenvalue: omega_max, or beta + gamma omega_max^2 when overdamped
+      cost_rk = max(60.0_dp * tol**(-0.2_dp), period * max(model%omega_max, model%beta &
+                + model%gamma * model%omega_max**2) / 3.3_dp) * 21.0_dp * n**2
+      yes = cost_rk < cost_nm
+   end function rk45_cheaper
 
    !> The default: a method without a local error estimate.
    !>

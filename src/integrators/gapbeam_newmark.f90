@@ -150,7 +150,7 @@ contains
       type(state_t), intent(inout) :: s1       !! end
       real(dp), intent(inout) :: ut(:), vt(:), r(:), w(:)   !! workspaces (n)
       integer, intent(in) :: hold              !! contact held open (0: none)
-      real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts)
+      real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts), dstep
       real(dp) :: ys(model%n_slots), vs(model%n_slots), pslot(model%n_slots)
       integer :: n, c, i, j
       n = model%n;  h = op%dt;  bh2 = alpha * h**2
@@ -197,8 +197,19 @@ contains
          end do
       end if
       s1%a = r
-      s1%u = ut + bh2 * r
-      s1%v = vt + delta * h * r
+      ! u1 = u + du, v1 = v + dv summed with compensation: over millions of small steps the
+      ! rounding of u + du (eps |u| each) would otherwise bound the accuracy near 1e-8
+      if (.not. allocated(s1%cu)) allocate(s1%cu(n), s1%cv(n))
+      do i = 1, n
+         dstep = h * s0%v(i) + (0.5_dp - alpha) * h**2 * s0%a(i) + bh2 * r(i)
+         if (allocated(s0%cu)) dstep = dstep - s0%cu(i)
+         s1%u(i) = s0%u(i) + dstep
+         s1%cu(i) = (s1%u(i) - s0%u(i)) - dstep
+         dstep = (1.0_dp - delta) * h * s0%a(i) + delta * h * r(i)
+         if (allocated(s0%cv)) dstep = dstep - s0%cv(i)
+         s1%v(i) = s0%v(i) + dstep
+         s1%cv(i) = (s1%v(i) - s0%v(i)) - dstep
+      end do
    end subroutine acceleration_step
 
    !> x := Kbar^-1 x with the step operator's factor.

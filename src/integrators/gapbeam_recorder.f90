@@ -6,6 +6,8 @@
 !> and the exact integrator produce the same result fields:
 !> * history: `samples_per_period` samples per forcing period over the first
 !>   `history_periods` recorded periods (root strain and rate, tip displacement, stop forces);
+!> * state history (`state_history`): every dof at the history samples, from the piece's
+!>   dense output (`state_at`);
 !> * Poincare section: one point per recorded period at `poincare_phase_deg`;
 !> * filter (when `filter_cutoff_hz` > 0): the root strain and its rate sampled uniformly from
 !>   t = 0 at `filter_samples_per_period` per period through a causal Butterworth low-pass;
@@ -48,6 +50,7 @@ module gapbeam_recorder
       logical :: all_found = .true.                   !! every stop has its first contact
       real(dp), allocatable :: acc_f(:), acc_f2(:), acc_work(:), acc_contact(:)  !! per stop
       real(dp), allocatable :: force(:)               !! contact forces of a sample
+      real(dp), allocatable :: v_work(:)              !! velocities of a state sample
       ! low-pass filter
       logical :: filtering = .false.                  !! filter asked
       type(lowpass_t) :: fil_s, fil_r                 !! filters of the strain and its rate
@@ -94,6 +97,9 @@ contains
       allocate(self%acc_f(ns), self%acc_f2(ns), self%acc_work(ns), self%acc_contact(ns), &
                source=0.0_dp)
       allocate(self%force(model%n_contacts))
+      if (out%state_history) then
+         allocate(self%res%history_u(model%n, self%n_hist), self%v_work(model%n))
+      end if
       self%ih = 1;  self%ip = 1;  self%next_sample = -huge(1.0_dp);  self%all_found = ns == 0
       self%filtering = out%filter_cutoff_hz > 0.0_dp
       allocate(self%res%strain_filtered(merge(self%n_hist, 0, self%filtering)))
@@ -172,6 +178,8 @@ contains
             r%time(self%ih) = t
             r%strain(self%ih) = st;  r%strain_rate(self%ih) = sv
             r%tip_displacement(self%ih) = tip
+            if (allocated(r%history_u)) &
+               call piece%state_at(t, r%history_u(:, self%ih), self%v_work)
             r%stop_force(self%ih, :) = 0.0_dp
             do c = 1, size(self%c_stop)
                ks = self%c_stop(c)
@@ -301,6 +309,8 @@ contains
             r%stop_force = r%stop_force(1:ih - 1, :)
             r%orbit_w = r%orbit_w(1:ih - 1, :);  r%orbit_v = r%orbit_v(1:ih - 1, :)
             r%tangential_force = r%tangential_force(1:ih - 1, :)
+
+            if (allocated(r%history_u)) r%history_u = r%history_u(:, 1:ih - 1)
          end if
       end associate
       res = self%res

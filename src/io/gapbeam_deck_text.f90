@@ -130,7 +130,7 @@ contains
       allocate(buf(16))
       n = 0;  q = ' '
       do l = 1, size(src%lines)
-         line = src%lines(l)
+         line = trim(src%lines(l))   ! the lines are padded to the longest one
          i = 1
          do while (i <= len(line))
             if (q /= ' ') then
@@ -169,7 +169,7 @@ contains
       logical :: inside
       q = ' ';  inside = .false.;  first = 0;  last = 0;  cstart = 1;  cend = 0
       outer: do l = 1, size(src%lines)
-         line = src%lines(l)
+         line = trim(src%lines(l))   ! the lines are padded to the longest one
          i = 1
          do while (i <= len(line))
             if (q /= ' ') then

@@ -6,8 +6,13 @@
 !>
 !> - Paths are absolute, '/history/time' or '/sweep/point_0001/poincare/strain'; the groups on
 !>   the way are created when missing. Writing a dataset that already exists is an error.
-!> - Every dataset written by `write` has a string attribute `units` ('Hz', 'm', 's', 'N',
-!>   '-'); text datasets written by `write_text` get `units = '-'`.
+!> - Every dataset written by `write` has a string attribute `units` in UDUNITS-2 form ('Hz',
+!>   'm', 'm s-1', 'N m rad-1', '1' for a pure number, 's-1'); optional attributes `long_name`
+!>   (what the values are, in words) and `dimensions` (the names of the axes in C order, as
+!>   h5py shows them, e.g. 'point stop'). Text datasets written by `write_text` get
+!>   `units = '1'`.
+!> - Attributes are variable-length UTF-8 strings (h5py reads them as str); string datasets
+!>   are fixed-length, flagged UTF-8.
 !> - Reals are 64-bit IEEE floats, integers the default Fortran integer (32 bit).
 !> - Rank-2 arrays keep the Fortran shape `(n1, n2)` as the HDF5 Fortran API does; C-order
 !>   readers (h5py, h5dump) show the dimensions reversed, `(n2, n1)`.
@@ -26,7 +31,8 @@
 !> on a full disk), and never shut down by this module, so several files can be written and
 !> read in one program, one after another or at the same time; every file must be closed.
 module gapbeam_hdf5_output
-   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc
+   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr, &
+      c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_files, only: rename_file, remove_file
@@ -34,12 +40,13 @@ module gapbeam_hdf5_output
       h5iis_valid_f, h5iget_type_f, H5I_GROUP_F, H5I_DATASET_F, &
       h5fcreate_f, h5fopen_f, h5fclose_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, &
       h5pcreate_f, h5pclose_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, H5F_CLOSE_STRONG_F, &
-      h5gcreate_f, h5gclose_f, h5lexists_f, h5oopen_f, h5oclose_f, &
+      h5gcreate_f, h5gclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5ocopy_f, &
       h5screate_f, h5screate_simple_f, h5sclose_f, H5S_SCALAR_F, &
       h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
       h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, h5dread_f, h5dget_type_f, h5dget_space_f, &
       h5tcopy_f, h5tclose_f, h5tset_size_f, h5tset_strpad_f, h5tget_size_f, h5tget_class_f, &
       h5tis_variable_str_f, H5T_C_S1, H5T_STR_NULLPAD_F, H5T_STRING_F, H5T_FLOAT_F, &
+      H5T_STRING, h5tset_cset_f, H5T_CSET_UTF8_F, &
       H5T_INTEGER_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       h5acreate_f, h5aopen_f, h5aclose_f, h5awrite_f, h5aread_f, h5aexists_f, h5aget_type_f, &
       h5aget_space_f
@@ -48,6 +55,21 @@ module gapbeam_hdf5_output
    public :: h5_writer_t, h5_reader_t, write_failed
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
+
+   interface
+      !> strlen(3) of a C string.
+      function c_strlen(p) bind(c, name='strlen') result(n)
+         import :: c_ptr, c_size_t
+         type(c_ptr), value, intent(in) :: p
+         integer(c_size_t) :: n
+      end function c_strlen
+      !> H5free_memory: frees memory the HDF5 library allocated (a variable-length string).
+      function c_free_memory(p) bind(c, name='H5free_memory') result(status)
+         import :: c_ptr, c_int
+         type(c_ptr), value, intent(in) :: p
+         integer(c_int) :: status
+      end function c_free_memory
+   end interface
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an HDF5 identifier not (or no longer) open
 
    !> Writer of one HDF5 result file, created as `path.part` and renamed to `path` on close.
@@ -73,13 +95,17 @@ module gapbeam_hdf5_output
       procedure, private :: write_r2 => writer_write_r2
       procedure, private :: write_i0 => writer_write_i0
       procedure, private :: write_i1 => writer_write_i1
+      procedure, private :: write_r3 => writer_write_r3
+      procedure, private :: write_i2 => writer_write_i2
       procedure, private :: write_s1 => writer_write_s1
       !> Dataset of a real(dp) scalar / rank-1 / rank-2 array, an integer scalar / rank-1 array
       !> or a rank-1 string array, with a `units` attribute.
-      generic :: write => write_r0, write_r1, write_r2, write_i0, write_i1, write_s1
+      generic :: write => write_r0, write_r1, write_r2, write_r3, write_i0, write_i1, write_i2, &
+         write_s1
       procedure :: write_attr => writer_write_attr     !! string attribute on a group or dataset
       procedure :: create_group => writer_create_group !! group and its parents, when missing
       procedure :: exists => writer_exists             !! whether a dataset or group exists
+      procedure :: copy_from => writer_copy_from       !! copy a group from another file
       procedure :: close => writer_close               !! close, then rename `path.part` to `path`
       procedure :: abort => writer_abort               !! close and delete `path.part`, quietly
    end type h5_writer_t
@@ -172,22 +198,25 @@ contains
       end if
    end subroutine writer_create
 
-   !> Write `text` (newlines kept, any length) as one fixed-length string, with `units = '-'`.
-   subroutine writer_write_text(self, dset_path, text, err)
+   !> Write `text` (newlines kept, any length) as one fixed-length string, with `units = '1'`.
+   subroutine writer_write_text(self, dset_path, text, err, long_name)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/input/deck'
       character(len=*), intent(in) :: text               !! text to store
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
-      call write_strings(self, 'write_text', dset_path, [text], .true., '-', err)
+      character(len=*), intent(in), optional :: long_name   !! what the text is, in words
+      call write_strings(self, 'write_text', dset_path, [text], .true., '1', err, long_name)
    end subroutine writer_write_text
 
    !> Write a real scalar.
-   subroutine writer_write_r0(self, dset_path, value, units, err)
+   subroutine writer_write_r0(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/modes/damping'
       real(dp), intent(in) :: value                      !! value [units]
       character(len=*), intent(in) :: units              !! units of `value`, e.g. 'Hz', '-'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
       character(len=*), parameter :: proc = 'write_r0'
       integer(hid_t) :: dset_id
       integer(hsize_t) :: dims(0)
@@ -198,16 +227,18 @@ contains
       call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, value, [1_hsize_t], hdferr)
       if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
          // at('dataset', dset_path, self%part_path))
-      call end_dataset(self, proc, dset_path, dset_id, units, err)
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
    end subroutine writer_write_r0
 
    !> Write a real rank-1 array (size 0 allowed).
-   subroutine writer_write_r1(self, dset_path, value, units, err)
+   subroutine writer_write_r1(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/history/time'
       real(dp), intent(in) :: value(:)                   !! values [units]
       character(len=*), intent(in) :: units              !! units of `value`, e.g. 's', 'm'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
       character(len=*), parameter :: proc = 'write_r1'
       integer(hid_t) :: dset_id
       integer(hsize_t) :: dims(1)
@@ -221,16 +252,18 @@ contains
          if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
             // at('dataset', dset_path, self%part_path))
       end if
-      call end_dataset(self, proc, dset_path, dset_id, units, err)
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
    end subroutine writer_write_r1
 
    !> Write a real rank-2 array; HDF5 dims are the Fortran shape `(n1, n2)`.
-   subroutine writer_write_r2(self, dset_path, value, units, err)
+   subroutine writer_write_r2(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/modes/shape'
       real(dp), intent(in) :: value(:, :)                !! values [units]
       character(len=*), intent(in) :: units              !! units of `value`, e.g. 'm'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
       character(len=*), parameter :: proc = 'write_r2'
       integer(hid_t) :: dset_id
       integer(hsize_t) :: dims(2)
@@ -244,16 +277,68 @@ contains
          if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
             // at('dataset', dset_path, self%part_path))
       end if
-      call end_dataset(self, proc, dset_path, dset_id, units, err)
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
    end subroutine writer_write_r2
 
+   !> Write a real rank-3 array; HDF5 dims are the Fortran shape `(n1, n2, n3)`.
+   subroutine writer_write_r3(self, dset_path, value, units, err, long_name, dimensions)
+      class(h5_writer_t), intent(inout) :: self          !! writer with an open file
+      character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/history/shape_xyz'
+      real(dp), intent(in) :: value(:, :, :)                !! values [units]
+      character(len=*), intent(in) :: units              !! units of `value`, e.g. 'm'
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
+      character(len=*), parameter :: proc = 'write_r3'
+      integer(hid_t) :: dset_id
+      integer(hsize_t) :: dims(3)
+      integer :: hdferr
+
+      dims = shape(value, kind=hsize_t)
+      call begin_dataset(self, proc, dset_path, H5T_NATIVE_DOUBLE, dims, dset_id, err)
+      if (allocated(err)) return
+      if (size(value) > 0) then
+         call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
+            // at('dataset', dset_path, self%part_path))
+      end if
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
+   end subroutine writer_write_r3
+
+   !> Write an integer rank-2 array; HDF5 dims are the Fortran shape `(n1, n2)`.
+   subroutine writer_write_i2(self, dset_path, value, units, err, long_name, dimensions)
+      class(h5_writer_t), intent(inout) :: self          !! writer with an open file
+      character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/history/segments'
+      integer, intent(in) :: value(:, :)                !! values [units]
+      character(len=*), intent(in) :: units              !! units of `value`, e.g. 'm'
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
+      character(len=*), parameter :: proc = 'write_i2'
+      integer(hid_t) :: dset_id
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr
+
+      dims = shape(value, kind=hsize_t)
+      call begin_dataset(self, proc, dset_path, H5T_NATIVE_INTEGER, dims, dset_id, err)
+      if (allocated(err)) return
+      if (size(value) > 0) then
+         call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
+            // at('dataset', dset_path, self%part_path))
+      end if
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
+   end subroutine writer_write_i2
+
    !> Write an integer scalar.
-   subroutine writer_write_i0(self, dset_path, value, units, err)
+   subroutine writer_write_i0(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/run/n_steps'
       integer, intent(in) :: value                       !! value [units]
       character(len=*), intent(in) :: units              !! units of `value`, usually '-'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
       character(len=*), parameter :: proc = 'write_i0'
       integer(hid_t) :: dset_id
       integer(hsize_t) :: dims(0)
@@ -264,16 +349,18 @@ contains
       call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, value, [1_hsize_t], hdferr)
       if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
          // at('dataset', dset_path, self%part_path))
-      call end_dataset(self, proc, dset_path, dset_id, units, err)
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
    end subroutine writer_write_i0
 
    !> Write an integer rank-1 array (size 0 allowed).
-   subroutine writer_write_i1(self, dset_path, value, units, err)
+   subroutine writer_write_i1(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/impacts/step'
       integer, intent(in) :: value(:)                    !! values [units]
       character(len=*), intent(in) :: units              !! units of `value`, usually '-'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
       character(len=*), parameter :: proc = 'write_i1'
       integer(hid_t) :: dset_id
       integer(hsize_t) :: dims(1)
@@ -287,17 +374,20 @@ contains
          if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
             // at('dataset', dset_path, self%part_path))
       end if
-      call end_dataset(self, proc, dset_path, dset_id, units, err)
+      call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
    end subroutine writer_write_i1
 
    !> Write a rank-1 string array (size 0 allowed) as fixed-length strings of `len(value)`.
-   subroutine writer_write_s1(self, dset_path, value, units, err)
+   subroutine writer_write_s1(self, dset_path, value, units, err, long_name, dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: dset_path          !! new dataset, e.g. '/sweep/label'
       character(len=*), intent(in) :: value(:)           !! strings; trailing blanks are padding
-      character(len=*), intent(in) :: units              !! units, usually '-'
+      character(len=*), intent(in) :: units              !! units, usually '1'
       type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
-      call write_strings(self, 'write_s1', dset_path, value, .false., units, err)
+      character(len=*), intent(in), optional :: long_name   !! what the values are, in words
+      character(len=*), intent(in), optional :: dimensions  !! axis names, C order
+      call write_strings(self, 'write_s1', dset_path, value, .false., units, err, long_name, &
+                         dimensions)
    end subroutine writer_write_s1
 
    !> Attach the string attribute `name = text` to an existing group or dataset.
@@ -375,6 +465,47 @@ contains
       found = .false.
       if (self%is_open) found = path_exists(self%file_id, clean_path(obj_path))
    end function writer_exists
+
+   !> Copy the group or dataset `obj_path` (with everything in it and its attributes) from the
+   !> file `source` to the same path in the file being written; its parent must exist.
+   subroutine writer_copy_from(self, source, obj_path, err)
+      class(h5_writer_t), intent(inout) :: self          !! writer with an open file
+      character(len=*), intent(in) :: source             !! HDF5 file to copy from
+      character(len=*), intent(in) :: obj_path           !! e.g. '/parameters'
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names both files
+      character(len=*), parameter :: proc = 'copy_from'
+      character(len=:), allocatable :: p
+      integer(hid_t) :: src_id, fapl
+      integer :: hdferr, status
+
+      p = clean_path(obj_path)
+      if (.not. self%is_open) then
+         call fatal_error(err, here(proc) // 'writer has no open file (call create first) to ' &
+            // 'copy ' // q(p) // ' into')
+         return
+      end if
+      call file_access_list(fapl, status)
+      if (status /= 0) then
+         call fatal_error(err, here(proc) // 'cannot set up file access for file ' // q(source))
+         return
+      end if
+      call h5fopen_f(trim(source), H5F_ACC_RDONLY_F, src_id, hdferr, access_prp=fapl)
+      call h5pclose_f(fapl, status)
+      if (hdferr /= 0) then
+         call fatal_error(err, here(proc) // 'cannot open file ' // q(source))
+         return
+      end if
+      if (.not. path_exists(src_id, p)) then
+         call fatal_error(err, here(proc) // 'no ' // at('object', p, source) // ' to copy')
+      else
+         call h5ocopy_f(src_id, p, self%file_id, p, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot copy ' &
+            // at('object', p, source) // ' into file ' // q(self%part_path))
+      end if
+      call h5fclose_f(src_id, status)
+      if (status /= 0 .and. .not. allocated(err)) call fatal_error(err, here(proc) &
+         // 'cannot close file ' // q(source))
+   end subroutine writer_copy_from
 
    !> Close the file, then rename `path.part` to `path` (atomically replacing an older `path`).
    !>
@@ -756,14 +887,17 @@ contains
          // at('dataset', p, self%part_path))
    end subroutine begin_dataset
 
-   !> Attach the `units` attribute (unless an error is already set) and close the dataset.
-   subroutine end_dataset(self, proc, dset_path, dset_id, units, err)
+   !> Attach the `units` attribute, and `long_name` and `dimensions` when given (unless an
+   !> error is already set), and close the dataset.
+   subroutine end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
       class(h5_writer_t), intent(in) :: self             !! writer
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: dset_path          !! dataset path as given
       integer(hid_t), intent(inout) :: dset_id           !! open dataset; closed on return
       character(len=*), intent(in) :: units              !! value of the `units` attribute
       type(error_t), allocatable, intent(inout) :: err   !! set on failure
+      character(len=*), intent(in), optional :: long_name   !! `long_name` attribute
+      character(len=*), intent(in), optional :: dimensions  !! `dimensions` attribute
       integer :: hdferr
 
       if (.not. allocated(err)) then
@@ -771,12 +905,23 @@ contains
          if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write attribute ''units'' &
             &of ' // at('dataset', clean_path(dset_path), self%part_path))
       end if
+      if (.not. allocated(err) .and. present(long_name)) then
+         call put_string_attr(dset_id, 'long_name', long_name, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write attribute &
+            &''long_name'' of ' // at('dataset', clean_path(dset_path), self%part_path))
+      end if
+      if (.not. allocated(err) .and. present(dimensions)) then
+         call put_string_attr(dset_id, 'dimensions', dimensions, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write attribute &
+            &''dimensions'' of ' // at('dataset', clean_path(dset_path), self%part_path))
+      end if
       call close_dataset(proc, dset_id, dset_path, self%part_path, err)
    end subroutine end_dataset
 
    !> Write strings as a fixed-length string dataset: a scalar holding `value(1)` whole
    !> (`scalar`), or a rank-1 array with trailing blanks turned into NUL padding.
-   subroutine write_strings(self, proc, dset_path, value, scalar, units, err)
+   subroutine write_strings(self, proc, dset_path, value, scalar, units, err, long_name, &
+                            dimensions)
       class(h5_writer_t), intent(inout) :: self          !! writer with an open file
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: dset_path          !! new dataset
@@ -784,6 +929,8 @@ contains
       logical, intent(in) :: scalar                      !! scalar text dataset
       character(len=*), intent(in) :: units              !! value of the `units` attribute
       type(error_t), allocatable, intent(inout) :: err   !! set on failure
+      character(len=*), intent(in), optional :: long_name   !! `long_name` attribute
+      character(len=*), intent(in), optional :: dimensions  !! `dimensions` attribute
       character(kind=c_char, len=1), allocatable, target :: buf(:)
       integer(hid_t) :: type_id, dset_id
       integer(hsize_t), allocatable :: dims(:)
@@ -819,37 +966,42 @@ contains
             if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot write ' &
                // at('dataset', clean_path(dset_path), self%part_path))
          end if
-         call end_dataset(self, proc, dset_path, dset_id, units, err)
+         call end_dataset(self, proc, dset_path, dset_id, units, err, long_name, dimensions)
       end if
       call h5tclose_f(type_id, status)
       if (status /= 0) call fatal_error(err, here(proc) // 'cannot close the string type of ' &
          // at('dataset', clean_path(dset_path), self%part_path))
    end subroutine write_strings
 
-   !> Create and write a scalar fixed-length string attribute on an open object.
+   !> Create and write a scalar variable-length UTF-8 string attribute on an open object
+   !> (h5py reads it as str).
    subroutine put_string_attr(obj_id, name, text, hdferr)
       integer(hid_t), intent(in) :: obj_id               !! open group or dataset
       character(len=*), intent(in) :: name               !! attribute name
       character(len=*), intent(in) :: text               !! attribute value
       integer, intent(out) :: hdferr                     !! 0 on success, first failure otherwise
       character(kind=c_char, len=1), allocatable, target :: buf(:)
+      type(c_ptr), target :: ptr(1)
+      type(c_ptr) :: buf_ptr
       integer(hid_t) :: type_id, space_id, attr_id
-      integer :: width, j, status
+      integer :: j, status
 
-      width = max(1, len(text))
-      allocate(buf(width))
-      buf = c_null_char
+      allocate(buf(len(text) + 1))
       do j = 1, len(text)
          buf(j) = text(j:j)
       end do
+      buf(len(text) + 1) = c_null_char
+      ptr(1) = c_loc(buf(1))
       type_id = no_id
       space_id = no_id
       attr_id = no_id
-      call string_type(width, type_id, hdferr)
+      call h5tcopy_f(H5T_STRING, type_id, hdferr)
       if (hdferr /= 0) return
-      call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+      call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
+      if (hdferr == 0) call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
       if (hdferr == 0) call h5acreate_f(obj_id, name, type_id, space_id, attr_id, hdferr)
-      if (hdferr == 0) call h5awrite_f(attr_id, type_id, c_loc(buf(1)), hdferr)
+      buf_ptr = c_loc(ptr(1))
+      if (hdferr == 0) call h5awrite_f(attr_id, type_id, buf_ptr, hdferr)
       if (attr_id /= no_id) then
          call h5aclose_f(attr_id, status)
          call keep_first(hdferr, status)
@@ -908,7 +1060,7 @@ contains
       end do
    end subroutine ensure_groups
 
-   !> A copy of the C string type of `width` bytes, NUL-padded.
+   !> A copy of the C string type of `width` bytes, NUL-padded, UTF-8.
    subroutine string_type(width, type_id, hdferr)
       integer, intent(in) :: width                       !! bytes per string, >= 1
       integer(hid_t), intent(out) :: type_id             !! new datatype (close with h5tclose_f)
@@ -918,6 +1070,7 @@ contains
       if (hdferr /= 0) return
       call h5tset_size_f(type_id, int(width, size_t), hdferr)
       if (hdferr == 0) call h5tset_strpad_f(type_id, H5T_STR_NULLPAD_F, hdferr)
+      if (hdferr == 0) call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
       if (hdferr /= 0) call h5tclose_f(type_id, status)
    end subroutine string_type
 
@@ -1016,7 +1169,7 @@ contains
       integer(hid_t) :: obj_id, attr_id, type_id, space_id
       type(c_ptr) :: buf_ptr
       integer :: hdferr, status, width, rank
-      logical :: found
+      logical :: found, variable
 
       text = ''
       p = clean_path(obj_path)
@@ -1051,7 +1204,7 @@ contains
                call fatal_error(err, here(proc) // 'cannot get the datatype of ' // what)
             else
                call check_string_type(proc, type_id, 'attribute ' // q(trim(name)) // ' of', &
-                  p, self%path, width, err)
+                  p, self%path, width, err, variable)
                if (.not. allocated(err)) then
                   call h5aget_space_f(attr_id, space_id, hdferr)
                   if (hdferr == 0) then
@@ -1064,6 +1217,9 @@ contains
                   else if (rank /= 0) then
                      call fatal_error(err, here(proc) // what // ' is not a scalar (rank ' &
                         // str(rank) // ')')
+                  else if (variable) then
+                     call read_variable_string(attr_id, type_id, text, hdferr)
+                     if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot read ' // what)
                   else
                      allocate(buf(width))
                      buf_ptr = c_loc(buf(1))
@@ -1087,6 +1243,27 @@ contains
       if (status /= 0) call fatal_error(err, here(proc) // 'cannot close ' &
          // at('object', p, self%path))
    end subroutine read_string_attr
+
+   !> Read a scalar variable-length string attribute and free the library's copy.
+   subroutine read_variable_string(attr_id, type_id, text, hdferr)
+      integer(hid_t), intent(in) :: attr_id              !! open attribute
+      integer(hid_t), intent(in) :: type_id              !! its (variable-length string) type
+      character(len=:), allocatable, intent(out) :: text !! the value
+      integer, intent(out) :: hdferr                     !! 0 on success
+      type(c_ptr), target :: ptr(1)
+      type(c_ptr) :: buf_ptr
+      character(kind=c_char, len=1), pointer :: chars(:)
+      integer :: n
+      text = ''
+      ptr(1) = c_null_ptr
+      buf_ptr = c_loc(ptr(1))
+      call h5aread_f(attr_id, type_id, buf_ptr, hdferr)
+      if (hdferr /= 0 .or. .not. c_associated(ptr(1))) return
+      n = int(c_strlen(ptr(1)))
+      call c_f_pointer(ptr(1), chars, [max(n, 1)])
+      text = chars_to_text(chars(1:n), trim_nul=.true.)
+      if (c_free_memory(ptr(1)) < 0) hdferr = -1
+   end subroutine read_variable_string
 
    !> Open an existing dataset of the reader's file.
    subroutine open_dataset(self, proc, dset_path, dset_id, err)
@@ -1162,8 +1339,10 @@ contains
          // at('dataset', clean_path(dset_path), file_name))
    end subroutine check_shape
 
-   !> Check that `type_id` is a fixed-length string type and return its length in bytes.
-   subroutine check_string_type(proc, type_id, kind_name, obj_path, file_name, width, err)
+   !> Check that `type_id` is a fixed-length string type and return its length in bytes; with
+   !> `variable` present, a variable-length string type is accepted too (and said so).
+   subroutine check_string_type(proc, type_id, kind_name, obj_path, file_name, width, err, &
+                                variable)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       integer(hid_t), intent(in) :: type_id              !! datatype of a dataset or attribute
       character(len=*), intent(in) :: kind_name          !! 'dataset', or "attribute 'x' of"
@@ -1171,11 +1350,13 @@ contains
       character(len=*), intent(in) :: file_name          !! file name, for messages
       integer, intent(out) :: width                      !! bytes per string
       type(error_t), allocatable, intent(inout) :: err   !! set on failure
+      logical, intent(out), optional :: variable         !! a variable-length string type
       integer(size_t) :: type_size
       integer :: hdferr, stored_class
-      logical :: variable
+      logical :: is_variable
 
       width = 0
+      if (present(variable)) variable = .false.
       call h5tget_class_f(type_id, stored_class, hdferr)
       if (hdferr /= 0) then
          call fatal_error(err, here(proc) // 'cannot get the type class of ' &
@@ -1187,13 +1368,17 @@ contains
             // ' holds ' // class_name(stored_class) // ', not strings')
          return
       end if
-      call h5tis_variable_str_f(type_id, variable, hdferr)
+      call h5tis_variable_str_f(type_id, is_variable, hdferr)
       if (hdferr /= 0) then
          call fatal_error(err, here(proc) // 'cannot inspect the string type of ' &
             // at(kind_name, clean_path(obj_path), file_name))
          return
       end if
-      if (variable) then
+      if (is_variable .and. present(variable)) then
+         variable = .true.
+         return
+      end if
+      if (is_variable) then
          call fatal_error(err, here(proc) // at(kind_name, clean_path(obj_path), file_name) &
             // ' holds variable-length strings; only fixed-length strings are supported')
          return

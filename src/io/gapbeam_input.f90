@@ -27,13 +27,17 @@ module gapbeam_input
    implicit none
    private
    public :: read_deck, known_groups
+   ! --- continuation hook (issue 14): the submodule gapbeam_input_continuation calls these;
+   !     gfortran gives private module procedures internal linkage, so they must be public
+   public :: apply_group, require_int, require_nonnegative, require_range, require_word
+   ! --- end of the continuation hook
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
    character(len=*), parameter :: dof_words = "'w', 'theta', 'v', 'theta_v'"
 
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
-      'study model_size tip point_forces'
+      'study model_size continuation tip point_forces'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
    integer, parameter :: max_axis = 1000000     !! most values of a sweep axis range (n_frequency)
    integer, parameter :: max_points = 1000000   !! most points of a sweep
@@ -55,6 +59,18 @@ module gapbeam_input
          character(len=*), intent(inout) :: msg
       end subroutine nml_reader
    end interface
+
+   ! --- continuation hook (issue 14): &continuation, in submodule gapbeam_input_continuation
+   interface
+      !> Read and validate &continuation (after every other group: it names deck variables).
+      module subroutine read_continuation(srcs, deck, present_group, err)
+         type(source_t), intent(in) :: srcs(:)           !! deck file, then overrides
+         type(deck_t), intent(inout) :: deck             !! deck read so far
+         logical, intent(in) :: present_group            !! the deck has &continuation
+         type(error_t), allocatable, intent(out) :: err  !! first problem found
+      end subroutine read_continuation
+   end interface
+   ! --- end of the continuation hook
 
 contains
 
@@ -153,6 +169,8 @@ contains
       call read_study(srcs, deck%study, err);  if (failed(err, path)) return
       call read_model_size(srcs, deck%model_size, err);  if (failed(err, path)) return
       call read_reduction(srcs, deck%reduction, err);  if (failed(err, path)) return
+      call read_continuation(srcs, deck, group_present(srcs, 'continuation'), err)   ! issue 14
+      if (failed(err, path)) return
       call check_sizes(deck, err);  if (failed(err, path)) return
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
@@ -161,7 +179,8 @@ contains
          return
       end if
       if ((deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep' .or. &
-           deck%job%analysis == 'work_precision' .or. deck%job%analysis == 'model_size') .and. &
+           deck%job%analysis == 'work_precision' .or. deck%job%analysis == 'model_size' .or. &
+           deck%job%analysis == 'continuation') .and. &
           .not. group_present(srcs, 'forcing')) then
          call fatal_error(err, path // ": group &forcing is missing: analysis='" &
             // trim(deck%job%analysis) // "' needs frequency_hz (use amplitude_pp=0 for free " &
@@ -174,6 +193,7 @@ contains
          return
       end if
    end subroutine read_deck
+
 
    !> True when `err` is set; its message then starts with the deck path.
    logical function failed(err, path)
@@ -201,6 +221,26 @@ contains
             // str(deck%output%samples_per_period) // ' = ' // str_int64(samples) &
             // ' history samples: at most ' // str_int64(max_values))
          return
+      end if
+      if (deck%output%state_history .and. deck%job%analysis == 'transient') then
+         if (deck%reduction%kind /= 'none') then
+            call fatal_error(err, "group &output: state_history = .true.: needs the finite " &
+               // "element model, not a modal one (&reduction kind = '" &
+               // trim(deck%reduction%kind) // "'; allowed: 'none')")
+            return
+         end if
+         ! every dof at every history sample, and the deflected shape at its points
+         per_point = 2_int64 * (deck%structure%beam%n_elem + 1) &
+                     + int(deck%structure%beam%n_elem, int64) * deck%output%shape_points + 1
+         if (samples * per_point > max_values) then
+            call fatal_error(err, 'group &output: state_history = .true.: ' &
+               // str_int64(samples) // ' history samples x ' // str_int64(per_point) &
+               // ' values each (2 dofs per node and the shape at n_elem x shape_points + 1 ' &
+               // 'points) = ' // str_int64(samples * per_point) // ': at most ' &
+               // str_int64(max_values) // '; keep fewer history_periods, samples_per_period ' &
+               // 'or shape_points')
+            return
+         end if
       end if
       if (deck%job%analysis /= 'sweep') return
       ! per point: Poincare strain and rate, the running Lyapunov estimate, the final state
@@ -763,6 +803,13 @@ contains
       if (allocated(err)) return
       call require_word('root', 'condition', condition, end_condition_words, err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
+      ! the beam's scale rule (check_beam_scales): a larger spring overflows the stiffness's
+      ! norms and eigen-solves later, far from the deck variable
+      if (condition == 'spring' .and. .not. allocated(err)) then
+         if (k_theta > sqrt(huge(1.0_dp))) call fatal_error(err, 'group &root: k_theta = ' &
+            // str(k_theta) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+            // ' (its square must not overflow)')
+      end if
       if (allocated(err)) return
       cfg = root_t(condition=condition, k_theta=k_theta)
    contains
@@ -994,6 +1041,8 @@ contains
             end if
          else
             call require_positive('stops', 'stiffness' // ix, stiffness(i), err)
+            if (allocated(err)) err%message = err%message // ' (or rule_factor' // ix &
+               // ' > 0: the stiffness from the rule)'
          end if
          if (law_code(law(i)) == 2) then
             call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
@@ -1385,18 +1434,21 @@ contains
       type(output_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: poincare_phase_deg, filter_cutoff_hz
-      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period
-      logical :: write_text, energy_balance
+      integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period, &
+         shape_points
+      logical :: write_text, state_history, energy_balance
       namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
-         filter_cutoff_hz, filter_order, filter_samples_per_period, energy_balance
+         filter_cutoff_hz, filter_order, filter_samples_per_period, state_history, shape_points, &
+         energy_balance
       energy_balance = cfg%energy_balance
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
       filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
       filter_samples_per_period = cfg%filter_samples_per_period
+      state_history = cfg%state_history;  shape_points = cfg%shape_points
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
-         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period energy_balance', &
-         reader, err)
+         // 'write_text filter_cutoff_hz filter_order filter_samples_per_period state_history ' &
+         // 'shape_points energy_balance', reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
@@ -1409,6 +1461,7 @@ contains
       call require_int('output', 'filter_order', filter_order, 1, 12, err)
       call require_int('output', 'filter_samples_per_period', filter_samples_per_period, 16, &
          1000000, err)
+      call require_int('output', 'shape_points', shape_points, 1, 1000, err)
       if (allocated(err)) return
       if (filter_cutoff_hz > 0.0_dp .and. mod(filter_samples_per_period, samples_per_period) &
           /= 0) then
@@ -1420,7 +1473,8 @@ contains
       cfg = output_settings_t(poincare_phase_deg=poincare_phase_deg, &
          samples_per_period=samples_per_period, history_periods=history_periods, &
          write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
-         filter_samples_per_period=filter_samples_per_period, energy_balance=energy_balance)
+         filter_samples_per_period=filter_samples_per_period, state_history=state_history, &
+         shape_points=shape_points, energy_balance=energy_balance)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

@@ -121,7 +121,8 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! write failure
       character(len=:), allocatable :: names(:)
       call self%names(names)
-      call h5%write('/run/files', names, '-', err)
+      call h5%write('/run/files', names, '1', err, 'the files written together with this ' &
+         // 'one, in its directory, by one run (they appear together or not at all)')
       if (allocated(err)) return
       call h5%write_attr('/run/files', 'description', 'the files written together with this ' &
          // 'one, in its directory, by one run (they appear together or not at all)', err)

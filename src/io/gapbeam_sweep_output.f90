@@ -4,9 +4,9 @@
 !> HDF5 layout: /deck; /sweep/grid_frequency_hz, /sweep/grid_amplitude_pp (the axes);
 !> /sweep/shard_index, /sweep/shard_count, /sweep/n_points_total; per point of the file, in
 !> point order: /sweep/point_index, frequency_hz, amplitude_pp, period, label, label_text,
-!> lyapunov, lyapunov_error, status, steps, seconds; /sweep/impacts/<stat> (points, stops);
-!> /sweep/poincare/strain and strain_rate (recorded periods, points);
-!> /sweep/lyapunov_running (periods, points).
+!> lyapunov, lyapunov_error, status, steps, seconds; /sweep/impacts/<stat>; /sweep/poincare/
+!> strain and strain_rate; /sweep/lyapunov_running; /parameters (gapbeam_file_info). In C order
+!> (h5py) every per-point array has the point first: (point, stop), (point, period).
 module gapbeam_sweep_output
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -16,6 +16,8 @@ module gapbeam_sweep_output
    use gapbeam_files, only: write_table, real_path, file_exists
    use gapbeam_output_set, only: output_set_t
    use gapbeam_results, only: point_result_t, label_text
+   use gapbeam_parameters, only: parameter_set_t
+   use gapbeam_file_info, only: write_file_info, write_parameter_set
    implicit none
    private
    public :: sweep_file_t, write_sweep, read_sweep, merge_sweep
@@ -29,6 +31,9 @@ module gapbeam_sweep_output
       integer :: shard_index = 1                     !! this file's shard
       integer :: shard_count = 1                     !! shards of the sweep
       integer, allocatable :: points(:)              !! point indices in the file (ascending)
+      type(parameter_set_t) :: parameters            !! the run's parameters (/parameters)
+      !> a file whose /parameters are copied instead (a merge: the first shard's)
+      character(len=:), allocatable :: parameters_source
    end type sweep_file_t
 
 contains
@@ -59,6 +64,7 @@ contains
       if (.not. allocated(err) .and. write_text) call sweep_tables(set, sf, results, err)
       call set%finish(err)
    end subroutine write_sweep
+
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
    !> points that succeeded (from all points when none did).
@@ -93,7 +99,8 @@ contains
       y(1:m) = x(1:m)
    end function padded
 
-   !> One impact statistic of every point of the file, (points, stops).
+   !> One impact statistic of every point of the file, Fortran (stops, points): in C order
+   !> (h5py) one row per point.
    function impact_stat(results, points, which, ns) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
@@ -103,37 +110,38 @@ contains
                                                          !! distance, 8 friction work rate,
                                                          !! 9 wear volume rate
       integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(size(points), ns)
+      real(dp) :: v(ns, size(points))
       integer :: j, p
       do j = 1, size(points)
          p = points(j)
          select case (which)
-         case (1);  v(j, :) = padded(results(p)%peak_force, ns)
-         case (2);  v(j, :) = padded(results(p)%rms_force, ns)
-         case (3);  v(j, :) = padded(results(p)%contact_fraction, ns)
-         case (4);  v(j, :) = padded(results(p)%impulse_per_period, ns)
-         case (6);  v(j, :) = padded(results(p)%normal_work_rate, ns)
-         case (7);  v(j, :) = padded(results(p)%sliding_distance, ns)
-         case (8);  v(j, :) = padded(results(p)%friction_work_rate, ns)
-         case (9);  v(j, :) = padded(results(p)%wear_volume_rate, ns)
-         case default;  v(j, :) = padded(results(p)%work_rate, ns)
+         case (1);  v(:, j) = padded(results(p)%peak_force, ns)
+         case (2);  v(:, j) = padded(results(p)%rms_force, ns)
+         case (3);  v(:, j) = padded(results(p)%contact_fraction, ns)
+         case (4);  v(:, j) = padded(results(p)%impulse_per_period, ns)
+         case (6);  v(:, j) = padded(results(p)%normal_work_rate, ns)
+         case (7);  v(:, j) = padded(results(p)%sliding_distance, ns)
+         case (8);  v(:, j) = padded(results(p)%friction_work_rate, ns)
+         case (9);  v(:, j) = padded(results(p)%wear_volume_rate, ns)
+         case default;  v(:, j) = padded(results(p)%work_rate, ns)
          end select
       end do
    end function impact_stat
 
-   !> Impact counts of every point of the file, (points, stops); 0 where a point has none.
+   !> Impact counts of every point of the file, Fortran (stops, points); 0 where a point has
+   !> none.
    function impact_counts(results, points, ns) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(size(points), ns)
+      real(dp) :: v(ns, size(points))
       integer :: j, p, m
       v = 0.0_dp
       do j = 1, size(points)
          p = points(j)
          if (.not. allocated(results(p)%n_impacts)) cycle
          m = min(ns, size(results(p)%n_impacts))
-         v(j, 1:m) = real(results(p)%n_impacts(1:m), dp)
+         v(1:m, j) = real(results(p)%n_impacts(1:m), dp)
       end do
    end function impact_counts
 
@@ -149,12 +157,23 @@ contains
       character(len=16), allocatable :: labels(:)
       character(len=*), parameter :: stat_names(5) = [character(len=18) :: 'peak_force', &
          'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
-      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '-', &
+      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '1', &
          'N s', 'W']
       character(len=*), parameter :: wear_names(4) = [character(len=18) :: 'normal_work_rate', &
          'sliding_distance', 'friction_work_rate', 'wear_volume_rate']
-      character(len=*), parameter :: wear_units(4) = [character(len=5) :: 'W', 'm', 'W', &
-         'm^3/s']
+      character(len=*), parameter :: wear_units(4) = [character(len=6) :: 'W', 'm', 'W', &
+         'm3 s-1']
+      character(len=*), parameter :: wear_long(4) = [character(len=72) :: &
+         'normal work rate of each support, (1/T) integral of F_N |v_t| dt', &
+         'distance each support slid over the record', &
+         'mean friction power of each support', &
+         'Archard wear volume rate of each support']
+      character(len=*), parameter :: stat_long(5) = [character(len=60) :: &
+         'largest force of each stop in the record', &
+         'root mean square force of each stop over the record', &
+         'fraction of the record each stop is in contact', &
+         'impulse of each stop per forcing period', &
+         'mean rate of contact work of each stop']
 
       m = size(sf%points);  nf = size(sf%grid_frequency_hz)
       call point_sizes(results, sf%points, ns, nr, nl)
@@ -165,68 +184,97 @@ contains
          a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
          labels(j) = label_text(results(p)%label)
       end do
-      call h5%write_text('/deck', sf%deck_text, err);  if (write_failed(h5, err)) return
+      call write_file_info(h5, 'sweep', sf%deck_text, err);  if (write_failed(h5, err)) return
+      call h5%write_text('/deck', sf%deck_text, err, 'the effective deck text: deck file ' &
+         // 'and command-line overrides');  if (write_failed(h5, err)) return
       call set%record(h5, err);  if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/title', sf%title, err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err)
+      if (allocated(sf%parameters_source)) then
+         call h5%copy_from(sf%parameters_source, '/parameters', err)
+      else
+         call write_parameter_set(h5, sf%parameters, err)
+      end if
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err)
+      call h5%write_text('/sweep/title', sf%title, err, '&job title')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_index', sf%shard_index, '-', err)
+      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
+                    'frequency axis of the sweep grid')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_count', sf%shard_count, '-', err)
+      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
+                    'amplitude axis of the sweep grid, base displacement peak to peak')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/n_points_total', nf * size(sf%grid_amplitude_pp), '-', err)
+      call h5%write('/sweep/shard_index', sf%shard_index, '1', err, &
+                    'shard I of this file (1 for a whole or merged sweep)')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/point_index', sf%points, '-', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/frequency_hz', f, 'Hz', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/amplitude_pp', a, 'm', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/period', [(results(sf%points(j))%period, j = 1, m)], &
-                    'forcing periods', err)
+      call h5%write('/sweep/shard_count', sf%shard_count, '1', err, 'number N of shards')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/label', [(results(sf%points(j))%label, j = 1, m)], &
-                    'p >= 1: period p; 0: undecided; -1: chaotic', err)
+      call h5%write('/sweep/n_points_total', nf * size(sf%grid_amplitude_pp), '1', err, &
+                    'points of the whole sweep, n_frequency x n_amplitude')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/label_text', labels, '-', err);  if (write_failed(h5, err)) return
-      call h5%write('/sweep/lyapunov', [(results(sf%points(j))%lyapunov, j = 1, m)], '1/s', err)
+      call h5%write('/sweep/point_index', sf%points, '1', err, 'point number p = i_f + ' &
+         // '(i_a - 1) n_f of each point of the file (frequency fastest)')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/frequency_hz', f, 'Hz', err, 'forcing frequency of the point')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/amplitude_pp', a, 'm', err, 'base displacement amplitude of the ' &
+         // 'point, peak to peak');  if (write_failed(h5, err)) return
+      call h5%write('/sweep/period', [(results(sf%points(j))%period, j = 1, m)], '1', err, &
+                    'detected period in forcing periods; 0: none up to period_max')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/label', [(results(sf%points(j))%label, j = 1, m)], '1', err, &
+                    'label code: p >= 1 period p, 0 undecided, -1 chaotic')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/label_text', labels, '1', err, 'label: period_<p>, chaotic or ' &
+         // 'undecided');  if (write_failed(h5, err)) return
+      call h5%write('/sweep/lyapunov', [(results(sf%points(j))%lyapunov, j = 1, m)], 's-1', &
+                    err, 'largest Lyapunov exponent')
       if (write_failed(h5, err)) return
       call h5%write('/sweep/lyapunov_error', [(results(sf%points(j))%lyapunov_error, &
-                    j = 1, m)], '1/s', err)
+                    j = 1, m)], 's-1', err, 'standard error of the largest Lyapunov exponent')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/status', [(results(sf%points(j))%status, j = 1, m)], &
-                    '0: done, 1: failed', err)
+      call h5%write('/sweep/status', [(results(sf%points(j))%status, j = 1, m)], '1', err, &
+                    'status of the point: 0 done, 1 failed (results NaN)')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/steps', [(real(results(sf%points(j))%steps, dp), j = 1, m)], '-', err)
+      call h5%write('/sweep/steps', [(real(results(sf%points(j))%steps, dp), j = 1, m)], '1', &
+                    err, 'accepted integration steps of the point''s run (Lyapunov periods ' &
+                    // 'not counted)')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/seconds', [(results(sf%points(j))%seconds, j = 1, m)], 's', err)
+      call h5%write('/sweep/seconds', [(results(sf%points(j))%seconds, j = 1, m)], 's', err, &
+                    'wall time of the point (run and exponent)')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '-', err)
+      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '1', err, &
+                    'contact onsets of each stop in the record', 'point stop')
       if (write_failed(h5, err)) return
       do j = 1, size(stat_names)
          call h5%write('/sweep/impacts/' // trim(stat_names(j)), &
-                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err)
+                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err, &
+                       trim(stat_long(j)), 'point stop')
          if (write_failed(h5, err)) return
       end do
       do j = 1, size(wear_names)
          call h5%write('/sweep/wear/' // trim(wear_names(j)), &
-                       impact_stat(results, sf%points, 5 + j, ns), trim(wear_units(j)), err)
+                       impact_stat(results, sf%points, 5 + j, ns), trim(wear_units(j)), err, &
+                       trim(wear_long(j)), 'point stop')
          if (write_failed(h5, err)) return
       end do
       allocate(r2(nr, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
       end do
-      call h5%write('/sweep/poincare/strain', r2, '-', err);  if (write_failed(h5, err)) return
+      call h5%write('/sweep/poincare/strain', r2, '1', err, 'root strain at the Poincare ' &
+         // 'section, every recorded period', 'point period')
+      if (write_failed(h5, err)) return
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain_rate, nr)
       end do
-      call h5%write('/sweep/poincare/strain_rate', r2, '1/s', err)
+      call h5%write('/sweep/poincare/strain_rate', r2, 's-1', err, 'root strain rate at the ' &
+         // 'Poincare section, every recorded period', 'point period')
       if (write_failed(h5, err)) return
       deallocate(r2);  allocate(r2(nl, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%lyapunov_running, nl)
       end do
-      call h5%write('/sweep/lyapunov_running', r2, '1/s', err)
+      call h5%write('/sweep/lyapunov_running', r2, 's-1', err, 'running estimate of the ' &
+         // 'largest Lyapunov exponent after each period', 'point period')
       if (write_failed(h5, err)) return
       call h5%close(err)
    end subroutine sweep_h5
@@ -271,9 +319,15 @@ contains
          'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', 'rms_force_stop1', &
          'work_rate_stop1', 'normal_work_rate_total', 'wear_volume_rate_total']
       units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
-         'N', 'N', 'W', 'W', 'm^3/s']
+         'N', 'N', 'W', 'W', 'm3/s']
+      ! the grid's extent in the title line, so that a shard's chart places its tiles on the
+      ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
-         // ' 0 undecided, -1 chaotic)', names, units, cols, err, in_place=.true.)
+         // ' 0 undecided, -1 chaotic); grid: ' // str(nf) // ' frequencies from ' &
+         // num(minval(sf%grid_frequency_hz)) // ' to ' // num(maxval(sf%grid_frequency_hz)) &
+         // ' Hz, ' // str(size(sf%grid_amplitude_pp)) // ' amplitudes from ' &
+         // num(minval(sf%grid_amplitude_pp)) // ' to ' // num(maxval(sf%grid_amplitude_pp)) &
+         // ' m', names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
       deallocate(cols);  allocate(cols(m * nr, 4))
       do j = 1, m
@@ -301,7 +355,15 @@ contains
       real(dp), allocatable :: lyap(:), lerr(:), steps(:), secs(:), cnt(:, :), pk(:, :), &
          rms(:, :), cf(:, :), imp(:, :), wr(:, :), ps(:, :), pr(:, :), lr(:, :), &
          wn(:, :), sd(:, :), fw(:, :), wv(:, :)
+      character(len=:), allocatable :: axis_order
       call h5%open(path, err);  if (allocated(err)) return
+      call h5%read_attr('/', 'axis_order', axis_order, err)
+      if (allocated(err)) then
+         call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' was written ' &
+            // 'by an older gapbeam (no axis_order attribute; its impact arrays are ' &
+            // 'transposed): merge it with the version that wrote it')
+         goto 9
+      end if
       call h5%read_text('/deck', sf%deck_text, err);  if (allocated(err)) goto 9
       call h5%read_text('/sweep/title', sf%title, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/grid_frequency_hz', sf%grid_frequency_hz, err)
@@ -353,13 +415,13 @@ contains
          results(p)%period = period(j);  results(p)%label = label(j)
          results(p)%status = status(j);  results(p)%lyapunov = lyap(j)
          results(p)%lyapunov_error = lerr(j);  results(p)%steps = nint(steps(j), int64)
-         results(p)%seconds = secs(j);  results(p)%n_impacts = nint(cnt(j, :))
-         results(p)%peak_force = pk(j, :);  results(p)%rms_force = rms(j, :)
-         results(p)%contact_fraction = cf(j, :);  results(p)%impulse_per_period = imp(j, :)
-         results(p)%work_rate = wr(j, :);  results(p)%p_strain = ps(:, j)
+         results(p)%seconds = secs(j);  results(p)%n_impacts = nint(cnt(:, j))
+         results(p)%peak_force = pk(:, j);  results(p)%rms_force = rms(:, j)
+         results(p)%contact_fraction = cf(:, j);  results(p)%impulse_per_period = imp(:, j)
+         results(p)%work_rate = wr(:, j);  results(p)%p_strain = ps(:, j)
          results(p)%p_strain_rate = pr(:, j);  results(p)%lyapunov_running = lr(:, j)
-         results(p)%normal_work_rate = wn(j, :);  results(p)%sliding_distance = sd(j, :)
-         results(p)%friction_work_rate = fw(j, :);  results(p)%wear_volume_rate = wv(j, :)
+         results(p)%normal_work_rate = wn(:, j);  results(p)%sliding_distance = sd(:, j)
+         results(p)%friction_work_rate = fw(:, j);  results(p)%wear_volume_rate = wv(:, j)
       end do
 9     call h5%close()
    end subroutine read_sweep
@@ -435,6 +497,7 @@ contains
          return
       end if
       merged = first
+      merged%parameters_source = trim(paths(1))
       merged%shard_index = 1;  merged%shard_count = 1
       merged%points = [(p, p = 1, size(results))]
       call write_sweep(out_prefix, merged, results, write_text, err)
@@ -479,6 +542,15 @@ contains
          end if
       end do
    end subroutine check_merge_paths
+
+   !> A number with 17 significant digits and a decimal point, as every reader takes it.
+   function num(x) result(t)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: t
+      character(len=32) :: buf
+      write(buf, '(es24.16e3)') x
+      t = trim(adjustl(buf))
+   end function num
 
    pure function list_missing(seen) result(t)
       logical, intent(in) :: seen(:)

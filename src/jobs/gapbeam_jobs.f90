@@ -7,7 +7,7 @@ module gapbeam_jobs
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
-      modal_damping_ratio
+      modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -17,6 +17,9 @@ module gapbeam_jobs
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
+   use gapbeam_settings, only: batch_options_t
+   use gapbeam_progress_meter, only: meter_t
+   use gapbeam_parameters, only: run_parameters, parameter_set_t
    use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
@@ -122,6 +125,15 @@ contains
       end select
    end function method_text
 
+   !> The run's parameters with what the built model resolved.
+   function model_parameters(dk, model) result(p)
+      type(deck_t), intent(in) :: dk                   !! deck
+      type(model_t), intent(in) :: model               !! the model built from it
+      type(parameter_set_t) :: p
+      p = run_parameters(dk, model%stop_stiffness, model%f1_open_hz, &
+                         model%omega_max / (2.0_dp * pi), model%n)
+   end function model_parameters
+
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
       character(len=:), allocatable :: t
@@ -148,9 +160,10 @@ contains
       st = dk%structure
       select case (dk%calibrate%parameter)
       case ('root_k_theta')
-         st%root%k_theta = value;  units = 'N m/rad'
+         st%root%k_theta = value;  units = 'N m rad-1'
       case ('spring')
-         st%springs(dk%calibrate%index)%stiffness = value;  units = 'N/m or N m/rad'
+         st%springs(dk%calibrate%index)%stiffness = value
+         units = trim(merge('N m-1    ', 'N m rad-1', st%springs(dk%calibrate%index)%dof == dof_w))
       case ('thickness')
          st%beam%thickness = value;  units = 'm'
       case ('width')
@@ -203,7 +216,7 @@ contains
       if (any(dk%study%series == 'auto')) ref = 'auto'
       write(output_unit, '(a)') work_precision_summary(results, ref)
       call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                ref, e)
+                                ref, e, model_parameters(dk, model))
    end subroutine run_work_precision
 
    subroutine run_stability(dk, e)
@@ -227,7 +240,7 @@ contains
             // str(steps(k)%measured / steps(k)%theory)
       end do
       call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
-                           rho, steps, model%omega_max, e)
+                           rho, steps, model%omega_max, e, model_parameters(dk, model))
    end subroutine run_stability
 
    subroutine run_model_size(dk, e)
@@ -259,12 +272,19 @@ contains
       else
          write(output_unit, '(a)') 'recommended: none meets every tolerance'
       end if
-      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e)
+      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e, &
+                            run_parameters(dk))
    end subroutine run_model_size
 
-   subroutine run_transient_analysis(dk, e)
+   !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)
+   !> count the forcing periods integrated: the run's, then the exponent's two trajectories.
+   subroutine run_transient_analysis(dk, e, batch)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
+      type(batch_options_t), intent(in), optional :: batch   !! progress options
+      type(batch_options_t) :: opt
+      type(meter_t) :: meter
+      real(dp) :: n_run
       type(model_t) :: model
       type(transient_result_t) :: res
       type(point_result_t) :: diag
@@ -292,8 +312,17 @@ contains
       write(output_unit, '(a)') 'solver: ' // method_text(dk) // ', step control ' &
          // trim(dk%solver%step_control) // ', T/' // str(dk%solver%steps_per_period) &
          // ', events ' // merge('located', 'ignored', dk%solver%locate_events)
-      call integrate(model, dk%solver, dk%output, u0, v0, res, e)
-      if (allocated(e)) return
+      if (present(batch)) opt = batch
+      n_run = real(dk%solver%transient_periods, dp) + real(dk%solver%record_periods, dp)
+      call meter%start('transient', 'periods', &
+         n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
+         .not. opt%quiet, opt%progress_interval_s)
+      call integrate(model, dk%solver, dk%output, u0, v0, res, e, monitor=meter)
+      if (allocated(e)) then
+         call meter%finish(meter%done)
+         return
+      end if
+      call meter%break_line()
       write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
          // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &
          // ' split at contact events; dt from ' // str(res%dt_smallest) // ' to ' &
@@ -324,7 +353,10 @@ contains
          // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation &
          - res%stored_energy_change) // ' J'
-      call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e)
+      meter%offset = n_run
+      meter%t = -1.0_dp;  meter%dt = -1.0_dp
+      call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e, meter)
+      call meter%finish(meter%done)
       if (allocated(e)) return
       write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
          // str(diag%period) // ' found up to ' // str(dk%diagnostics%period_max) &
@@ -333,11 +365,13 @@ contains
          // ' periods)'
       call write_transient(dk, model, res, diag, e)
       if (allocated(e)) return
-      if (dk%output%write_text) then
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5, .history.dat, ' &
-            // '.poincare.dat'
-      else
-         write(output_unit, '(a)') 'files: ' // trim(dk%job%output) // '.h5'
-      end if
+      block
+         character(len=:), allocatable :: files
+         files = trim(dk%job%output) // '.h5'
+         if (dk%output%write_text) files = files // ', .history.dat, .poincare.dat'
+         if (dk%output%state_history) files = files // ', .xdmf'
+         if (dk%output%state_history .and. dk%output%write_text) files = files // ', .shape.dat'
+         write(output_unit, '(a)') 'files: ' // files
+      end block
    end subroutine run_transient_analysis
 end module gapbeam_jobs

@@ -1,6 +1,11 @@
 !> Runs a sweep job: its shard of the work items in chunks of parallel work, a checkpoint
-!> record for every finished point and a progress line after every chunk (both outside the
-!> parallel region), then the result files.
+!> record for every finished point and progress (both outside the parallel region), then the
+!> result files.
+!>
+!> In continuation mode the lines of a chunk are run in rounds of a few points along every
+!> line (each point still starting from the final state of the one before, so the results are
+!> the same), so that a sweep of one long line reports its progress and checkpoints its points
+!> as it goes. The time limit is checked between chunks (whole lines) only.
 module gapbeam_sweep_job
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
    !$ use omp_lib, only: omp_get_max_threads
@@ -16,6 +21,9 @@ module gapbeam_sweep_job
       checkpoint_close
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
    use gapbeam_files, only: make_parent_directory
+   use gapbeam_progress_meter, only: meter_t
+   use gapbeam_parameters, only: run_parameters
+   use gapbeam_kinds, only: pi
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -49,9 +57,10 @@ contains
       integer, allocatable :: mine(:), todo(:), pts(:)
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_failed, &
-         n_run
+         n_pos, block, j1
+      type(meter_t) :: meter
       integer(int64) :: c0, c1, rate
-      real(dp) :: elapsed, per_point
+      real(dp) :: elapsed
       character(len=:), allocatable :: prefix, report
 
       complete = .false.
@@ -102,34 +111,38 @@ contains
          // str(batch%shard_count) // ': ' // str(n_total) // ' points, ' &
          // str(n_done) // ' already in the checkpoint; ' // str(threads) // ' threads'
 
-      first = 1;  n_run = 0
+      first = 1
+      call meter%start('sweep', 'points', real(n_total, dp), real(n_done, dp), &
+         deck%sweep%progress .and. .not. batch%quiet, batch%progress_interval_s)
       do while (first <= size(todo))
          last = min(size(todo), first + chunk - 1)
-         call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                        todo(first:last), u0, v0, results)
-         do k = first, last
-            pts = item_points(deck%sweep, todo(k))
-            do j = 1, size(pts)
-               done(pts(j)) = .true.
-               n_done = n_done + 1;  n_run = n_run + 1
-               if (deck%sweep%checkpoint .and. results(pts(j))%status == 0) then
-                  call checkpoint_append(ck, pts(j), results(pts(j)), err)
-                  if (allocated(err)) return
-               end if
+         if (deck%sweep%mode == 'continuation') then
+            ! rounds of `block` positions along every line of the chunk: about 8 points per
+            ! thread per round, so that the barrier at the end of a round costs little
+            n_pos = size(item_points(deck%sweep, todo(first)))
+            block = max(1, (8 * threads + (last - first)) / (last - first + 1))
+            do j1 = 1, n_pos, block
+               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+                              todo(first:last), u0, v0, results, j1, j1 + block - 1)
+               call finish_points(deck%sweep, todo(first:last), j1, j1 + block - 1, results, &
+                                  deck%sweep%checkpoint, ck, done, n_done, err)
+               if (allocated(err)) return
+               call meter%update(real(n_done, dp))
             end do
-         end do
+         else
+            call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+                           todo(first:last), u0, v0, results)
+            call finish_points(deck%sweep, todo(first:last), 1, 1, results, &
+                               deck%sweep%checkpoint, ck, done, n_done, err)
+            if (allocated(err)) return
+            call meter%update(real(n_done, dp))
+         end if
          first = last + 1
          call system_clock(c1)
          elapsed = real(c1 - c0, dp) / real(rate, dp)
-         if (deck%sweep%progress) then
-            per_point = elapsed / max(1, n_run)
-            write(error_unit, '(a)') 'sweep: ' // str(n_done) // '/' // str(n_total) &
-               // ' points, ' // str(1.0_dp / per_point) // ' points/s, ' &
-               // str(per_point * (n_total - n_done)) // ' s left'
-            flush(error_unit)
-         end if
          if (batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .and. &
              first <= size(todo)) then
+            call meter%finish(real(n_done, dp))
             call checkpoint_close(ck, delete=.false.)
             write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
                // str(n_total) // ' points; the checkpoint ' // prefix // '.checkpoint keeps ' &
@@ -137,6 +150,7 @@ contains
             return
          end if
       end do
+      call meter%finish()
 
       n_failed = 0
       do k = 1, size(mine)
@@ -156,6 +170,8 @@ contains
       sf%shard_index = batch%shard_index
       sf%shard_count = batch%shard_count
       sf%points = sorted_points(deck%sweep, mine)
+      sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
+                                     base%omega_max / (2.0_dp * pi), base%n)
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
@@ -166,7 +182,36 @@ contains
          // trim(merge(', .sweep.dat, .bifurcation.dat', '                              ', &
          deck%output%write_text))
       complete = .true.
+
    end subroutine run_sweep_job
+
+   !> Positions j_first..j_last of the lines (points) of `items` are done: mark them, count
+   !> them and append each successful one to the checkpoint (when there is one).
+   subroutine finish_points(sw, items, j_first, j_last, results, with_checkpoint, ck, done, &
+                            n_done, err)
+      type(sweep_settings_t), intent(in) :: sw           !! sweep
+      integer, intent(in) :: items(:)                    !! work items just run
+      integer, intent(in) :: j_first, j_last             !! positions along each item
+      type(point_result_t), intent(in) :: results(:)     !! results, by point
+      logical, intent(in) :: with_checkpoint             !! append to `ck`
+      type(checkpoint_t), intent(inout) :: ck            !! the checkpoint
+      logical, intent(inout) :: done(:)                  !! points done, by point
+      integer, intent(inout) :: n_done                   !! count of points done
+      type(error_t), allocatable, intent(out) :: err     !! checkpoint write failure
+      integer :: k, j
+      integer, allocatable :: line(:)
+      do k = 1, size(items)
+         line = item_points(sw, items(k))
+         do j = j_first, min(j_last, size(line))
+            done(line(j)) = .true.
+            n_done = n_done + 1
+            if (with_checkpoint .and. results(line(j))%status == 0) then
+               call checkpoint_append(ck, line(j), results(line(j)), err)
+               if (allocated(err)) return
+            end if
+         end do
+      end do
+   end subroutine finish_points
 
    !> `text` with every new line replaced by `by`.
    pure function replace_new_lines(text, by) result(t)

@@ -1,0 +1,83 @@
+!> The deflected shape of the beam between the nodes, from the nodal values with the cubic
+!> Hermite shape functions of the element (the shape the finite element model assumes), for
+!> output: mode shapes drawn as the model sees them, the beam in motion.
+!>
+!> On element e (nodes e and e+1, length le, xi = (x - x_e)/le in [0, 1]):
+!>    w(xi) = N1 w_e + N2 theta_e + N3 w_e+1 + N4 theta_e+1
+!>    N1 = 1 - 3 xi^2 + 2 xi^3,  N2 = le (xi - 2 xi^2 + xi^3),
+!>    N3 = 3 xi^2 - 2 xi^3,      N4 = le (xi^3 - xi^2).
+!> A fixed dof (dof_of = 0) is zero. Points: x = 0, then `per_element` points on each element
+!> ending at its right node, so the nodes are among them: n = n_elem * per_element + 1.
+module gapbeam_deflection
+   use gapbeam_kinds, only: dp
+   use gapbeam_model, only: system_t
+   use gapbeam_description, only: dof_w, dof_theta
+   implicit none
+   private
+   public :: shape_points, deflection, nodal_values
+
+contains
+
+   !> The x of the shape points [m].
+   pure function shape_points(sys, per_element) result(x)
+      type(system_t), intent(in) :: sys              !! assembled structure (n_node nodes)
+      integer, intent(in) :: per_element            !! points per element (>= 1)
+      real(dp), allocatable :: x(:)
+      integer :: e, k, n_elem
+      n_elem = sys%n_node - 1
+      allocate(x(n_elem * per_element + 1))
+      x(1) = 0.0_dp
+      do e = 1, n_elem
+         do k = 1, per_element
+            x(1 + (e - 1) * per_element + k) = sys%element_length &
+               * (real(e - 1, dp) + real(k, dp) / real(per_element, dp))
+         end do
+      end do
+   end function shape_points
+
+   !> w at the shape points for the dof vector u [m].
+   pure function deflection(sys, u, per_element) result(w)
+      type(system_t), intent(in) :: sys              !! assembled structure
+      real(dp), intent(in) :: u(:)                   !! dof values (w in m, theta in rad)
+      integer, intent(in) :: per_element            !! points per element (>= 1)
+      real(dp), allocatable :: w(:)
+      real(dp) :: we(2), te(2), xi, le
+      integer :: e, k, n_elem
+      n_elem = sys%n_node - 1
+      le = sys%element_length
+      allocate(w(n_elem * per_element + 1))
+      w(1) = value_of(sys, u, dof_w, 1)
+      do e = 1, n_elem
+         we = [value_of(sys, u, dof_w, e), value_of(sys, u, dof_w, e + 1)]
+         te = [value_of(sys, u, dof_theta, e), value_of(sys, u, dof_theta, e + 1)]
+         do k = 1, per_element
+            xi = real(k, dp) / real(per_element, dp)
+            w(1 + (e - 1) * per_element + k) = (1.0_dp - 3.0_dp * xi**2 + 2.0_dp * xi**3) * we(1) &
+               + le * (xi - 2.0_dp * xi**2 + xi**3) * te(1) &
+               + (3.0_dp * xi**2 - 2.0_dp * xi**3) * we(2) + le * (xi**3 - xi**2) * te(2)
+         end do
+      end do
+   end function deflection
+
+   !> w and theta at every node (0 where the dof is fixed).
+   pure subroutine nodal_values(sys, u, w, theta)
+      type(system_t), intent(in) :: sys              !! assembled structure
+      real(dp), intent(in) :: u(:)                   !! dof values
+      real(dp), intent(out) :: w(:), theta(:)        !! (n_node) [m], [rad]
+      integer :: i
+      do i = 1, sys%n_node
+         w(i) = value_of(sys, u, dof_w, i)
+         theta(i) = value_of(sys, u, dof_theta, i)
+      end do
+   end subroutine nodal_values
+
+   pure real(dp) function value_of(sys, u, dof, node)
+      type(system_t), intent(in) :: sys
+      real(dp), intent(in) :: u(:)
+      integer, intent(in) :: dof, node
+      integer :: g
+      g = sys%dof_of(dof, node)
+      value_of = 0.0_dp
+      if (g > 0) value_of = u(g)
+   end function value_of
+end module gapbeam_deflection

@@ -1,0 +1,56 @@
+!> The model of a deck with numeric variables set to new values (gapbeam_deck_variable): the
+!> deck is copied, the values set and the model rebuilt, so that every rule of the deck (the
+!> stop-stiffness rule, damping ratios) applies again. The forcing variables only change the
+!> forcing of the model, so with the deck's model at hand they skip the rebuild.
+module gapbeam_deck_parameter
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t
+   use gapbeam_deck, only: deck_t
+   use gapbeam_deck_variable, only: deck_variable_t, set_deck_value
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_model
+   implicit none
+   private
+   public :: model_with_values
+
+contains
+
+   !> The model of `deck` with vars(k) = values(k); `base` (the model of `deck` itself) is
+   !> copied instead of a rebuild when every variable is a forcing variable.
+   subroutine model_with_values(deck, vars, values, model, err, base)
+      type(deck_t), intent(in) :: deck                   !! deck
+      type(deck_variable_t), intent(in) :: vars(:)       !! variables (checked on this deck)
+      real(dp), intent(in) :: values(:)                  !! their values
+      type(model_t), intent(out) :: model                !! the model
+      type(error_t), allocatable, intent(out) :: err     !! value out of range, build failure
+      type(model_t), intent(in), optional :: base        !! model of `deck`
+      type(deck_t) :: d
+      real(dp), allocatable :: u0(:), v0(:)
+      integer :: k
+      if (present(base) .and. all(vars%group == 'forcing')) then
+         model = base
+         do k = 1, size(vars)
+            if (vars(k)%name == 'frequency_hz') then
+               if (.not. (values(k) > 0.0_dp)) then
+                  call set_deck_value(d, vars(k), values(k), err)   ! the range message
+                  return
+               end if
+               model%omega = 2.0_dp * pi * values(k)
+            else
+               if (.not. (values(k) >= 0.0_dp)) then
+                  call set_deck_value(d, vars(k), values(k), err)
+                  return
+               end if
+               model%half_amplitude = 0.5_dp * values(k)
+            end if
+         end do
+         return
+      end if
+      d = deck
+      do k = 1, size(vars)
+         call set_deck_value(d, vars(k), values(k), err)
+         if (allocated(err)) return
+      end do
+      call build_model(d, model, u0, v0, err)
+   end subroutine model_with_values
+end module gapbeam_deck_parameter
