@@ -30,6 +30,8 @@ program test_tubes
    use gapbeam_eigen, only: solve_modes
    use gapbeam_calibration, only: first_frequency
    use gapbeam_description, only: beam_ei, beam_rho_a
+   use gapbeam_continuation, only: run_continuation
+   use gapbeam_continuation_types, only: continuation_result_t
    implicit none
    character(len=*), parameter :: whirl = 'test/decks/tube_whirl.nml'
    character(len=*), parameter :: slide = 'test/decks/tube_slide.nml'
@@ -463,6 +465,19 @@ contains
                  has(err, "step_control = 'error'"))
       call run_deck(cantilever, [character(len=80) :: "&reduction kind = 'modal' /"], m, res, err)
       call check("a modal reduction refuses a two-plane model", has(err, '&reduction'))
+      ! continuation: the deck is valid, the model is refused when the branches start
+      block
+         type(deck_t) :: deck
+         type(continuation_result_t) :: cres
+         call read_deck(whirl, [character(len=120) :: "&job analysis = 'continuation' /", &
+            "&continuation parameter = '&forcing frequency_hz', parameter_min = 6.0, " &
+            // "parameter_max = 10.0 /"], deck, err)
+         call check('a continuation deck of the whirl model is valid', .not. allocated(err))
+         if (.not. allocated(err)) call run_continuation(deck, cres, err)
+         call check('continuation refuses a circular clearance, names it and the &sweep', &
+                    has(err, 'continuation cannot follow this model') .and. &
+                    has(err, 'circular clearance') .and. has(err, '&sweep'))
+      end block
    end subroutine refusals
 
    logical function has(err, text)

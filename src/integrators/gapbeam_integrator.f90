@@ -29,7 +29,7 @@ module gapbeam_integrator
    private
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
-      dof_label, resolve_method, tube_refusal, ring_load
+      dof_label, resolve_method, tube_refusal, tube_physics_text, ring_load
 
    !> the tolerance below which 'auto' considers rk45 for a Hertz stop: Newmark's error
    !> levels off near 1e-8 .. 1e-7 in double precision (work-precision study)
