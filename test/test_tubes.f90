@@ -465,6 +465,10 @@ contains
                  has(err, "step_control = 'error'"))
       call run_deck(cantilever, [character(len=80) :: "&reduction kind = 'modal' /"], m, res, err)
       call check("a modal reduction refuses a two-plane model", has(err, '&reduction'))
+      call run_deck(whirl, [character(len=80) :: '&diagnostics lyapunov_periods = 10 /'], m, &
+                    res, err)
+      call check('a Lyapunov exponent is refused with ring supports, naming lyapunov_periods = 0', &
+                 has(err, 'lyapunov_periods = 0') .and. has(err, 'ring supports'))
       ! continuation: the deck is valid, the model is refused when the branches start
       block
          type(deck_t) :: deck

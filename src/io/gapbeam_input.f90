@@ -17,7 +17,7 @@ module gapbeam_input
       stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
       stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
       beam_rho_a, dof_v, dof_theta_v, point_force_t, stop_shape_words, end_condition_words, &
-      tip_condition_words, law_hertz
+      tip_condition_words, law_hertz, stop_is_ring
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
@@ -172,6 +172,17 @@ contains
       call read_continuation(srcs, deck, group_present(srcs, 'continuation'), err)   ! issue 14
       if (failed(err, path)) return
       call check_sizes(deck, err);  if (failed(err, path)) return
+      if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
+          (deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep')) then
+         ! the two trajectories restart from (u, v) every period: a stick anchor is not part
+         ! of it, and the fixed steps they take cannot end at every stick-slip switch
+         call fatal_error(err, path // ': group &diagnostics: lyapunov_periods = ' &
+            // str(deck%diagnostics%lyapunov_periods) // ': the Lyapunov exponent is not ' &
+            // 'available with ring supports (circular clearance or friction: their stick ' &
+            // 'state is not part of the state (u, v) the exponent perturbs); set ' &
+            // 'lyapunov_periods = 0 (the label then comes from the period detection alone)')
+         return
+      end if
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
@@ -194,6 +205,16 @@ contains
       end if
    end subroutine read_deck
 
+   !> Whether any stop is a ring support (circular clearance or friction).
+   pure logical function any_ring(stops)
+      type(stop_t), intent(in), allocatable :: stops(:)
+      integer :: k
+      any_ring = .false.
+      if (.not. allocated(stops)) return
+      do k = 1, size(stops)
+         if (stop_is_ring(stops(k))) any_ring = .true.
+      end do
+   end function any_ring
 
    !> True when `err` is set; its message then starts with the deck path.
    logical function failed(err, path)
