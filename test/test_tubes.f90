@@ -32,6 +32,9 @@ program test_tubes
    use gapbeam_description, only: beam_ei, beam_rho_a
    use gapbeam_continuation, only: run_continuation
    use gapbeam_continuation_types, only: continuation_result_t
+   use gapbeam_results, only: point_result_t
+   use gapbeam_sweep, only: run_items
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable
    implicit none
    character(len=*), parameter :: whirl = 'test/decks/tube_whirl.nml'
    character(len=*), parameter :: slide = 'test/decks/tube_slide.nml'
@@ -54,6 +57,7 @@ program test_tubes
    call accuracy_against_converged()
    call end_conditions()
    call refusals()
+   call sweep_over_clearance()
    call finish('test_tubes')
 
 contains
@@ -483,6 +487,45 @@ contains
                     has(err, 'circular clearance') .and. has(err, '&sweep'))
       end block
    end subroutine refusals
+
+   !> A sweep whose second axis sets a deck variable (&sweep variable = '&stops gap(1)'): each
+   !> point equals a transient run of the deck with that clearance (the model rebuilt), and the
+   !> clearance changes the work rate.
+   subroutine sweep_over_clearance()
+      type(deck_t) :: deck
+      type(model_t) :: base, m
+      type(transient_result_t) :: res
+      type(point_result_t) :: pts(2)
+      type(deck_variable_t) :: vars(1)
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:)
+      character(len=100), parameter :: short = &
+         '&solver transient_periods = 4, record_periods = 4, tolerance = 1.0e-4 /'
+      call read_deck(whirl, [character(len=160) :: "&job analysis = 'sweep' /", short, &
+         "&sweep frequency_hz = 8.0, amplitude_pp = 0.8e-3, 1.0e-3, progress = .false., " &
+         // "variable = '&stops gap(1)' /"], deck, err)
+      call check('a sweep over the clearance (&sweep variable) reads', .not. allocated(err))
+      if (allocated(err)) return
+      call check('its second axis holds the clearances', size(deck%sweep%amplitude_pp) == 2)
+      call parse_deck_variable(deck%sweep%variable(1), vars(1), err)
+      if (.not. allocated(err)) call check_deck_variable(deck, vars(1), err)
+      if (.not. allocated(err)) call build_model(deck, base, u0, v0, err)
+      call check('its variable parses and its model builds', .not. allocated(err))
+      if (allocated(err)) return
+      call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, [1, 2], u0, &
+                     v0, pts, deck=deck, vars=vars)
+      call check('both sweep points ran', all(pts%status == 0))
+      call run_deck(whirl, [character(len=100) :: short, '&stops gap = 0.8e-3 /'], m, res, err)
+      call check('the deck with gap 0.8 mm runs', .not. allocated(err))
+      if (allocated(err)) return
+      call check_close('sweep point at gap 0.8 mm: normal work rate as the deck with that gap', &
+                       pts(1)%normal_work_rate(1), res%normal_work_rate(1), 1.0e-12_dp)
+      call check_close('sweep point at gap 0.8 mm: peak force as the deck with that gap', &
+                       pts(1)%peak_force(1), res%peak_force(1), 1.0e-12_dp)
+      call check('the clearance changes the peak force (0.8 mm against 1.0 mm)', &
+                 abs(pts(1)%peak_force(1) - pts(2)%peak_force(1)) > 1.0e-3_dp &
+                 * pts(2)%peak_force(1))
+   end subroutine sweep_over_clearance
 
    logical function has(err, text)
       type(error_t), allocatable, intent(in) :: err

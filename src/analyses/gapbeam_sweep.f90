@@ -18,6 +18,9 @@ module gapbeam_sweep
    use gapbeam_results, only: transient_result_t, point_result_t, lyapunov_t
    use gapbeam_transient, only: integrate
    use gapbeam_attractor, only: point_diagnostics
+   use gapbeam_deck, only: deck_t
+   use gapbeam_deck_variable, only: deck_variable_t
+   use gapbeam_deck_parameter, only: model_with_values
    implicit none
    private
    public :: n_points, n_items, item_points, point_forcing, run_point, run_items
@@ -72,8 +75,10 @@ contains
       a_pp = sw%amplitude_pp((p - 1) / nf + 1)
    end subroutine point_forcing
 
-   !> Run one point from (u0, v0): transient, record, diagnostics.
-   subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr)
+   !> Run one point from (u0, v0): transient, record, diagnostics. With `deck` and `vars` the
+   !> amplitude-axis value `a_pp` is the value of every variable of `vars` instead (the model
+   !> rebuilt from the deck with them set: gapbeam_deck_parameter).
+   subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr, deck, vars)
       type(model_t), intent(in) :: base                !! model (forcing replaced)
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(output_settings_t), intent(in) :: out         !! recording settings
@@ -81,18 +86,24 @@ contains
       real(dp), intent(in) :: f_hz, a_pp                 !! forcing [Hz], [m]
       real(dp), intent(in) :: u0(:), v0(:)               !! initial state
       type(point_result_t), intent(out) :: pr            !! result
+      type(deck_t), intent(in), optional :: deck         !! deck of `base`
+      type(deck_variable_t), intent(in), optional :: vars(:)   !! variables the axis sets
       type(model_t) :: model
       type(transient_result_t) :: res
       type(output_settings_t) :: o
       type(error_t), allocatable :: err
       integer(int64) :: c0, c1, rate
       call system_clock(c0, rate)
-      model = base
+      if (present(vars)) then
+         call model_with_values(deck, vars, spread(a_pp, 1, size(vars)), model, err)
+      else
+         model = base
+         model%half_amplitude = 0.5_dp * a_pp
+      end if
       model%omega = 2.0_dp * pi * f_hz
-      model%half_amplitude = 0.5_dp * a_pp
       o = out
       o%history_periods = 0
-      call integrate(model, cfg, o, u0, v0, res, err)
+      if (.not. allocated(err)) call integrate(model, cfg, o, u0, v0, res, err)
       if (.not. allocated(err)) then
          pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
          pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
@@ -140,7 +151,8 @@ contains
    !> the final state of the point before; with `first`, `last` only positions first..last of
    !> each line are run, the point before `first` having been run already (its final state is
    !> in `results`), so a line run in several calls gives the same results as in one.
-   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results, first, last)
+   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results, first, last, deck, &
+                        vars)
       type(model_t), intent(in) :: base                !! model
       type(sweep_settings_t), intent(in) :: sw           !! sweep
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
@@ -150,6 +162,9 @@ contains
       real(dp), intent(in) :: u0(:), v0(:)               !! initial state of every item
       type(point_result_t), intent(inout) :: results(:)  !! indexed by point
       integer, intent(in), optional :: first, last       !! positions along each line to run
+      type(deck_t), intent(in), optional :: deck         !! deck of `base` (with `vars`)
+      type(deck_variable_t), intent(in), optional :: vars(:)   !! variables the amplitude
+                                                         !! axis sets (run_point)
       integer :: i, j, p, j1, j2
       integer, allocatable :: pts(:)
       real(dp), allocatable :: u(:), v(:)
@@ -158,7 +173,7 @@ contains
       if (present(first)) j1 = max(1, first)
       if (present(last)) j2 = last
       !$omp parallel do default(none) schedule(dynamic, 1) &
-      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results, j1, j2) &
+      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results, j1, j2, deck, vars) &
       !$omp private(i, j, p, pts, u, v, f_hz, a_pp)
       do i = 1, size(items)
          pts = item_points(sw, items(i))
@@ -170,7 +185,11 @@ contains
          do j = j1, min(j2, size(pts))
             p = pts(j)
             call point_forcing(sw, p, f_hz, a_pp)
-            call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p))
+            if (present(vars)) then
+               call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p), deck, vars)
+            else
+               call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p))
+            end if
             if (sw%mode == 'continuation') then
                u = results(p)%u_end;  v = results(p)%v_end
             end if

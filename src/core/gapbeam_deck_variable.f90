@@ -9,8 +9,11 @@
 !>
 !> Variables (real scalars; list groups take an entry index, default 1):
 !>   &beam length youngs_modulus density width thickness area second_moment fibre_distance
+!>         added_mass
 !>   &root k_theta      &springs(i) stiffness      &masses(i) mass inertia
-!>   &stops(i) gap stiffness damping exponent rule_factor rule_f1_ratio rule_f1_hz
+!>   &stops(i) gap stiffness damping exponent rule_factor rule_f1_ratio rule_f1_hz friction
+!>         wear_coefficient
+!>   &point_forces(i) amplitude
 !>   &damping mass_coefficient stiffness_coefficient frequency1_hz ratio1 frequency2_hz ratio2
 !>   &forcing frequency_hz amplitude_pp
 !> Setting a damping ratio or frequency with model = 'ratios' recomputes the Rayleigh
@@ -27,9 +30,10 @@ module gapbeam_deck_variable
 
    !> The variables, 'group:name' (documentation and messages).
    character(len=*), parameter :: deck_variable_words = '&beam length, youngs_modulus, ' &
-      // 'density, width, thickness, area, second_moment, fibre_distance; &root k_theta; ' &
-      // '&springs stiffness; &masses mass, inertia; &stops gap, stiffness, damping, exponent, ' &
-      // 'rule_factor, rule_f1_ratio, rule_f1_hz; &damping mass_coefficient, ' &
+      // 'density, width, thickness, area, second_moment, fibre_distance, added_mass; &root ' &
+      // 'k_theta; &springs stiffness; &masses mass, inertia; &stops gap, stiffness, damping, ' &
+      // 'exponent, rule_factor, rule_f1_ratio, rule_f1_hz, friction, wear_coefficient; ' &
+      // '&point_forces amplitude; &damping mass_coefficient, ' &
       // 'stiffness_coefficient, frequency1_hz, ratio1, frequency2_hz, ratio2; &forcing ' &
       // 'frequency_hz, amplitude_pp'
 
@@ -90,7 +94,7 @@ contains
          return
       end if
       select case (g)
-      case ('springs', 'masses', 'stops')
+      case ('springs', 'masses', 'stops', 'point_forces')
          var%index = max(idx, 1)
       case default
          if (idx > 0) then
@@ -116,6 +120,7 @@ contains
          case ('density');  var%units = 'kg/m^3'
          case ('area');  var%units = 'm^2'
          case ('second_moment');  var%units = 'm^4'
+         case ('added_mass');  var%units = 'kg/m';  var%strict = .false.
          case default;  ok = .false.
          end select
       case ('root')
@@ -133,8 +138,13 @@ contains
          case ('exponent');  var%units = '-';  var%lower = 1.0_dp;  var%strict = .false.
          case ('rule_factor', 'rule_f1_ratio');  var%units = '-'
          case ('rule_f1_hz');  var%units = 'Hz'
+         case ('friction');  var%units = '-';  var%strict = .false.
+         case ('wear_coefficient');  var%units = '1/Pa';  var%strict = .false.
          case default;  ok = .false.
          end select
+      case ('point_forces')
+         ok = var%name == 'amplitude';  var%units = 'N';  var%strict = .false.
+         var%lower = -huge(1.0_dp)
       case ('damping')
          var%strict = .false.
          select case (trim(var%name))
@@ -178,6 +188,9 @@ contains
       case ('stops')
          n = 0
          if (allocated(deck%stops)) n = size(deck%stops)
+      case ('point_forces')
+         n = 0
+         if (allocated(deck%forcing%forces)) n = size(deck%forcing%forces)
       case ('root')
          if (deck%structure%root%condition /= 'spring') call fatal_error(err, lab &
             // ": the root is clamped (needs &root condition = 'spring')")
@@ -240,6 +253,10 @@ contains
          case ('stops:rule_factor');  x = deck%stops(i)%rule_factor
          case ('stops:rule_f1_ratio');  x = deck%stops(i)%rule_f1_ratio
          case ('stops:rule_f1_hz');  x = deck%stops(i)%rule_f1_hz
+         case ('stops:friction');  x = deck%stops(i)%friction
+         case ('stops:wear_coefficient');  x = deck%stops(i)%wear_coefficient
+         case ('beam:added_mass');  x = b%added_mass
+         case ('point_forces:amplitude');  x = deck%forcing%forces(i)%amplitude
          case ('damping:mass_coefficient');  x = deck%damping%mass_coefficient
          case ('damping:stiffness_coefficient');  x = deck%damping%stiffness_coefficient
          case ('damping:frequency1_hz');  x = deck%damping%frequency1_hz
@@ -294,6 +311,10 @@ contains
          case ('stops:rule_factor');  deck%stops(i)%rule_factor = x
          case ('stops:rule_f1_ratio');  deck%stops(i)%rule_f1_ratio = x
          case ('stops:rule_f1_hz');  deck%stops(i)%rule_f1_hz = x
+         case ('stops:friction');  deck%stops(i)%friction = x
+         case ('stops:wear_coefficient');  deck%stops(i)%wear_coefficient = x
+         case ('beam:added_mass');  b%added_mass = x
+         case ('point_forces:amplitude');  deck%forcing%forces(i)%amplitude = x
          case ('damping:mass_coefficient');  deck%damping%mass_coefficient = x
          case ('damping:stiffness_coefficient');  deck%damping%stiffness_coefficient = x
          case ('damping:frequency1_hz', 'damping:ratio1', 'damping:frequency2_hz', &

@@ -139,6 +139,9 @@ module gapbeam_settings
       character(len=16) :: axis = 'frequency'        !! continuation lines run along this axis
       real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz]
       real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m]
+      !> deck variables that the amplitude axis sets instead of &forcing amplitude_pp (each to
+      !> the axis value, e.g. '&stops gap(1)', '&stops gap(2)'); blank: amplitude_pp
+      character(len=48) :: variable(8) = ''
       logical :: progress = .true.                   !! progress on standard error
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come

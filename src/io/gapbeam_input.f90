@@ -1548,16 +1548,18 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=*), parameter :: vars = 'mode:16 direction:16 axis:16 frequency_hz() ' &
          // 'amplitude_pp() frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint'
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint variable():48'
       character(len=16) :: mode, direction, axis
+      character(len=48) :: variable(8)
       real(dp), allocatable :: frequency_hz(:), amplitude_pp(:), f_given(:), a_given(:)
       real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
       integer :: n_frequency, n_amplitude, chunk, nf, na
       logical :: progress, checkpoint
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         progress, chunk, checkpoint
+         progress, chunk, checkpoint, variable
       allocate(frequency_hz(naxis), amplitude_pp(naxis))
+      variable = cfg%variable
       mode = cfg%mode;  direction = cfg%direction;  axis = cfg%axis
       frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp
       frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
@@ -1596,6 +1598,7 @@ contains
       end if
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
+      cfg%variable = variable
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)

@@ -28,6 +28,10 @@ module gapbeam_sweep_output
       character(len=:), allocatable :: title         !! job title
       real(dp), allocatable :: grid_frequency_hz(:)  !! frequency axis [Hz]
       real(dp), allocatable :: grid_amplitude_pp(:)  !! amplitude axis [m]
+      !> what the amplitude axis sets: 'amplitudes' (amplitude_pp of the base motion) or
+      !> 'values of &stops gap(1), ...' (&sweep variable)
+      character(len=:), allocatable :: axis_variable
+      character(len=:), allocatable :: axis_units    !! units of the amplitude axis ('m')
       integer :: shard_index = 1                     !! this file's shard
       integer :: shard_count = 1                     !! shards of the sweep
       integer, allocatable :: points(:)              !! point indices in the file (ascending)
@@ -65,6 +69,22 @@ contains
       call set%finish(err)
    end subroutine write_sweep
 
+   !> What the amplitude axis sets, 'amplitudes' unless the sweep names deck variables.
+   pure function axis_text(sf) result(t)
+      type(sweep_file_t), intent(in) :: sf
+      character(len=:), allocatable :: t
+      t = 'amplitudes'
+      if (allocated(sf%axis_variable)) t = sf%axis_variable
+   end function axis_text
+
+   !> '' or '; amplitude axis: values of <variables> [units]' for the table's title line.
+   function axis_note(sf) result(t)
+      type(sweep_file_t), intent(in) :: sf
+      character(len=:), allocatable :: t
+      t = ''
+      if (axis_text(sf) /= 'amplitudes') t = '; amplitude axis: ' // axis_text(sf) &
+         // ' [' // sf%axis_units // ']'
+   end function axis_note
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
    !> points that succeeded (from all points when none did).
@@ -199,8 +219,17 @@ contains
       call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
                     'frequency axis of the sweep grid')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
-                    'amplitude axis of the sweep grid, base displacement peak to peak')
+      if (axis_text(sf) == 'amplitudes') then
+         call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
+                       'amplitude axis of the sweep grid, base displacement peak to peak')
+      else
+         call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, sf%axis_units, err, &
+                       'second axis of the sweep grid: ' // axis_text(sf) &
+                       // ' (&sweep variable)')
+      end if
+      if (write_failed(h5, err)) return
+      call h5%write_text('/sweep/amplitude_axis', axis_text(sf), err, 'what the second ' &
+         // "axis sets: 'amplitudes' (base motion amplitude_pp) or the deck variables")
       if (write_failed(h5, err)) return
       call h5%write('/sweep/shard_index', sf%shard_index, '1', err, &
                     'shard I of this file (1 for a whole or merged sweep)')
@@ -327,7 +356,7 @@ contains
          // num(minval(sf%grid_frequency_hz)) // ' to ' // num(maxval(sf%grid_frequency_hz)) &
          // ' Hz, ' // str(size(sf%grid_amplitude_pp)) // ' amplitudes from ' &
          // num(minval(sf%grid_amplitude_pp)) // ' to ' // num(maxval(sf%grid_amplitude_pp)) &
-         // ' m', names, units, cols, err, in_place=.true.)
+         // ' m' // trim(axis_note(sf)), names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
       deallocate(cols);  allocate(cols(m * nr, 4))
       do j = 1, m
@@ -370,6 +399,13 @@ contains
       if (allocated(err)) goto 9
       call h5%read('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, err)
       if (allocated(err)) goto 9
+      sf%axis_variable = 'amplitudes';  sf%axis_units = 'm'
+      if (h5%exists('/sweep/amplitude_axis')) then
+         call h5%read_text('/sweep/amplitude_axis', sf%axis_variable, err)
+         if (allocated(err)) goto 9
+         call h5%read_attr('/sweep/grid_amplitude_pp', 'units', sf%axis_units, err)
+         if (allocated(err)) goto 9
+      end if
       call h5%read('/sweep/shard_index', sf%shard_index, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/shard_count', sf%shard_count, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/n_points_total', total, err);  if (allocated(err)) goto 9

@@ -24,6 +24,8 @@ module gapbeam_sweep_job
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters
    use gapbeam_kinds, only: pi
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
+      deck_variable_label
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -62,10 +64,13 @@ contains
       integer(int64) :: c0, c1, rate
       real(dp) :: elapsed
       character(len=:), allocatable :: prefix, report
+      type(deck_variable_t), allocatable :: vars(:)
 
       complete = .false.
       call system_clock(c0, rate)
       call build_model(deck, base, u0, v0, err)
+      if (allocated(err)) return
+      call axis_variables(deck, vars, err)
       if (allocated(err)) return
       np = n_points(deck%sweep);  ni = n_items(deck%sweep)
       mine = pack([(k, k = 1, ni)], [(mod(k - 1, batch%shard_count) + 1 &
@@ -106,7 +111,7 @@ contains
           deck%sweep%chunk == 0) chunk = max(1, size(todo))
       write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' &
          // str(size(deck%sweep%frequency_hz)) // ' frequencies x ' &
-         // str(size(deck%sweep%amplitude_pp)) // ' amplitudes), mode ' &
+         // str(size(deck%sweep%amplitude_pp)) // ' ' // axis_words(vars) // '), mode ' &
          // trim(deck%sweep%mode) // ', shard ' // str(batch%shard_index) // ' of ' &
          // str(batch%shard_count) // ': ' // str(n_total) // ' points, ' &
          // str(n_done) // ' already in the checkpoint; ' // str(threads) // ' threads'
@@ -122,16 +127,27 @@ contains
             n_pos = size(item_points(deck%sweep, todo(first)))
             block = max(1, (8 * threads + (last - first)) / (last - first + 1))
             do j1 = 1, n_pos, block
-               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                              todo(first:last), u0, v0, results, j1, j1 + block - 1)
+               if (size(vars) > 0) then
+                  call run_items(base, deck%sweep, deck%solver, deck%output, &
+                     deck%diagnostics, todo(first:last), u0, v0, results, j1, &
+                     j1 + block - 1, deck, vars)
+               else
+                  call run_items(base, deck%sweep, deck%solver, deck%output, &
+                     deck%diagnostics, todo(first:last), u0, v0, results, j1, j1 + block - 1)
+               end if
                call finish_points(deck%sweep, todo(first:last), j1, j1 + block - 1, results, &
                                   deck%sweep%checkpoint, ck, done, n_done, err)
                if (allocated(err)) return
                call meter%update(real(n_done, dp))
             end do
          else
-            call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                           todo(first:last), u0, v0, results)
+            if (size(vars) > 0) then
+               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+                              todo(first:last), u0, v0, results, deck=deck, vars=vars)
+            else
+               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
+                              todo(first:last), u0, v0, results)
+            end if
             call finish_points(deck%sweep, todo(first:last), 1, 1, results, &
                                deck%sweep%checkpoint, ck, done, n_done, err)
             if (allocated(err)) return
@@ -167,6 +183,10 @@ contains
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
+      sf%axis_variable = axis_words(vars)
+      sf%axis_units = 'm'
+      if (size(vars) > 0) sf%axis_units = trim(vars(1)%units)
+      if (sf%axis_units == '-') sf%axis_units = '1'
       sf%shard_index = batch%shard_index
       sf%shard_count = batch%shard_count
       sf%points = sorted_points(deck%sweep, mine)
@@ -184,6 +204,51 @@ contains
       complete = .true.
 
    end subroutine run_sweep_job
+
+   !> The deck variables that the amplitude axis sets (&sweep variable), parsed and checked on
+   !> the deck; none when the axis is the base motion's amplitude_pp. The continuation mode
+   !> needs the same model at every point of a line along the frequency axis only.
+   subroutine axis_variables(deck, vars, err)
+      type(deck_t), intent(in) :: deck                       !! validated deck
+      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! the variables
+      type(error_t), allocatable, intent(out) :: err         !! unknown or absent variable
+      integer :: k
+      allocate(vars(0))
+      do k = 1, size(deck%sweep%variable)
+         if (len_trim(deck%sweep%variable(k)) == 0) cycle
+         vars = [vars, deck_variable_t()]
+         call parse_deck_variable(deck%sweep%variable(k), vars(size(vars)), err)
+         if (.not. allocated(err)) call check_deck_variable(deck, vars(size(vars)), err)
+         if (allocated(err)) then
+            err%message = 'group &sweep: variable(' // str(k) // '): ' // err%message
+            return
+         end if
+      end do
+      if (size(vars) == 1) then
+         ! the base motion's own amplitude: the fast path, no rebuild
+         if (vars(1)%group == 'forcing' .and. vars(1)%name == 'amplitude_pp') deallocate(vars)
+         if (.not. allocated(vars)) allocate(vars(0))
+      end if
+      if (size(vars) > 0 .and. any(vars%group == 'forcing')) call fatal_error(err, &
+         "group &sweep: variable: the &forcing variables are the sweep's own axes " &
+         // "(frequency_hz, amplitude_pp); name other deck variables")
+   end subroutine axis_variables
+
+   !> 'amplitudes', or the variables the amplitude axis sets.
+   function axis_words(vars) result(t)
+      type(deck_variable_t), intent(in) :: vars(:)
+      character(len=:), allocatable :: t
+      integer :: k
+      if (size(vars) == 0) then
+         t = 'amplitudes'
+         return
+      end if
+      t = 'values of'
+      do k = 1, size(vars)
+         if (k > 1) t = t // ','
+         t = t // ' ' // deck_variable_label(vars(k))
+      end do
+   end function axis_words
 
    !> Positions j_first..j_last of the lines (points) of `items` are done: mark them, count
    !> them and append each successful one to the checkpoint (when there is one).
