@@ -369,6 +369,8 @@ contains
          character(len=:), allocatable :: files
          files = trim(dk%job%output) // '.h5'
          if (dk%output%write_text) files = files // ', .history.dat, .poincare.dat'
+         if (dk%output%write_text .and. model%sys%planes > 1) files = files // ', .orbit.dat, ' &
+            // '.supports.dat'
          if (dk%output%state_history) files = files // ', .xdmf'
          if (dk%output%state_history .and. dk%output%write_text) files = files // ', .shape.dat'
          write(output_unit, '(a)') 'files: ' // files

@@ -1,0 +1,84 @@
+# scripts/work_rate_map.gp - work-rate map of a sweep (issue 15): every sweep point as a tile in
+# the plane of forcing frequency [Hz] (x) and the second axis (y: the base amplitude, or the deck
+# variables a &sweep variable names, e.g. the baffle clearance), coloured by the normal work rate
+# summed over the supports (log scale), with the regime of each point marked: '1', '2', ...
+# for a periodic response of that period, 'C' chaotic, '?' undecided; a tile with no contact
+# (work rate 0) is white. From a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz],
+# 2 amplitude axis, 3 period, 4 label (p >= 1: period p; 0: undecided; -1: chaotic),
+# 5 lyapunov, 6 lyapunov_error, 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N],
+# 10 work_rate_stop1 [W], 11 normal_work_rate_total [W], 12 wear_volume_rate_total [m3/s]).
+#
+# Usage:
+#   gnuplot -e "datafile='x.sweep.dat'; outfile='x.work_rate_map.png'" scripts/work_rate_map.gp
+# Variables: datafile, outfile (required); plottitle (optional); format (png, pdf, svg:
+# scripts/terminal.gp).
+# The y axis: its name and unit from the table's title line ('amplitude axis: values of
+# <variables> [unit]'), else the base amplitude peak to peak; a value in m is drawn in mm.
+# Tiles are as large as the grid spacing (92 %). Terminal: scripts/terminal.gp; 1000x650.
+
+if (!exists("datafile") || !exists("outfile")) {
+   print "work_rate_map.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/work_rate_map.gp"
+   exit status 1
+}
+if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: work-rate map" }
+
+dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
+width = 1000; height = 650
+load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
+
+# The second axis: its name and unit from the title line.
+header = system("head -n 1 '" . datafile . "' 2>/dev/null")
+ylab = "base amplitude, peak to peak [mm]"
+yscale = 1.0e3
+apos = strstrt(header, "amplitude axis: values of ")
+if (apos > 0) {
+   rest = header[apos + 26:]
+   upos = strstrt(rest, " [")
+   yname = (upos > 0) ? rest[1:upos - 1] : rest
+   yunit = (upos > 0) ? rest[upos + 2:strlen(rest) - 1] : ""
+   if (yunit eq "m") {
+      ylab = yname . " [mm]"
+   } else {
+      yscale = 1.0
+      ylab = yname . " [" . yunit . "]"
+   }
+}
+
+stats datafile using 1 nooutput
+nrec = STATS_records
+set table $wr_f
+plot datafile using 1:(1) smooth frequency
+set table $wr_a
+plot datafile using ($2*yscale):(1) smooth frequency
+unset table
+stats $wr_f using 1 nooutput
+nf = STATS_records;  fmin = STATS_min;  fmax = STATS_max
+stats $wr_a using 1 nooutput
+na = STATS_records;  amin = STATS_min;  amax = STATS_max
+single(v) = (abs(v) > 0) ? 0.02*abs(v) : 0.05
+hf = (nf > 1) ? 0.46*(fmax - fmin)/(nf - 1) : single(fmin)
+ha = (na > 1) ? 0.46*(amax - amin)/(na - 1) : single(amin)
+
+# the colour range: the positive work rates, in decades
+stats datafile using ($11 > 0 ? log10($11) : NaN) nooutput
+lmin = floor(STATS_min);  lmax = ceil(STATS_max)
+if (lmax <= lmin) { lmax = lmin + 1 }
+
+set output outfile
+set title plottitle . ": normal work rate (all supports) and regime"
+set xlabel "forcing frequency [Hz]"
+set ylabel ylab
+set xrange [fmin - 1.2*hf : fmax + 1.2*hf]
+set yrange [amin - 1.2*ha : amax + 1.2*ha]
+set cbrange [lmin:lmax]
+set cblabel "log10 normal work rate [W]"
+set palette rgbformulae 22,13,-31
+set style fill solid 1.0 noborder
+set key off
+regime(l, p) = (l < -0.5) ? "C" : (l < 0.5) ? "?" : sprintf("%d", int(p))
+plot datafile using 1:($2*yscale):(hf):(ha):($11 > 0 ? log10($11) : NaN) \
+        with boxxyerror fc palette, \
+     datafile using 1:($2*yscale):(hf):(ha):($11 > 0 ? NaN : 0) \
+        with boxxyerror fc rgb "white" fs solid 1.0 border lc rgb "#bbbbbb", \
+     datafile using 1:($2*yscale):(regime($4, $3)) with labels font ",9" tc rgb "black"
+set output
