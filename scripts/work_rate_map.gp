@@ -1,12 +1,14 @@
 # scripts/work_rate_map.gp - work-rate map of a sweep (issue 15): every sweep point as a tile in
 # the plane of forcing frequency [Hz] (x) and the second axis (y: the base amplitude, or the deck
 # variables a &sweep variable names, e.g. the baffle clearance), coloured by the normal work rate
-# summed over the supports (log scale), with the regime of each point marked: '1', '2', ...
-# for a periodic response of that period, 'C' chaotic, '?' undecided; a tile with no contact
-# (work rate 0) is white. From a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz],
+# summed over the supports (log scale), with the regime of each point marked: 'I' impacting (the
+# most loaded support in contact less than half the time) or 'S' sustained contact (a sliding
+# whirl), followed by the period when one was detected or 'C' when chaotic; a tile with no
+# contact (work rate 0) is white. From a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz],
 # 2 amplitude axis, 3 period, 4 label (p >= 1: period p; 0: undecided; -1: chaotic),
 # 5 lyapunov, 6 lyapunov_error, 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N],
-# 10 work_rate_stop1 [W], 11 normal_work_rate_total [W], 12 wear_volume_rate_total [m3/s]).
+# 10 work_rate_stop1 [W], 11 normal_work_rate_total [W], 12 wear_volume_rate_total [m3/s],
+# 13 contact_fraction_max, 14 impacts_total).
 #
 # Usage:
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.work_rate_map.png'" scripts/work_rate_map.gp
@@ -65,7 +67,7 @@ lmin = floor(STATS_min);  lmax = ceil(STATS_max)
 if (lmax <= lmin) { lmax = lmin + 1 }
 
 set output outfile
-set title plottitle . ": normal work rate (all supports) and regime"
+set title plottitle . "\nnormal work rate (all supports) and regime"
 set xlabel "forcing frequency [Hz]"
 set ylabel ylab
 set xrange [fmin - 1.2*hf : fmax + 1.2*hf]
@@ -75,10 +77,16 @@ set cblabel "log10 normal work rate [W]"
 set palette rgbformulae 22,13,-31
 set style fill solid 1.0 noborder
 set key off
-regime(l, p) = (l < -0.5) ? "C" : (l < 0.5) ? "?" : sprintf("%d", int(p))
+# the regime: I impacting (the most loaded support in contact less than half the time), S
+# sustained contact (sliding whirl), then the period when one was detected or C when chaotic
+regime(cf, l, p) = (cf <= 0) ? "" : ((cf < 0.5) ? "I" : "S") . \
+   ((l < -0.5) ? "C" : ((l > 0.5) ? sprintf("%d", int(p)) : ""))
+set label 1 "I impacting, S sustained contact (sliding whirl), digit: period, C chaotic; white: no contact" \
+   at graph 0.0, graph -0.13 font ",9"
+set bmargin 6
 plot datafile using 1:($2*yscale):(hf):(ha):($11 > 0 ? log10($11) : NaN) \
         with boxxyerror fc palette, \
-     datafile using 1:($2*yscale):(hf):(ha):($11 > 0 ? NaN : 0) \
+     datafile using 1:($11 > 0 ? NaN : $2*yscale):(hf):(ha) \
         with boxxyerror fc rgb "white" fs solid 1.0 border lc rgb "#bbbbbb", \
-     datafile using 1:($2*yscale):(regime($4, $3)) with labels font ",9" tc rgb "black"
+     datafile using 1:($2*yscale):(regime($13, $4, $3)) with labels font ",10" tc rgb "black"
 set output

@@ -317,7 +317,7 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! I/O failure
       integer :: m, ns, nr, nl, j, p, nf
       real(dp), allocatable :: f(:), a(:), cols(:, :), row(:), counts(:, :)
-      character(len=24) :: names(12), units(12)
+      character(len=24) :: names(14), units(14)
 
       m = size(sf%points);  nf = size(sf%grid_frequency_hz)
       call point_sizes(results, sf%points, ns, nr, nl)
@@ -327,7 +327,7 @@ contains
          f(j) = sf%grid_frequency_hz(mod(p - 1, nf) + 1)
          a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
       end do
-      allocate(cols(m, 12))
+      allocate(cols(m, 14))
       cols = 0.0_dp
       cols(:, 1) = f;  cols(:, 2) = a
       do j = 1, m
@@ -342,13 +342,16 @@ contains
             row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
             cols(j, 11) = sum(padded(results(p)%normal_work_rate, ns))
             cols(j, 12) = sum(padded(results(p)%wear_volume_rate, ns))
+            cols(j, 13) = maxval(padded(results(p)%contact_fraction, ns))
+            cols(j, 14) = sum(counts(:, 1))
          end if
       end do
       names = [character(len=24) :: 'frequency', 'amplitude_pp', 'period', 'label', &
          'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', 'rms_force_stop1', &
-         'work_rate_stop1', 'normal_work_rate_total', 'wear_volume_rate_total']
+         'work_rate_stop1', 'normal_work_rate_total', 'wear_volume_rate_total', &
+         'contact_fraction_max', 'impacts_total']
       units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
-         'N', 'N', 'W', 'W', 'm3/s']
+         'N', 'N', 'W', 'W', 'm3/s', '-', '-']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
