@@ -248,7 +248,7 @@ def cheapen(text):
         # the deck's own prefix ('results/...'): the sweep makes the missing directory
         text = set_value(text, 'sweep', 'progress', '.false.')
         if get_value(text, 'sweep', 'n_amplitude') is not None and two_planes:
-            text = set_value(text, 'sweep', 'n_frequency', '2')     # about 1 s a point
+            text = set_value(text, 'sweep', 'n_frequency', '1')     # 1 point, about 2 s
             text = set_value(text, 'sweep', 'n_amplitude', '1')
         elif get_value(text, 'sweep', 'n_amplitude') is not None:
             text = set_value(text, 'sweep', 'n_frequency', '3')

@@ -791,6 +791,22 @@ contains
       le = b%length / real(b%n_elem, dp)
       k_el = ei / le / le / le
       w2_el = ei / rho_a / le / le / le / le
+      ! the strain fibre (general section) and the added mass enter the strain row and the
+      ! mass: their scales too (a huge fibre distance gave an infinite root strain at the first
+      ! step, an error of the step control far from the deck variable)
+      if (b%width <= 0.0_dp .and. .not. usable(b%fibre_distance / le / le)) then
+         call fatal_error(err, 'group &beam: fibre_distance = ' // str(b%fibre_distance) &
+            // ' with element length ' // str(le) // ' m gives a strain per unit rotation ' &
+            // 'gradient c/le^2 = ' // str(b%fibre_distance / le / le) // ' 1/m: must be ' &
+            // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
+         return
+      end if
+      if (b%added_mass > 0.0_dp .and. .not. usable((rho_a + b%added_mass) * b%length)) then
+         call fatal_error(err, 'group &beam: added_mass = ' // str(b%added_mass) &
+            // ' kg/m gives a beam mass of ' // str((rho_a + b%added_mass) * b%length) &
+            // ' kg: must be at most ' // str(sqrt(huge(1.0_dp))))
+         return
+      end if
       if (usable(ei) .and. usable(rho_a) .and. usable(rho_a * b%length) .and. usable(k_el) &
           .and. usable(w2_el)) return
       if (b%width > 0.0_dp) then
@@ -1103,8 +1119,11 @@ contains
       if (allocated(err)) return
       ix = '(' // str(i) // ')'
       call require_range('stops', 'friction' // ix, friction, 0.0_dp, 10.0_dp, err)
-      call require_nonnegative('stops', 'tangential_stiffness' // ix, k_t, err)
-      call require_nonnegative('stops', 'wear_coefficient' // ix, wear, err)
+      ! at most sqrt(huge): the stick spring's energy and the wear volume square or multiply them
+      call require_range('stops', 'tangential_stiffness' // ix, k_t, 0.0_dp, &
+                         sqrt(huge(1.0_dp)), err)
+      call require_range('stops', 'wear_coefficient' // ix, wear, 0.0_dp, sqrt(huge(1.0_dp)), &
+                         err)
       call require_range('stops', 'offset_w' // ix, offset_w, -1.0e3_dp, 1.0e3_dp, err)
       call require_range('stops', 'offset_v' // ix, offset_v, -1.0e3_dp, 1.0e3_dp, err)
       if (allocated(err)) return
