@@ -3,7 +3,9 @@
 !> after the deck file, e.g. gapbeam inputs/x.nml "&forcing frequency_hz=10.2 /".
 !>
 !> Exit status: 0 done; 1 error (one line `error: ...` on standard error); 2 usage; 3 a sweep
-!> stopped by --time-limit (its checkpoint kept); 4 the output prefix is locked by another run.
+!> stopped by --time-limit (its checkpoint kept); 4 the output prefix is locked by another run;
+!> 5 a sweep (or merge) wrote all its files but some of its points failed (each listed on
+!> standard error, marked in the files).
 !> No backtrace is printed unless GAPBEAM_BACKTRACE=1 is set in the environment.
 program main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
@@ -16,7 +18,8 @@ program main
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
       run_stability, run_model_size
-   use gapbeam_sweep_job, only: run_sweep_job, sweep_prefix, status_interrupted
+   use gapbeam_sweep_job, only: run_sweep_job, sweep_prefix, status_interrupted, &
+      status_failed_points
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_usage, only: usage_lines, help_text, version_text
@@ -29,7 +32,7 @@ program main
    character(len=:), allocatable :: path, arg, prefix
    character(len=:), allocatable :: overrides(:)
    type(batch_options_t) :: batch
-   integer :: i, n_args, n_over, ios
+   integer :: i, n_args, n_over, ios, n_failed
    logical :: complete
 
    if (serial_blas()) continue     ! results must not depend on BLAS threads
@@ -140,11 +143,12 @@ program main
    case ('continuation')                                     ! issue 14
       call run_continuation_job(deck, err)
    case ('sweep')
-      call run_sweep_job(deck, batch, complete, err)
+      call run_sweep_job(deck, batch, complete, n_failed, err)
       if (allocated(err)) call fail(path, err%message, lock)
       write(output_unit, '(a)') 'output: ' // prefix
       call release_lock(lock)
       if (.not. complete) call finish(status_interrupted)
+      if (n_failed > 0) call finish(status_failed_points)
       call finish(0)
    end select
    if (allocated(err)) call fail(path, err%message, lock)
@@ -224,7 +228,7 @@ contains
       type(lock_t), intent(inout) :: held          !! lock of OUT, taken here
       character(len=:), allocatable :: out
       type(error_t), allocatable :: e
-      integer :: k
+      integer :: k, n_failed
       if (size(args) < 2) then
          write(error_unit, '(a)') 'usage: gapbeam merge OUT.h5 SHARD.h5 ...'
          call finish(status_usage)
@@ -235,7 +239,7 @@ contains
          if (out(k - 2:) == '.h5') out = out(1:k - 3)
       end if
       call take_lock('merge', out, held)
-      call merge_sweep(out, args(2:), .true., e)
+      call merge_sweep(out, args(2:), .true., e, n_failed)
       if (allocated(e)) then
          if (index(e%message, 'gapbeam merge: ') /= 1) e%message = 'gapbeam merge: ' // e%message
          call fail('merge', e%message, held)
@@ -243,6 +247,11 @@ contains
       call release_lock(held)
       write(output_unit, '(a)') 'merged ' // str(size(args) - 1) // ' shard files into ' &
          // out // '.h5'
+      if (n_failed > 0) then
+         write(output_unit, '(a)') 'merge: ' // str(n_failed) // ' failed run(s) in the shards ' &
+            // "(status 1, label 'failed' in the files)"
+         call finish(status_failed_points)
+      end if
    end subroutine run_merge
 
    !> Write one error line, give the lock back, and end with `status` (default 1). The deck

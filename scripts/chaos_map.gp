@@ -2,14 +2,19 @@
 # forcing frequency [Hz] (x) and forcing amplitude [mm peak to peak] (y), coloured by its label,
 # from a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz], 2 amplitude_pp [m], 3 period,
 # 4 label (p >= 1: period p; 0: undecided; -1: chaotic), 5 lyapunov [1/s], 6 lyapunov_error
-# [1/s], 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N], 10 work_rate_stop1 [W]).
+# [1/s], 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N], 10 work_rate_stop1 [W],
+# 11 status, 12 certificate (1 certified, 2 disputed, 0 none), ...). A sweep over other deck
+# variables has their values in columns 1 and 2: give label1, label2 and scale2.
 #
 # Usage:
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.chaos_map.png'" scripts/chaos_map.gp
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.png'; plottitle='gap 1 mm'" scripts/chaos_map.gp
-# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional).
+# Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle
+# (optional), label1 and label2 (axis texts of columns 1 and 2; defaults: forcing frequency
+# [Hz], forcing amplitude [mm p-p]), scale2 (factor on column 2, default 1e3).
 # Colours: chaotic red; undecided grey; period 1 blue, 2 green, 3 orange, 4 purple, 5-8 cyan,
-# more than 8 brown. The legend (right) lists the classes present with their point counts. A
+# more than 8 brown; unsettled (the transient did not settle) dark grey; failed black. A point
+# whose certificate is disputed carries a black cross (x), counted in the legend. The legend (right) lists the classes present with their point counts. A
 # small white dot with a black ring marks a point whose stop 1 saw no impact in the recorded periods (the linear,
 # non-impacting response; such points are usually 'undecided' as long as the free vibration of
 # the first mode has not died out).
@@ -25,6 +30,11 @@ if (!exists("datafile") || !exists("outfile")) {
    exit status 1
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: sweep" }
+if (!exists("label1") || strlen(label1) == 0) { label1 = "forcing frequency [Hz]" }
+if (!exists("label2") || strlen(label2) == 0) { label2 = "forcing amplitude [mm p-p]" }
+if (!exists("scale2")) { scale2 = 1.0e3 }
+# the certificate column (absent in files written before issue 11)
+disputed(dummy) = (valid(12) && column(12) == 2) ? 1 : 0
 
 # Distinct values of a column: a datablock of "value count" rows (smooth frequency sorts and
 # merges equal values); format with enough digits that distinct grid values stay distinct.
@@ -35,7 +45,7 @@ set yrange [-1.0e30 : 1.0e30]
 set table $chaos_map_f
 plot datafile using 1:(1) smooth frequency
 set table $chaos_map_a
-plot datafile using ($2*1.0e3):(1) smooth frequency
+plot datafile using ($2*scale2):(1) smooth frequency
 unset table
 stats $chaos_map_f using 1 nooutput
 nf = STATS_records;  fmin = STATS_min;  fmax = STATS_max
@@ -50,7 +60,7 @@ gpos = strstrt(header, "grid: ")
 if (gpos > 0) {
    g = header[gpos + 6:]
    nf = int(word(g, 1));  fmin = real(word(g, 4));  fmax = real(word(g, 6))
-   na = int(word(g, 8));  amin = 1.0e3*real(word(g, 11));  amax = 1.0e3*real(word(g, 13))
+   na = int(word(g, 8));  amin = scale2*real(word(g, 11));  amax = scale2*real(word(g, 13))
 }
 # Half-widths of a tile (92 % of the spacing, so that a thin white seam shows between tiles);
 # a single value gets a tile of 2 % of its magnitude (0.05 if zero) on that axis.
@@ -60,22 +70,24 @@ ha = (na > 1) ? 0.46*(amax - amin)/(na - 1) : single(amin)
 strip = (nf == 1 || na == 1) ? 1 : 0
 
 # Classes: 1 chaotic, 2 undecided, 3 period 1, 4 period 2, 5 period 3, 6 period 4,
-# 7 period 5-8, 8 period > 8.
-cls(l) = (l < -0.5) ? 1 : (l < 0.5) ? 2 : (l < 1.5) ? 3 : (l < 2.5) ? 4 : (l < 3.5) ? 5 : \
-   (l < 4.5) ? 6 : (l < 8.5) ? 7 : 8
-array cname[8] = ["chaotic", "undecided", "period 1", "period 2", "period 3", "period 4", \
-   "period 5-8", "period > 8"]
-array ccolour[8] = ["#d62728", "#a8a8a8", "#1f4e9c", "#2ca02c", "#ff7f0e", "#8c4fbf", \
-   "#17becf", "#8c564b"]
-array ccount[8]
+# 7 period 5-8, 8 period > 8, 9 unsettled, 10 failed.
+cls(l) = (l < -2.5) ? 10 : (l < -1.5) ? 9 : (l < -0.5) ? 1 : (l < 0.5) ? 2 : (l < 1.5) ? 3 : \
+   (l < 2.5) ? 4 : (l < 3.5) ? 5 : (l < 4.5) ? 6 : (l < 8.5) ? 7 : 8
+array cname[10] = ["chaotic", "undecided", "period 1", "period 2", "period 3", "period 4", \
+   "period 5-8", "period > 8", "unsettled", "failed"]
+array ccolour[10] = ["#d62728", "#a8a8a8", "#1f4e9c", "#2ca02c", "#ff7f0e", "#8c4fbf", \
+   "#17becf", "#8c564b", "#505050", "#000000"]
+array ccount[10]
 present = ""
-do for [k = 1:8] {
+do for [k = 1:10] {
    stats datafile using (cls($4) == k ? 1 : 0) nooutput
    ccount[k] = int(STATS_sum)
    if (ccount[k] > 0) { present = present . sprintf(" %d", k) }
 }
-stats datafile using (($7 == 0) ? 1 : 0) nooutput
+stats datafile using (($7 == 0 && $4 > -2.5) ? 1 : 0) nooutput
 nquiet = int(STATS_sum)
+stats datafile using (disputed(0)) nooutput
+ndisputed = int(STATS_sum)
 npts = STATS_records
 # failed points (their exponent is NaN in the table): marked with a black cross
 stats datafile using (($5 != $5) ? 1 : 0) nooutput
@@ -91,11 +103,16 @@ set output outfile
 set xrange [fmin - 1.2*hf : fmax + 1.2*hf]
 set yrange [amin - 1.2*ha : amax + 1.2*ha]
 plural(n, one, many) = sprintf("%d %s", n, (n == 1) ? one : many)
-set title sprintf("%s\nChaos map: response class of each of %s (grid %s x %s)", plottitle, \
-   plural(npts, "sweep point", "sweep points"), plural(nf, "frequency", "frequencies"), \
-   plural(na, "amplitude", "amplitudes"))
-set xlabel "forcing frequency [Hz]"
-set ylabel "forcing amplitude [mm p-p]"
+if (label1 eq "forcing frequency [Hz]" && label2 eq "forcing amplitude [mm p-p]") {
+   set title sprintf("%s\nChaos map: response class of each of %s (%s x %s)", plottitle, \
+      plural(npts, "sweep point", "sweep points"), plural(nf, "frequency", "frequencies"), \
+      plural(na, "amplitude", "amplitudes"))
+} else {
+   set title sprintf("%s\nChaos map: response class of each of %s (%d x %d values)", plottitle, \
+      plural(npts, "sweep point", "sweep points"), nf, na)
+}
+set xlabel label1
+set ylabel label2
 set format x "%g"
 set format y "%g"
 if (na == 1) { set ytics (sprintf("%g", amin) amin) }
@@ -106,13 +123,14 @@ set style fill solid 1.0 noborder
 
 ringtitle = sprintf("no impact at stop 1 (%d)", nquiet)
 plot for [w in present] datafile \
-        using 1:(cls($4) == int(w) ? $2*1.0e3 : 1/0):(hf):(ha) with boxxyerror \
+        using 1:(cls($4) == int(w) ? $2*scale2 : 1/0):(hf):(ha) with boxxyerror \
         lc rgb ccolour[int(w)] title sprintf("%s (%d)", cname[int(w)], ccount[int(w)]), \
-     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
+     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0 && $4 > -2.5) ? $2*scale2 : 1/0) \
         with points pt 7 ps ringsize lc rgb "white" notitle, \
-     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0) ? $2*1.0e3 : 1/0) \
+     for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0 && $4 > -2.5) ? $2*scale2 : 1/0) \
         with points pt 6 ps ringsize lc rgb "black" title ringtitle, \
-     for [q = 1:(nfailed > 0 ? 1 : 0)] datafile using 1:(($5 != $5) ? $2*1.0e3 : 1/0) \
-        with points pt 2 ps 1.5*ringsize lw 2 lc rgb "black" title sprintf("failed (%d)", nfailed)
+     for [q = 1:(ndisputed > 0 ? 1 : 0)] datafile using 1:(disputed(0) ? $2*scale2 : 1/0) \
+        with points pt 2 ps 2.0*ringsize lw 2 lc rgb "black" \
+        title sprintf("disputed certificate (%d)", ndisputed)
 
 unset output

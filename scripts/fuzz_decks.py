@@ -11,7 +11,9 @@ What it does
 ------------
 1. Reads every deck in inputs/*.nml (sorted) and makes it cheap to run ("cheapening", done on the
    deck text before any mutation, so a mutation can still hit the variables it sets): 2 + 4
-   forcing periods for transient, sweep and model-size runs, a Lyapunov exponent over 2 periods,
+   forcing periods for transient, sweep and model-size runs, a Lyapunov exponent over 2 periods
+   (no adaptive average: lyapunov_max_periods = 2) and at most 6 transient periods (no settling
+   extension: transient_max_periods = 6),
    2 history periods; sweeps: progress lines off (output under the deck's own prefix, in a
    directory the sweep creates), a 3-frequency line given as a list, a 3 x 2 grid;
    work-precision studies of 2 levels over 1 period without rk45 (see cheapen) and stability
@@ -233,23 +235,32 @@ def cheapen(text):
     if analysis in ('transient', 'sweep', 'model_size'):
         text = set_value(text, 'solver', 'transient_periods', '2')
         text = set_value(text, 'solver', 'record_periods', '4')
-        # a deck with ring supports refuses an exponent (it says lyapunov_periods = 0)
-        if (get_value(text, 'diagnostics', 'lyapunov_periods') or '').strip() != '0':
+        # ring supports refuse an exponent (a two-plane deck's default is lyapunov_periods = 0)
+        if not two_planes and (get_value(text, 'diagnostics', 'lyapunov_periods') or '') \
+                .strip() != '0':
             text = set_value(text, 'diagnostics', 'lyapunov_periods', '2')
+        # the exponent's adaptive average and the settling extensions bounded as tightly
+        text = set_value(text, 'diagnostics', 'lyapunov_max_periods', '2')
+        text = set_value(text, 'diagnostics', 'transient_max_periods', '6')
     if two_planes and analysis in ('transient', 'sweep'):
         # the tube deck (24 elements, two planes, impacts with stick-slip): one period at a
-        # loose tolerance, about 1 s with the debug build
+        # loose tolerance, no settling test and no certificate, about 1 s with the debug build
         text = set_value(text, 'solver', 'transient_periods', '0')
         text = set_value(text, 'solver', 'record_periods', '1')
         text = set_value(text, 'solver', 'tolerance', '1.0e-2')
+        text = set_value(text, 'diagnostics', 'settle_windows', '0')
+        text = set_value(text, 'diagnostics', 'certify', '.false.')
     if analysis == 'transient':
         text = set_value(text, 'output', 'history_periods', '1' if two_planes else '2')
     if analysis == 'sweep':
         # the deck's own prefix ('results/...'): the sweep makes the missing directory
         text = set_value(text, 'sweep', 'progress', '.false.')
-        if get_value(text, 'sweep', 'n_amplitude') is not None and two_planes:
+        if two_planes and (get_value(text, 'sweep', 'n_amplitude') is not None
+                           or get_value(text, 'sweep', 'n_y') is not None):
             text = set_value(text, 'sweep', 'n_frequency', '1')     # 1 point, about 2 s
-            text = set_value(text, 'sweep', 'n_amplitude', '1')
+            for var in ('n_amplitude', 'n_y'):
+                if get_value(text, 'sweep', var) is not None:
+                    text = set_value(text, 'sweep', var, '1')
         elif get_value(text, 'sweep', 'n_amplitude') is not None:
             text = set_value(text, 'sweep', 'n_frequency', '3')
             text = set_value(text, 'sweep', 'n_amplitude', '2')

@@ -10,6 +10,10 @@
 # Variables: datafile (required), outfile (required; PNG, PDF or SVG by format), plottitle (optional),
 #   xaxis (optional): 'frequency' (default; x = column 1 [Hz]) or 'amplitude' (x = column 2
 #   in mm p-p). scripts/plot.sh picks 'amplitude' when the sweep has a single frequency.
+#   label1, label2 (optional): axis texts of columns 1 and 2 (a sweep over other deck
+#   variables; defaults: the forcing frequency [Hz] and amplitude [mm peak to peak]); scale2
+#   (optional): factor on column 2 (default 1e3).
+# Failed points (label -3, no exponent) are left out; unsettled ones (-2) are drawn as undecided.
 # A black zero line separates contraction (periodic, < 0) from divergence (chaos, > 0).
 # One line of the sweep (the other forcing variable takes one value): points coloured by the
 # program's label, chaotic red, periodic blue, undecided grey, joined by a thin grey line in
@@ -24,6 +28,9 @@ if (!exists("datafile") || !exists("outfile")) {
 }
 if (!exists("plottitle") || strlen(plottitle) == 0) { plottitle = "gapbeam: sweep" }
 if (!exists("xaxis") || strlen(xaxis) == 0) { xaxis = "frequency" }
+if (!exists("label1") || strlen(label1) == 0) { label1 = "forcing frequency [Hz]" }
+if (!exists("label2") || strlen(label2) == 0) { label2 = "forcing amplitude [mm peak to peak]" }
+if (!exists("scale2")) { scale2 = 1.0e3 }
 if (xaxis ne "frequency" && xaxis ne "amplitude") {
    print sprintf("lyapunov.gp: xaxis = '%s': expected 'frequency' or 'amplitude'", xaxis)
    exit status 1
@@ -31,8 +38,8 @@ if (xaxis ne "frequency" && xaxis ne "amplitude") {
 
 # x: frequency [Hz] or amplitude [mm p-p]; c: the other forcing variable (one curve per value).
 byfreq = (xaxis eq "frequency") ? 1 : 0
-xval(f, a) = byfreq ? f : a*1.0e3
-cval(f, a) = byfreq ? a*1.0e3 : f
+xval(f, a) = byfreq ? f : a*scale2
+cval(f, a) = byfreq ? a*scale2 : f
 
 # Distinct values of c: a datablock of "value count" rows (smooth frequency sorts and merges
 # equal values), read into a word list. Fixed wide ranges: no autoscaling warnings.
@@ -40,7 +47,7 @@ set format x "%.15g"
 set xrange [-1.0e30 : 1.0e30]
 set yrange [-1.0e30 : 1.0e30]
 set table $lyapunov_c
-plot datafile using (cval($1, $2)):(1) smooth frequency
+plot datafile using (cval($1, $2)):(($4 > -2.5) ? 1 : 1/0) smooth frequency
 unset table
 cvalues = ""
 do for [i = 1:|$lyapunov_c|] {
@@ -51,7 +58,7 @@ nc = words(cvalues)
 set autoscale
 set format x "%g"
 
-stats datafile using (xval($1, $2)):5 nooutput
+stats datafile using (xval($1, $2)):(($4 > -2.5) ? $5 : 1/0) nooutput
 npts = STATS_records
 xmin = STATS_min_x;  xmax = STATS_max_x
 stats datafile using (($4 == -1) ? 1 : 0) nooutput
@@ -73,7 +80,7 @@ if (cairo) {
 set output outfile
 set title sprintf("%s\nLargest Lyapunov exponent of each of %d sweep points (%d chaotic), error bars: its standard error", \
    plottitle, npts, nchaos)
-set xlabel byfreq ? "forcing frequency [Hz]" : "forcing amplitude [mm peak to peak]"
+set xlabel byfreq ? label1 : label2
 set ylabel "largest Lyapunov exponent [1/s]"
 set format x "%g"
 set format y "%g"
@@ -89,8 +96,9 @@ set tics front
 
 if (nc <= 1) {
    unset colorbox
-   # Classes: 1 periodic (label >= 1), 2 undecided (0), 3 chaotic (-1); the key lists those present.
-   lcls(l) = (l > 0.5) ? 1 : (l > -0.5) ? 2 : 3
+   # Classes: 1 periodic (label >= 1), 2 undecided (0, -2), 3 chaotic (-1), 4 failed (-3, no
+   # exponent: not drawn); the key lists those present.
+   lcls(l) = (l > 0.5) ? 1 : (l > -0.5) ? 2 : (l > -1.5) ? 3 : (l > -2.5) ? 2 : 4
    array lname[3] = ["periodic", "undecided", "chaotic"]
    array lcolour[3] = ["#1f4e9c", "#8a8a8a", "#d62728"]
    lpresent = ""
@@ -111,7 +119,7 @@ if (nc <= 1) {
    set table $lyapunov_f
    plot datafile using 1:(1) smooth frequency
    set table $lyapunov_a
-   plot datafile using ($2*1.0e3):(1) smooth frequency
+   plot datafile using ($2*scale2):(1) smooth frequency
    unset table
    set format x "%g"
    stats $lyapunov_f using 1 nooutput
@@ -123,7 +131,7 @@ if (nc <= 1) {
    if (gpos > 0) {
       g = header[gpos + 6:]
       nf = int(word(g, 1));  fmin = real(word(g, 4));  fmax = real(word(g, 6))
-      na = int(word(g, 8));  amin = 1.0e3*real(word(g, 11));  amax = 1.0e3*real(word(g, 13))
+      na = int(word(g, 8));  amin = scale2*real(word(g, 11));  amax = scale2*real(word(g, 13))
    }
    single(v) = (abs(v) > 0) ? 0.02*abs(v) : 0.05
    hf = (nf > 1) ? 0.5*(fmax - fmin)/(nf - 1) : single(fmin)
@@ -141,17 +149,17 @@ if (nc <= 1) {
    set yrange [amin - 1.05*ha : amax + 1.05*ha]
    unset xzeroaxis
    unset grid
-   set xlabel "forcing frequency [Hz]"
-   set ylabel "forcing amplitude [mm p-p]"
-   set title sprintf("%s\nLargest Lyapunov exponent over the frequency-amplitude plane: %d points (%d chaotic)", \
+   set xlabel label1
+   set ylabel label2
+   set title sprintf("%s\nLargest Lyapunov exponent over the plane of the sweep: %d points (%d chaotic)", \
       plottitle, npts, nchaos)
    set style fill solid 1.0 noborder
    set key below horizontal nobox samplen 1 width 1
-   plot datafile using 1:($2*1.0e3):(hf):(ha):(($5 == $5) ? $5 : 1/0) with boxxyerror \
+   plot datafile using 1:($2*scale2):(hf):(ha):(($5 == $5) ? $5 : 1/0) with boxxyerror \
            lc palette notitle, \
-        for [q = 1:((nchaos > 0) ? 1 : 0)] datafile using 1:(($4 == -1) ? $2*1.0e3 : 1/0) \
+        for [q = 1:((nchaos > 0) ? 1 : 0)] datafile using 1:(($4 == -1) ? $2*scale2 : 1/0) \
            with points pt 7 ps 0.5 lc rgb "black" title "chaotic (label)", \
-        for [q = 1:((nfailed > 0) ? 1 : 0)] datafile using 1:(($5 != $5) ? $2*1.0e3 : 1/0) \
+        for [q = 1:((nfailed > 0) ? 1 : 0)] datafile using 1:(($5 != $5) ? $2*scale2 : 1/0) \
            with points pt 2 ps 1.2 lw 2 lc rgb "black" title sprintf("failed (%d)", nfailed)
 }
 

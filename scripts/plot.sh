@@ -36,7 +36,7 @@
 #                                         -> PREFIX.work_rate_map.png (scripts/work_rate_map.gp:
 #                                            normal work rate of all supports, log colour, with the
 #                                            regime of each point; grids whose work rate is not all
-#                                            zero, e.g. tube maps with &sweep variable)
+#                                            zero, e.g. tube maps over the clearance)
 #                     (PREFIX may be a shard's, PREFIX.shard_I_of_N, or a merged file's prefix.)
 # ANALYSIS=work_precision: PREFIX.wp_<series>.dat (all of them) -> PREFIX.work_precision.png
 #                                           (scripts/work_precision.gp: relative final-state error
@@ -207,7 +207,19 @@ case ${analysis} in
       n_freq=$(awk '!/^[[:space:]]*(#|$)/ { seen[$1] = 1 } END { n = 0; for (f in seen) n++; print n }' \
          "${points}")
       if [[ ${n_freq} -gt 1 ]]; then xaxis=frequency; else xaxis=amplitude; fi
-      common="plottitle=$(gp_quote "${title}"); xaxis=$(gp_quote "${xaxis}")"
+      # A sweep over other deck variables (issue 11) names them in the header line
+      # '# columns: NAME [UNIT], NAME [UNIT], ...': columns 1 and 2 are its x and y axes.
+      axes=""
+      columns=$(grep -m1 '^# columns:' "${points}" || true)
+      col1=$(printf '%s' "${columns#'# columns: '}" | cut -d, -f1 | sed 's/^ *//')
+      col2=$(printf '%s' "${columns#'# columns: '}" | cut -d, -f2 | sed 's/^ *//')
+      if [[ -n ${col1} && ${col1} != 'frequency [Hz]' ]]; then
+         axes+="label1=$(gp_quote "${col1}"); "
+      fi
+      if [[ -n ${col2} && ${col2} != 'amplitude_pp [m]' ]]; then
+         axes+="label2=$(gp_quote "${col2}"); scale2=1.0; "
+      fi
+      common="${axes}plottitle=$(gp_quote "${title}"); xaxis=$(gp_quote "${xaxis}")"
       if has_data "${bifurcation}"; then
          render bifurcation.gp "${prefix}.bifurcation.png" \
             "datafile=$(gp_quote "${bifurcation}"); ${common}"
@@ -215,10 +227,10 @@ case ${analysis} in
          skip "${bifurcation}"
       fi
       render chaos_map.gp "${prefix}.chaos_map.png" \
-         "datafile=$(gp_quote "${points}"); plottitle=$(gp_quote "${title}")"
+         "datafile=$(gp_quote "${points}"); ${axes}plottitle=$(gp_quote "${title}")"
       render lyapunov.gp "${prefix}.lyapunov.png" "datafile=$(gp_quote "${points}"); ${common}"
-      # the work-rate map, when some point's supports did work (column 11: normal work rate)
-      if [[ ${n_freq} -gt 1 ]] && awk '!/^[[:space:]]*(#|$)/ && $11 > 0 { found = 1 } END { exit !found }' \
+      # the work-rate map, when some point's supports did work (column 18: normal work rate)
+      if [[ ${n_freq} -gt 1 ]] && awk '!/^[[:space:]]*(#|$)/ && $18 > 0 { found = 1 } END { exit !found }' \
          "${points}"; then
          render work_rate_map.gp "${prefix}.work_rate_map.png" \
             "datafile=$(gp_quote "${points}"); plottitle=$(gp_quote "${title}")"

@@ -34,7 +34,8 @@
 # success (the build log is shown only when the build fails); GAPBEAM_GIT_COMMIT is exported from
 # `git describe --always --dirty` (the result files record it). OMP_NUM_THREADS is left alone if
 # set (default: the number of available cores); OPENBLAS_NUM_THREADS=1.
-# Exit status: the program's; 1 when the build, a run of the main job or a figure fails.
+# Exit status: the program's; 1 when the build, a run of the main job or a figure fails. After
+# status 5 (a sweep with failed points, all files written) the plots are made as after 0.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -173,7 +174,10 @@ trap 'rm -f "${stdout_copy}"' EXIT
 status=0
 # Unbuffered, so that progress lines show as they come although stdout is a pipe.
 GFORTRAN_UNBUFFERED_PRECONNECTED=y "${exe}" "${deck}" "$@" | tee "${stdout_copy}" || status=$?
-if [[ ${status} -ne 0 ]]; then
+# status 5: a sweep whose files are all written but some of whose points failed: plotted (the
+# charts mark the failed points), then that status is returned
+run_status=${status}
+if [[ ${status} -ne 0 && ${status} -ne 5 ]]; then
    printf 'run: gapbeam exited with status %d\n' "${status}" >&2
    exit "${status}"
 fi
@@ -197,4 +201,7 @@ if [[ -f ${plot} && -x ${plot} ]]; then
       exit "${status}"
    fi
 fi
-exit 0
+if [[ ${run_status} -eq 5 ]]; then
+   printf 'run: gapbeam exited with status 5: some sweep points failed (listed above, marked in the files)\n' >&2
+fi
+exit "${run_status}"

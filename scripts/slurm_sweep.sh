@@ -70,8 +70,9 @@
 #                         the repository (the commit of the sources there, which should be the
 #                         ones GAPBEAM was built from).
 # Exit status: the program's (0 done; 1 error; 3 time limit reached, checkpoint kept; 4 the
-# output prefix is locked by another run: two tasks were given the same shard); 2 on bad
-# usage or when the executable or shard files are missing.
+# output prefix is locked by another run: two tasks were given the same shard; 5 the shard's
+# (or the merged) file is written but some of its points failed); 2 on bad usage or when the
+# executable or shard files are missing.
 # Slurm opens the log file (--output=logs/...) before the script runs and does not create its
 # directory: make logs/ in the submission directory before sbatch.
 #
@@ -307,7 +308,8 @@ if [[ ${merge} -eq 1 ]]; then
    printf 'slurm_sweep: %s merge %s.h5 (%d shard files)\n' "${exe}" "${prefix}" "${shards}"
    status=0
    "${exe}" merge "${prefix}.h5" "${files[@]}" || status=$?
-   if [[ ${status} -ne 0 ]]; then
+   # 5: merged, but the shards hold failed points (marked in the file): plot, then return 5
+   if [[ ${status} -ne 0 && ${status} -ne 5 ]]; then
       printf 'slurm_sweep: merge failed with status %d\n' "${status}" >&2
       exit "${status}"
    fi
@@ -315,7 +317,7 @@ if [[ ${merge} -eq 1 ]]; then
    if [[ -x ${plot} ]] && command -v gnuplot >/dev/null 2>&1; then
       "${plot}" sweep "${prefix}" || printf 'slurm_sweep: warning: plotting %s failed\n' "${prefix}" >&2
    fi
-   exit 0
+   exit "${status}"
 fi
 
 # A shard of the sweep.

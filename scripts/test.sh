@@ -11,8 +11,9 @@
 # its own, from the repository root, so that a failing program does not hide the others; then run
 # scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
 # concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
-# under 60 s) and scripts/test_users.sh (--help, --version, options, progress lines, figures in
-# every format, and scripts/test_docs.py: every deck variable documented, the README's length)
+# under 60 s), scripts/test_labels_cli.sh (failed sweep points: exit status 5, issue 11) and
+# scripts/test_users.sh (--help, --version, options, progress lines, figures in every format,
+# and scripts/test_docs.py: every deck variable documented, the README's length)
 # on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
@@ -148,7 +149,7 @@ if [[ -n ${gapbeam_exe} ]]; then
 fi
 count test_sweep_kill.sh "${log}" "${status}"
 
-for script in test_faults.sh test_fuzz.sh test_users.sh; do
+for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0

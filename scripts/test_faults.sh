@@ -693,7 +693,10 @@ new_case
 for k in 1 2; do
    run "${default_timeout}" "${inputs}/sweep_grid_gap.nml" "$(out_override out)" "${sweep_cheap[@]}" \
       '&sweep n_frequency=0 n_amplitude=0 frequency_hz=9.0,10.0 amplitude_pp=1e300,2e-3 /'
-   mapfile -t why < <(ok_reasons "${dir}/out")
+   # failed points: every file written, then exit status 5 (issue 11: never silent)
+   mapfile -t why < <(crash_reasons)
+   [[ ${status} -eq 5 ]] || why+=("exit status ${status}, want 5 (points failed)")
+   [[ -f ${dir}/out.h5 ]] || why+=('no out.h5')
    grep -q 'failed: 2$' "${dir}/run.stdout" || why+=("run ${k}: the summary does not count 2 failed points")
    [[ ${#why[@]} -eq 0 ]] || break
 done

@@ -11,9 +11,10 @@ program test_continuation
       energy_size
    use gapbeam_continuation, only: run_continuation
    use gapbeam_continuation_types, only: continuation_result_t
-   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
-   use gapbeam_results, only: point_result_t
-   use gapbeam_sweep, only: run_point
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t, output_settings_t
+   use gapbeam_results, only: point_result_t, transient_result_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_attractor, only: point_diagnostics
    use gapbeam_state, only: state_t
    use gapbeam_transition, only: reduce_state
    use gapbeam_continuation_output, only: write_continuation
@@ -179,18 +180,31 @@ contains
       type(solver_settings_t) :: cfg
       type(diagnostics_settings_t) :: dg
       type(point_result_t) :: pr
+      type(model_t) :: m
+      type(output_settings_t) :: o
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
       real(dp), allocatable :: u(:), v(:)
       integer :: j
       cfg = deck%solver
       cfg%method = 'exact';  cfg%record_periods = 40
       dg = deck%diagnostics
-      dg%lyapunov_periods = 0;  dg%period_max = 8
+      ! the record as it is (no settling extension), periods at the former fixed tolerance
+      dg%lyapunov_periods = 0;  dg%period_max = 8;  dg%period_tolerance = 1.0e-3_dp
+      o = deck%output;  o%history_periods = 0
       allocate(u(model%n), v(model%n), source=0.0_dp)
       do j = 1, size(fs)
          cfg%transient_periods = merge(max(300, transient), transient, j == 1)
-         call run_point(model, cfg, deck%output, dg, fs(j), deck%forcing%amplitude_pp, u, v, pr)
+         m = model
+         m%omega = 2.0_dp * pi * fs(j);  m%half_amplitude = 0.5_dp * deck%forcing%amplitude_pp
+         call integrate(m, cfg, o, u, v, res, err)
+         if (.not. allocated(err)) call point_diagnostics(m, cfg, dg, res, pr, err)
+         if (allocated(err)) then
+            call check('line sweep at ' // str(fs(j)) // ' Hz', .false., err%message)
+            return
+         end if
          period(j) = pr%period
-         impacts(j) = pr%n_impacts(1)
+         impacts(j) = res%n_impacts(1)
          u = pr%u_end;  v = pr%v_end
       end do
    end subroutine line_sweep

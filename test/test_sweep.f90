@@ -13,7 +13,8 @@ program test_sweep
    use gapbeam_results, only: transient_result_t
    use gapbeam_transient, only: integrate
    use gapbeam_results, only: point_result_t
-   use gapbeam_sweep, only: run_point, run_items, n_items, n_points
+   use gapbeam_sweep, only: sweep_plan_t, make_plan, run_items, n_items, n_points
+   use gapbeam_attractor, only: diagnose
    use gapbeam_sweep_job, only: run_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
    use gapbeam_diagnostics, only: detect_period
@@ -56,6 +57,8 @@ contains
       type(deck_t) :: deck
       type(model_t) :: model
       type(point_result_t) :: pr
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
       real(dp), parameter :: beta = 0.8_dp
       call load(sdof, [character(len=200) :: '&stops gap = 1.0 /', &
@@ -64,9 +67,8 @@ contains
          '&solver transient_periods = 200, record_periods = 100 /', &
          '&diagnostics lyapunov_periods = 200 /'], deck, model)
       call initial_vectors(model, deck%initial, u0, v0)
-      call run_point(model, deck%solver, deck%output, deck%diagnostics, 7.1_dp, 1.0e-3_dp, &
-                     u0, v0, pr)
-      call check('linear oscillator run succeeds', pr%status == 0)
+      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
+      call check('linear oscillator run succeeds', .not. allocated(err))
       call check_close('Lyapunov exponent of a damped linear oscillator = -zeta omega', &
          pr%lyapunov, -0.5_dp * beta, rtol=0.01_dp)
       call check('damped linear oscillator is labelled period 1', pr%label == 1)
@@ -76,12 +78,14 @@ contains
       type(deck_t) :: deck
       type(model_t) :: model
       type(point_result_t) :: pr
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
       call load('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: &
          '&solver transient_periods = 300, record_periods = 100 /'], deck, model)
       call initial_vectors(model, deck%initial, u0, v0)
-      call run_point(model, deck%solver, deck%output, deck%diagnostics, 10.5_dp, 3.7e-3_dp, &
-                     u0, v0, pr)
+      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
+      call check('10.5 Hz point runs', .not. allocated(err))
       call note('10.5 Hz / 3.7 mm: period ' // str(pr%period) // ', lambda = ' &
          // str(pr%lyapunov) // ' +- ' // str(pr%lyapunov_error) // ' 1/s')
       call check('10.5 Hz point is labelled periodic', pr%label >= 1)
@@ -119,6 +123,7 @@ contains
       type(deck_t) :: deck
       type(model_t) :: model
       type(point_result_t), allocatable :: r1(:), r2(:), r3(:)
+      type(sweep_plan_t) :: plan
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k, mode
       character(len=200) :: ov
@@ -126,26 +131,23 @@ contains
          ov = "&sweep mode = 'independent' /"
          if (mode == 2) ov = "&sweep mode = 'continuation' /"
          call load(small, [ov], deck, model)
+         call make_plan_or_stop(deck, plan)
          call initial_vectors(model, deck%initial, u0, v0)
-         allocate(r1(n_points(deck%sweep)), r2(n_points(deck%sweep)))
+         allocate(r1(n_points(plan) * plan%ns), r2(n_points(plan) * plan%ns))
          !$ call omp_set_num_threads(1)
-         call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                        [(k, k = 1, n_items(deck%sweep))], u0, v0, r1)
+         call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r1)
          !$ call omp_set_num_threads(2)
-         call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                        [(k, k = 1, n_items(deck%sweep))], u0, v0, r2)
+         call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r2)
          call check(trim(ov) // ': 1 and 2 threads give bitwise identical points', &
             all([(same(r1(k), r2(k)), k = 1, size(r1))]))
          if (mode == 2) then
             ! a line run in rounds of points (as the sweep job does for its progress lines)
             ! starts each round from the final state of the point before: the same results
-            allocate(r3(n_points(deck%sweep)))
-            call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                           [(k, k = 1, n_items(deck%sweep))], u0, v0, r3, 1, 1)
-            call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                           [(k, k = 1, n_items(deck%sweep))], u0, v0, r3, 2, 2)
-            call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                           [(k, k = 1, n_items(deck%sweep))], u0, v0, r3, 3, huge(1))
+            allocate(r3(size(r1)))
+            call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r3, 1, 1)
+            call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r3, 2, 2)
+            call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r3, 3, &
+                           huge(1))
             call check(trim(ov) // ': a line run in rounds of points gives bitwise identical ' &
                // 'points', all([(same(r1(k), r3(k)), k = 1, size(r1))]))
             deallocate(r3)
@@ -154,13 +156,27 @@ contains
       end do
    end subroutine thread_count_independence
 
+   subroutine make_plan_or_stop(deck, plan)
+      type(deck_t), intent(in) :: deck
+      type(sweep_plan_t), intent(out) :: plan
+      type(error_t), allocatable :: err
+      call make_plan(deck, plan, err)
+      if (allocated(err)) then
+         call check('sweep plan', .false., err%message)
+         call finish('test_sweep')
+      end if
+   end subroutine make_plan_or_stop
+
    logical function same(a, b)
       type(point_result_t), intent(in) :: a, b
       same = a%status == b%status .and. a%period == b%period .and. a%label == b%label .and. &
          a%lyapunov == b%lyapunov .and. all(a%p_strain == b%p_strain) .and. &
          all(a%p_strain_rate == b%p_strain_rate) .and. all(a%peak_force == b%peak_force) .and. &
          all(a%n_impacts == b%n_impacts) .and. all(a%work_rate == b%work_rate) .and. &
-         all(a%lyapunov_running == b%lyapunov_running)
+         all(a%lyapunov_running == b%lyapunov_running) .and. a%certificate == b%certificate &
+         .and. a%accuracy_lyapunov == b%accuracy_lyapunov .and. &
+         a%perturbed_lyapunov == b%perturbed_lyapunov .and. &
+         a%transient_periods == b%transient_periods
    end function same
 
    !> Run the deck's sweep through the job driver (as the executable does).
@@ -172,11 +188,12 @@ contains
       type(deck_t) :: deck
       type(error_t), allocatable :: err
       character(len=200) :: ov(size(overrides))
+      integer :: n_failed
       ov = overrides
       call read_deck(small, ov, deck, err)
       if (.not. allocated(err)) then
          call run_sweep_job(deck, batch_options_t(shard_index=shard, shard_count=n_shards, &
-                                                  time_limit_s=limit), complete, err)
+                                                  time_limit_s=limit), complete, n_failed, err)
       end if
       if (allocated(err)) then
          call check('sweep job runs', .false., err%message)
@@ -261,6 +278,7 @@ contains
       type(error_t), allocatable :: err
       type(deck_t) :: deck
       character(len=*), parameter :: res = "&job output = 'test_sweep_resume' /"
+      integer :: n_failed
       call job([character(len=200) :: res], 1, 1, 1.0e-9_dp, complete)
       call check('time limit stops the sweep with its checkpoint kept', .not. complete .and. &
          file_exists('test_sweep_resume.checkpoint') .and. &
@@ -279,7 +297,7 @@ contains
       ! a different deck is refused, not mixed
       call read_deck(small, [character(len=200) :: res, '&forcing amplitude_pp = 3.0e-3 /'], &
                      deck, err)
-      call run_sweep_job(deck, batch_options_t(), complete, err)
+      call run_sweep_job(deck, batch_options_t(), complete, n_failed, err)
       call check('a different deck against the checkpoint is refused', allocated(err))
       if (allocated(err)) call note('message: ' // err%message)
       call job([character(len=200) :: res], 1, 1, 0.0_dp, complete)
@@ -296,14 +314,15 @@ contains
       type(deck_t) :: deck
       type(model_t) :: model
       type(point_result_t), allocatable :: r(:)
+      type(sweep_plan_t) :: plan
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k, nf
       logical :: ok
       call load(small, [character(len=200) :: "&sweep mode = 'independent' /"], deck, model)
+      call make_plan_or_stop(deck, plan)
       call initial_vectors(model, deck%initial, u0, v0)
-      allocate(r(n_points(deck%sweep)))
-      call run_items(model, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                     [(k, k = 1, n_items(deck%sweep))], u0, v0, r)
+      allocate(r(n_points(plan) * plan%ns))
+      call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r)
       nf = size(deck%sweep%frequency_hz)
       ok = .true.
       do k = 1, nf   ! amplitudes 2 mm and 4 mm

@@ -33,8 +33,8 @@ program test_tubes
    use gapbeam_continuation, only: run_continuation
    use gapbeam_continuation_types, only: continuation_result_t
    use gapbeam_results, only: point_result_t
-   use gapbeam_sweep, only: run_items
-   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable
+   use gapbeam_sweep, only: sweep_plan_t, make_plan, run_items, n_items, n_points
+   use gapbeam_deck_parameter, only: model_with_values
    implicit none
    character(len=*), parameter :: whirl = 'test/decks/tube_whirl.nml'
    character(len=*), parameter :: slide = 'test/decks/tube_slide.nml'
@@ -488,33 +488,40 @@ contains
       end block
    end subroutine refusals
 
-   !> A sweep whose second axis sets a deck variable (&sweep variable = '&stops gap(1)'): each
-   !> point equals a transient run of the deck with that clearance (the model rebuilt), and the
-   !> clearance changes the work rate.
+   !> A sweep whose y axis is a deck variable (&sweep y_variable = '&stops gap(1)'): each point
+   !> equals a transient run of the deck with that clearance (the model rebuilt), and the
+   !> clearance changes the work rate. An axis of several variables ('&stops gap(1), &stops
+   !> gap(2)') sets all of them; a list mixing units or with a forcing variable is refused.
    subroutine sweep_over_clearance()
       type(deck_t) :: deck
       type(model_t) :: base, m
       type(transient_result_t) :: res
-      type(point_result_t) :: pts(2)
-      type(deck_variable_t) :: vars(1)
+      type(point_result_t), allocatable :: pts(:)
+      type(sweep_plan_t) :: plan
       type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
+      integer :: k
       character(len=100), parameter :: short = &
          '&solver transient_periods = 4, record_periods = 4, tolerance = 1.0e-4 /'
-      call read_deck(whirl, [character(len=160) :: "&job analysis = 'sweep' /", short, &
-         "&sweep frequency_hz = 8.0, amplitude_pp = 0.8e-3, 1.0e-3, progress = .false., " &
-         // "variable = '&stops gap(1)' /"], deck, err)
-      call check('a sweep over the clearance (&sweep variable) reads', .not. allocated(err))
+      ! no settling extension and no certificate: the sweep point runs what the deck runs
+      character(len=100), parameter :: plain = &
+         '&diagnostics settle_windows = 0, certify = .false. /'
+      call read_deck(whirl, [character(len=160) :: "&job analysis = 'sweep' /", short, plain, &
+         "&sweep frequency_hz = 8.0, y_variable = '&stops gap(1)', y_values = 0.8e-3, 1.0e-3, " &
+         // "progress = .false. /"], deck, err)
+      call check('a sweep over the clearance (&sweep y_variable) reads', .not. allocated(err))
       if (allocated(err)) return
-      call check('its second axis holds the clearances', size(deck%sweep%amplitude_pp) == 2)
-      call parse_deck_variable(deck%sweep%variable(1), vars(1), err)
-      if (.not. allocated(err)) call check_deck_variable(deck, vars(1), err)
+      call check('its y axis holds the clearances', size(deck%sweep%y) == 2 .and. &
+                 deck%sweep%y_variable == '&stops gap(1)')
+      call check('ring supports: no Lyapunov exponent by default', &
+                 deck%diagnostics%lyapunov_periods == 0)
+      call make_plan(deck, plan, err)
       if (.not. allocated(err)) call build_model(deck, base, u0, v0, err)
-      call check('its variable parses and its model builds', .not. allocated(err))
+      call check('its plan and its model build', .not. allocated(err))
       if (allocated(err)) return
-      call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, [1, 2], u0, &
-                     v0, pts, deck=deck, vars=vars)
-      call check('both sweep points ran', all(pts%status == 0))
+      allocate(pts(n_points(plan) * plan%ns))
+      call run_items(deck, base, plan, [(k, k = 1, n_items(plan))], u0, v0, pts)
+      call check('both sweep points ran', all(pts%status == 0), pts(1)%message)
       call run_deck(whirl, [character(len=100) :: short, '&stops gap = 0.8e-3 /'], m, res, err)
       call check('the deck with gap 0.8 mm runs', .not. allocated(err))
       if (allocated(err)) return
@@ -525,6 +532,39 @@ contains
       call check('the clearance changes the peak force (0.8 mm against 1.0 mm)', &
                  abs(pts(1)%peak_force(1) - pts(2)%peak_force(1)) > 1.0e-3_dp &
                  * pts(2)%peak_force(1))
+      ! both baffles of the multispan tube on one axis
+      call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
+         "&job analysis = 'sweep' /", "&sweep frequency_hz = 8.0, y_variable = '&stops " &
+         // "gap(1), &stops gap(2)', y_values = 0.1e-3, 0.3e-3 /"], deck, err)
+      call check('an axis of two variables reads, labelled by both', .not. allocated(err) &
+                 .and. deck%sweep%y_variable == '&stops gap(1), &stops gap(2)')
+      if (allocated(err)) return
+      call make_plan(deck, plan, err)
+      call check('its plan sets three variables (x, and y twice)', .not. allocated(err) .and. &
+                 size(plan%set) == 3 .and. all(plan%set_axis == [1, 2, 2]))
+      if (allocated(err)) return
+      call model_with_values(deck, plan%set, [8.0_dp, 0.3e-3_dp, 0.3e-3_dp], m, err)
+      call check('the y value reaches both baffles', .not. allocated(err) .and. &
+                 all(abs(m%c_gap - 0.3e-3_dp) < 1.0e-15_dp))
+      call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
+         "&job analysis = 'sweep' /", "&sweep frequency_hz = 8.0, y_variable = '&stops " &
+         // "gap(1), &stops friction(2)', y_values = 0.1e-3 /"], deck, err)
+      call check('an axis of variables of two units is refused', allocated(err) .and. &
+                 has(err, 'one unit'))
+      call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
+         "&job analysis = 'sweep' /", "&sweep y_variable = '&stops gap(1), &stops gap(1)', " &
+         // "y_values = 0.1e-3 /"], deck, err)
+      call check('a variable named twice on an axis is refused', allocated(err) .and. &
+                 has(err, 'named twice'))
+      call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
+         "&job analysis = 'sweep' /", "&sweep x_variable = '&stops gap(1)', x_values = 1e-4, " &
+         // "y_variable = '&stops gap(2), &stops gap(1)', y_values = 0.1e-3 /"], deck, err)
+      call check('a variable on both axes is refused', allocated(err) .and. &
+                 has(err, 'both name'))
+      call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
+         "&job analysis = 'sweep' /", "&diagnostics lyapunov_periods = 10 /"], deck, err)
+      call check('an exponent asked for with ring supports is refused', allocated(err) .and. &
+                 has(err, 'lyapunov_periods = 0'))
    end subroutine sweep_over_clearance
 
    logical function has(err, text)

@@ -12,13 +12,13 @@
 or by attribute (``res.sweep.label``), the stored deck text (``res.deck``) and the root
 attributes (``res.attrs``). :func:`sweep_table` and :func:`table` give columns that
 ``pandas.DataFrame`` accepts; :func:`poincare` gives the Poincaré set of a transient run or of
-sweep points; :func:`parameters` the resolved model values of ``/parameters``; :func:`motion`
-the deflected beam at every history sample (``&output state_history``). Needs numpy and h5py
-only.
+sweep points; :func:`attractors` every start of every point and the attractor it reached;
+:func:`parameters` the resolved model values of ``/parameters``; :func:`motion` the deflected
+beam at every history sample (``&output state_history``). Needs numpy and h5py only.
 """
 
 from ._reader import ANALYSES, Group, Quantity, Result, deck_value, load
-from ._tables import PoincareSet, Table, poincare, sweep_table, table
+from ._tables import PoincareSet, Table, attractors, poincare, sweep_table, table
 from ._model import Motion, motion, parameters
 
 __version__ = "0.1.0"
@@ -31,6 +31,7 @@ __all__ = [
     "Quantity",
     "Result",
     "Table",
+    "attractors",
     "deck_value",
     "load",
     "motion",

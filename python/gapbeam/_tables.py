@@ -9,7 +9,7 @@ import numpy as np
 
 from ._reader import Group, Quantity, Result
 
-__all__ = ["Table", "PoincareSet", "table", "sweep_table", "poincare"]
+__all__ = ["Table", "PoincareSet", "table", "sweep_table", "poincare", "attractors"]
 
 # Order of the per-point columns of a sweep table; 1-D datasets of /sweep that are not listed
 # here (added by later versions) follow them in the file's order.
@@ -178,17 +178,34 @@ def _n_points(sweep):
     raise ValueError("the /sweep group has neither point_index nor frequency_hz")
 
 
+def _text(q):
+    """The text of a scalar string dataset ('' when absent)."""
+    if not isinstance(q, Quantity):
+        return ""
+    v = q.values
+    if isinstance(v, np.ndarray):
+        v = v.item() if v.shape == () else v
+    if isinstance(v, bytes):
+        v = v.decode()
+    return str(v).strip()
+
+
 def sweep_table(res):
     """The points of a sweep as a :class:`Table`: one row per point in the file.
 
     Columns, in this order (each present when the file has its dataset):
 
-    - ``point_index`` (point number p, from 1; frequency fastest), ``frequency_index`` and
-      ``amplitude_index`` (i_f and i_a of the point, from 1, derived from p and the grid),
-      ``frequency_hz`` [Hz], ``amplitude_pp`` [m], ``period`` [forcing periods], ``label``
-      (p >= 1 period p, 0 undecided, -1 chaotic), ``label_text`` (str), ``lyapunov`` [1/s],
-      ``lyapunov_error`` [1/s], ``status`` (0 done, 1 failed), ``steps``, ``seconds`` [s];
-    - every other 1-D dataset of ``/sweep`` with one entry per point (later additions);
+    - ``point_index`` (point number p, from 1; x fastest), ``frequency_index`` and
+      ``amplitude_index`` (i_f and i_a of the point, from 1, derived from p and the grid; 1 when
+      that forcing variable is no axis), ``x_index`` and ``y_index`` (files with the
+      ``grid_x``/``grid_y`` axes of any deck variable), ``frequency_hz`` [Hz],
+      ``amplitude_pp`` [m], ``period`` [forcing periods], ``label`` (p >= 1 period p,
+      0 undecided, -1 chaotic, -2 unsettled, -3 failed), ``label_text`` (str), ``lyapunov``
+      [1/s], ``lyapunov_error`` [1/s], ``status`` (0 done, 1 failed), ``steps``, ``seconds``
+      [s];
+    - every other 1-D dataset of ``/sweep`` with one entry per point (later additions: the
+      axis values ``x`` and ``y``, the certificate and the evidence of each label, the number
+      of attractors; docs/labels.md);
     - the impact statistics of every stop, flattened: ``count_1``, ``peak_force_1``,
       ``rms_force_1``, ``contact_fraction_1``, ``impulse_per_period_1``, ``work_rate_1``, then
       the same for stop 2, ... (``<dataset of /sweep/impacts>_<stop number>``);
@@ -214,8 +231,23 @@ def sweep_table(res):
     )
     index_units = point.units if isinstance(point, Quantity) else None
     out.add("point_index", points, index_units, getattr(point, "long_name", None))
+    grid_x = sweep.get("grid_x")
     grid_f = sweep.get("grid_frequency_hz")
-    if isinstance(grid_f, Quantity) and grid_f.ndim == 1 and len(grid_f) > 0:
+    if isinstance(grid_x, Quantity) and grid_x.ndim == 1 and len(grid_x) > 0:
+        # axes over any deck variables: x fastest; the forcing indices follow the axis that is
+        # the forcing variable (1 when it is no axis)
+        n_x = len(grid_x)
+        ix = ((points - 1) % n_x + 1).astype(points.dtype)
+        iy = ((points - 1) // n_x + 1).astype(points.dtype)
+        names = [_text(sweep.get("x_variable")), _text(sweep.get("y_variable"))]
+        ones_i = np.ones_like(points)
+        for index_name, variable in (("frequency_index", "&forcing frequency_hz"),
+                                     ("amplitude_index", "&forcing amplitude_pp")):
+            index = ix if names[0] == variable else iy if names[1] == variable else ones_i
+            out.add(index_name, index, index_units)
+        out.add("x_index", ix, index_units)
+        out.add("y_index", iy, index_units)
+    elif isinstance(grid_f, Quantity) and grid_f.ndim == 1 and len(grid_f) > 0:
         n_f = len(grid_f)
         out.add("frequency_index", ((points - 1) % n_f + 1).astype(points.dtype), index_units)
         out.add("amplitude_index", ((points - 1) // n_f + 1).astype(points.dtype), index_units)
@@ -393,3 +425,71 @@ def poincare(res, point=None):
     what = res.analysis if isinstance(res, Result) else type(res).__name__
     raise ValueError("no Poincaré set in a {!r} result (transient and sweep results have one)"
                      .format(what))
+
+
+def attractors(res):
+    """Every start of every point and the attractor it reached, as a :class:`Table`.
+
+    One row per (point, start) of a sweep, or per start of a transient run: ``point_index``
+    (sweep only), ``start`` (1 = the start whose label is the point's), ``kind`` ('deck',
+    'rest', 'up', 'down', 'random'; sweep only), ``label`` of the start (-3: it failed),
+    ``lyapunov`` [1/s], ``attractor`` (number of the distinct attractor it reached, from 1;
+    0 when it failed), and that attractor's ``attractor_label`` and ``attractor_fraction``
+    (the fraction of the point's starts that reached it). See docs/labels.md.
+
+    Raises ValueError when the result has no starts (files written before issue 11, or
+    another analysis).
+    """
+    if isinstance(res, Group) and isinstance(res.get("/sweep"), Group):
+        sweep = res["/sweep"]
+        m = _n_points(sweep)
+        needed = ["starts/label", "starts/attractor", "starts/lyapunov", "attractors/label",
+                  "attractors/fraction"]
+        if any(not isinstance(sweep.get(n), Quantity) for n in needed):
+            raise ValueError("this sweep file has no /sweep/starts (written before issue 11?)")
+        # Fortran (n_starts, m), h5py (m, n_starts): one row per start after the transpose
+        label = _as_points_by_periods(sweep["starts/label"].values, m).T
+        attr = _as_points_by_periods(sweep["starts/attractor"].values, m).T
+        lyap = _as_points_by_periods(sweep["starts/lyapunov"].values, m).T
+        a_label = _as_points_by_periods(sweep["attractors/label"].values, m).T
+        a_frac = _as_points_by_periods(sweep["attractors/fraction"].values, m).T
+        kinds = sweep.get("starts/kind")
+        kinds = [] if not isinstance(kinds, Quantity) else [
+            (k.decode() if isinstance(k, bytes) else str(k)).strip()
+            for k in np.atleast_1d(kinds.values)]
+        point = sweep.get("point_index")
+        points = (np.asarray(point.values) if isinstance(point, Quantity) and point.shape == (m,)
+                  else np.arange(1, m + 1, dtype=np.int32))
+        n_s = label.shape[0]
+        rows = [(j, k) for j in range(m) for k in range(n_s)]
+        out = Table()
+        out.add("point_index", np.array([points[j] for j, _ in rows], dtype=points.dtype))
+        out.add("start", np.array([k + 1 for _, k in rows], dtype=np.int32))
+        out.add("kind", np.array([kinds[k] if k < len(kinds) else "" for _, k in rows]))
+        out.add("label", np.array([label[k, j] for j, k in rows]), sweep["starts/label"].units)
+        out.add("lyapunov", np.array([lyap[k, j] for j, k in rows]), "1/s")
+        out.add("attractor", np.array([attr[k, j] for j, k in rows]))
+        out.add("attractor_label", np.array(
+            [a_label[attr[k, j] - 1, j] if attr[k, j] > 0 else -3 for j, k in rows]))
+        out.add("attractor_fraction", np.array(
+            [a_frac[attr[k, j] - 1, j] if attr[k, j] > 0 else np.nan for j, k in rows]), "-")
+        return out
+    diag = res.get("/diagnostics") if isinstance(res, Group) else None
+    if isinstance(diag, Group) and isinstance(diag.get("starts/label"), Quantity):
+        label = np.atleast_1d(diag["starts/label"].values)
+        attr = np.atleast_1d(diag["starts/attractor"].values)
+        lyap = np.atleast_1d(diag["starts/lyapunov"].values)
+        a_label = np.atleast_1d(diag["attractors/label"].values)
+        a_frac = np.atleast_1d(diag["attractors/fraction"].values)
+        out = Table()
+        out.add("start", np.arange(1, len(label) + 1, dtype=np.int32))
+        out.add("label", label, diag["starts/label"].units)
+        out.add("lyapunov", lyap, "1/s")
+        out.add("attractor", attr)
+        out.add("attractor_label", np.array([a_label[a - 1] if a > 0 else -3 for a in attr]))
+        out.add("attractor_fraction", np.array([a_frac[a - 1] if a > 0 else np.nan
+                                                for a in attr]), "-")
+        return out
+    what = getattr(res, "analysis", type(res).__name__)
+    raise ValueError("no starts in a {!r} result (sweeps and transient runs since issue 11 have "
+                     "them)".format(what))

@@ -78,7 +78,8 @@ CASES = {
     "modes": ("inputs/moon_shaw_modes.nml", [], "modes", 1, []),
     "calibrate": ("inputs/derive_width.nml", [], "calibrate", 0, []),
     "transient": ("inputs/moon_shaw_10p5hz.nml",
-                  [STOP2, *SHORT, "&output history_periods = 2, filter_cutoff_hz = 40.0 /"],
+                  [STOP2, *SHORT, "&output history_periods = 2, filter_cutoff_hz = 40.0 /",
+                   "&diagnostics starts = 'deck', 'random', random_starts = 2 /"],
                   "transient", 2, []),
     "sweep_independent": ("inputs/sweep_grid_gap.nml", [SWEEP_GRID, STOP2, *SHORT], "sweep", 2,
                           []),
@@ -89,6 +90,16 @@ CASES = {
     "sweep_continuation": ("inputs/sweep_line_4mm.nml",
                            ["&sweep n_frequency = 3, frequency_end_hz = 9.5, checkpoint = .false.,"
                             " progress = .false. /", *SHORT], "sweep", 1, []),
+    # axes over a design variable (the stop gap, x) and the frequency (y), lines along y
+    # started up and down, certificates on (issue 11)
+    "sweep_starts": ("test/decks/sdof_impact.nml",
+                     ["&job analysis = 'sweep' /",
+                      "&sweep x_variable = '&stops gap', x_values = 0.0, 1.0, y_variable = "
+                      "'&forcing frequency_hz', frequency_hz = 20.75, 21.0, axis = 'y', "
+                      "checkpoint = .false., progress = .false. /",
+                      "&solver transient_periods = 20, record_periods = 40 /",
+                      "&diagnostics lyapunov_periods = 20, lyapunov_max_periods = 20, "
+                      "starts = 'up', 'down' /"], "sweep", 1, []),
     "work_precision": ("inputs/work_precision_4el.nml",
                        ["&study levels = 2, periods = 2, repeats = 1 /"], "work_precision", 1, []),
     "stability": ("inputs/stability_4el.nml", ["&study n_omega_dt = 11 /"], "stability", 1, []),
@@ -395,6 +406,18 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
 
     c.run("{}: poincare() of a point not in the file is a ValueError".format(name), missing)
 
+    def cpu_within_wall():
+        # issue 10 item 6: CPU time of the process <= wall time x threads (merges have no /run)
+        if "/run/cpu_seconds" not in data:
+            return (name == "sweep_merged", "no /run/cpu_seconds")
+        cpu = float(data["/run/cpu_seconds"][0])
+        wall = float(data["/run/wall_seconds"][0])
+        threads = int(data["/run/threads"][0])
+        return (0.0 <= cpu <= wall * threads + 1e-3 and threads >= 1,
+                "cpu {} s, wall {} s, {} threads".format(cpu, wall, threads))
+
+    c.run("{}: /run/cpu_seconds <= /run/wall_seconds x /run/threads".format(name), cpu_within_wall)
+
     try:
         import pandas as pd
     except ImportError:
@@ -464,6 +487,67 @@ def check_tube(c, res, n_stops):
     c.check("tube: the wear outputs carry units", res["/wear/wear_volume_rate"].units == "m3 s-1"
             and res["/wear/normal_work_rate"].units == "W")
     c.check("tube: /energy is there with its imbalance", "/energy/imbalance" in data)
+
+
+def check_starts(c, gapbeam, name, res):
+    """A sweep over a design variable with two starts per point and certificates (issue 11)."""
+    data, _, _ = raw_datasets(res.filename)
+    m = len(data["/sweep/point_index"][0])
+    t = gapbeam.sweep_table(res)
+
+    def axes():
+        gx, gy = data["/sweep/grid_x"][0], data["/sweep/grid_y"][0]
+        return (m == 4 and np.array_equal(gx[t["x_index"] - 1], t["x"])
+                and np.array_equal(gy[t["y_index"] - 1], t["y"])
+                and np.array_equal(t["frequency_index"], t["y_index"])
+                and np.array_equal(t["frequency_hz"], t["y"])
+                and raw_text(data["/sweep/x_variable"][0]) == "&stops gap(1)"
+                and t.units["x"] == "m", repr(t))
+
+    c.run("{}: x_index/y_index pick the axis values, the frequency is the y axis".format(name),
+          axes)
+
+    def certificates():
+        cert = t["certificate"]
+        texts = t["certificate_text"].tolist()
+        reasons = t["certificate_reason"].tolist()
+        ok = all(x in (1, 2) for x in cert) and all(
+            r.startswith(x + ":") for x, r in zip(texts, reasons))
+        return (ok and "lyapunov_periods" in t and "window_difference" in t
+                and "transient_periods" in t, "certificates {} {}".format(cert, reasons))
+
+    c.run("{}: every point certified or disputed, with its reason and its evidence".format(name),
+          certificates)
+
+    def starts():
+        a = gapbeam.attractors(res)
+        raw = data["/sweep/starts/label"][0]                   # h5py: (m, n_starts)
+        rows_ok = a.n_rows == 2 * m and a["kind"].tolist()[:2] == ["up", "down"]
+        labels_ok = all(a["label"][2 * j + k] == raw[j][k] for j in range(m) for k in range(2))
+        n_attr = data["/sweep/n_attractors"][0]
+        attr_ok = all(max(a["attractor"][2 * j:2 * j + 2]) == n_attr[j] for j in range(m))
+        frac_ok = np.allclose([a["attractor_fraction"][2 * j:2 * j + 2].sum() for j in range(m)
+                               if n_attr[j] == 1], 2.0)
+        return (rows_ok and labels_ok and attr_ok and frac_ok, repr(dict(a)))
+
+    c.run("{}: attractors() has a row per point and start, matching /sweep/starts".format(name),
+          starts)
+
+
+def check_transient_starts(c, gapbeam, res):
+    """A transient run from the deck's start and two random ones (issue 11)."""
+    def starts():
+        a = gapbeam.attractors(res)
+        return (a.n_rows == 3 and a["start"].tolist() == [1, 2, 3]
+                and np.isclose(sum(a["attractor_fraction"][a["attractor"] == a["attractor"][0]])
+                               / sum(a["attractor"] == a["attractor"][0]),
+                               res["/diagnostics/attractors/fraction"].values[
+                                   a["attractor"][0] - 1]), repr(dict(a)))
+
+    c.run("transient: attractors() has a row per start", starts)
+    c.check("transient: the certificate and its reason are written",
+            res["/diagnostics/certificate"].values in (1, 2)
+            and isinstance(res["/diagnostics/certificate_reason"].values, str))
 
 
 def check_no_poincare(c, gapbeam, name, res):
@@ -772,9 +856,13 @@ def run_all(c, exe):
                 check_state(c, gapbeam, path)
             if analysis == "sweep":
                 points = {"sweep_shard_1": [1, 3, 5], "sweep_shard_2": [2, 4, 6]}.get(name)
+                if name == "sweep_starts":
+                    check_starts(c, gapbeam, name, res)
+                    continue
                 tables[name] = check_sweep(c, gapbeam, name, res, n_stops, points)
             elif name == "transient":
                 check_transient(c, gapbeam, res, n_stops)
+                check_transient_starts(c, gapbeam, res)
             elif analysis != "transient":
                 check_no_poincare(c, gapbeam, name, res)
             if analysis == "model_size":
@@ -789,9 +877,9 @@ def run_all(c, exe):
         check_documented(c, files)
         if "sweep_merged" in tables and "sweep_independent" in tables:
             a, b = tables["sweep_merged"], tables["sweep_independent"]
-            differ = [k for k in b if k != "seconds"
+            differ = [k for k in b if not k.startswith("seconds")
                       and not np.array_equal(a.get(k), b[k], equal_nan=b[k].dtype.kind == "f")]
-            c.check("sweep_merged: sweep_table equals the single-process run's (but seconds)",
+            c.check("sweep_merged: sweep_table equals the single-process run's (but the timings)",
                     set(a) == set(b) and not differ, "differ: {}".format(differ))
     finally:
         shutil.rmtree(workdir, ignore_errors=True)

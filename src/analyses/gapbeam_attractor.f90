@@ -1,38 +1,200 @@
-!> The attractor of a forced run: its period (from the Poincare points), its largest Lyapunov
-!> exponent and its label.
+!> The attractor of a forced run and the evidence for its label: the run itself, extended
+!> until the transient has settled; its period (from the Poincare points); its largest
+!> Lyapunov exponent, averaged until its standard error meets a target; and the label.
+!>
+!> Settling: the record is cut into windows whose statistics (gapbeam_diagnostics) are
+!> compared; while they differ by more than `settle_tolerance` of the orbit size the run goes
+!> on for another record (the transient grows by record_periods) up to `transient_max_periods`;
+!> a run that never settles is labelled 'unsettled'. A settled run with a confidently negative
+!> exponent but no period yet (a weakly stable orbit still converging) is run on for the
+!> periods its exponent says it needs to converge to the period tolerance, within the same
+!> budget.
 !>
 !> Largest Lyapunov exponent: Benettin's method with a reference and a perturbed trajectory
-!> renormalised once per forcing period.
-!>
-!> One integrator object, built once, advances both trajectories one forcing period at a time
-!> with the run's method (the trapezoidal rule for the explicit ones) and FIXED steps
-!> (T / steps_per_period, events located), or exactly, so that the two follow the same
-!> discrete map: an adaptive step sequence would differ between them and its local errors
-!> would swamp a small separation. The forcing is T-periodic, so every period starts at t = 0
-!> (the forcing phase stays exact). The separation is measured in the energy norm
-!> ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the state, and
-!> rescaled to that size after every period (both states restart there in equilibrium);
-!> lambda = sum ln(d_k / d_0) / (N T). The uncertainty is the standard error of the mean over
-!> 10 blocks of periods, and the running estimate after each period is returned to show its
-!> convergence.
+!> renormalised once per forcing period. One integrator object, built once, advances both
+!> trajectories one forcing period at a time with the run's method (the trapezoidal rule for
+!> the explicit ones) and FIXED steps (T / steps_per_period, events located), or exactly, so
+!> that the two follow the same discrete map: an adaptive step sequence would differ between
+!> them and its local errors would swamp a small separation. The forcing is T-periodic, so
+!> every period starts at t = 0 (the forcing phase stays exact). The separation is measured in
+!> the energy norm ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the
+!> state, and rescaled to that size after every period (both states restart there in
+!> equilibrium); lambda = sum ln(d_k / d_0) / (N T). The uncertainty sigma is the standard
+!> error of the mean over 10 blocks of periods (whole multiples of the orbit's period when a
+!> period was found). N starts at `lyapunov_periods` and grows (to the N that sigma ~
+!> 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
+!> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
+   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
    use gapbeam_model, only: model_t, energy_norm
    use gapbeam_state, only: state_t
-   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t, output_settings_t
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
-   use gapbeam_diagnostics, only: detect_period, classify
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state
+   use gapbeam_diagnostics, only: period_search, classify, window_difference, repeat_distance
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
+   use gapbeam_transient, only: integrate
+   use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_progress, only: monitor_t
    implicit none
    private
-   public :: largest_lyapunov, point_diagnostics
+   public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
+      transient_budget, lyapunov_budget
+
+   !> A monitor told the work of one phase shifted by the work of the phases before it.
+   type, extends(monitor_t) :: shifted_monitor_t
+      class(monitor_t), pointer :: inner => null()   !! the caller's monitor
+      real(dp) :: offset = 0.0_dp                    !! forcing periods integrated before
+   contains
+      procedure :: update => shifted_update
+   end type shifted_monitor_t
 
 contains
 
-   !> Period, Lyapunov exponent and label of a finished transient run. A `monitor` is told the
-   !> forcing periods integrated by the exponent's two trajectories (2 per period).
+   !> Tell the caller's monitor `offset + done`.
+   subroutine shifted_update(self, done, t, dt)
+      class(shifted_monitor_t), intent(inout) :: self   !! shifted monitor
+      real(dp), intent(in) :: done                      !! work of this phase
+      real(dp), intent(in), optional :: t               !! simulated time [s]
+      real(dp), intent(in), optional :: dt              !! step [s]
+      call self%inner%update(self%offset + done, t, dt)
+   end subroutine shifted_update
+
+   !> Run from (u0, v0) until settled, then period, exponent and label with their evidence.
+   !> `res` is the final record (its history, Poincare points and impact statistics). A
+   !> `monitor` is told the forcing periods integrated: the runs', and the exponent's two
+   !> trajectories (2 per period); the extensions and an adaptive exponent make them more
+   !> than the deck's transient, record and lyapunov periods.
+   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err, monitor)
+      type(model_t), intent(in) :: model                !! model
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(output_settings_t), intent(in) :: out         !! what to record
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      real(dp), intent(in) :: u0(:), v0(:)               !! initial state
+      type(transient_result_t), intent(out) :: res       !! the final record
+      type(point_result_t), intent(inout) :: pr          !! label, evidence, statistics
+      type(error_t), allocatable, intent(out) :: err     !! solver failure
+      class(monitor_t), intent(inout), optional, target :: monitor   !! told the progress
+      type(solver_settings_t) :: more
+      type(shifted_monitor_t) :: watch
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: cpu0, tol, period, rate, distance, pending
+      real(dp), allocatable :: section(:, :)
+      integer :: budget, discarded, added, p, n_more, run_steps, tries, attempt
+      logical :: settled
+
+      cpu0 = thread_cpu_seconds()
+      period = 2.0_dp * pi / model%omega
+      tol = auto_period_tolerance(model, cfg, diag)
+      budget = transient_budget(cfg, diag)
+      if (present(monitor)) watch%inner => monitor
+      call run(cfg, u0, v0)
+      if (allocated(err)) return
+      pr%method = res%method
+      run_steps = int(res%steps_accepted)
+      discarded = cfg%transient_periods     ! periods before the final record
+      added = 0                             ! periods added to the deck's transient
+      more = cfg
+      more%transient_periods = 0
+      do attempt = 1, 8
+         ! the settling test: another record while the windows disagree
+         do
+            call label_record(res, diag, tol, pr, p, settled, pending)
+            if (settled .or. cfg%transient_periods + added + cfg%record_periods > budget) exit
+            u = res%u;  v = res%v
+            call run(more, u, v)
+            if (allocated(err)) return
+            run_steps = run_steps + int(res%steps_accepted)
+            discarded = discarded + cfg%record_periods
+            added = added + cfg%record_periods
+         end do
+         if (present(monitor)) then
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch)
+            watch%offset = watch%offset + 2.0_dp * real(pr%lyapunov_periods, dp)
+         else
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section)
+         end if
+         if (allocated(err)) return
+         ! the exponent's own periods (the trajectory continued) must show the same attractor:
+         ! a long chaotic transient that falls onto an orbit during them is no chaos. Their
+         ! section points (phase 0) in two windows, each at least 100 periods
+         if (.not. settled .or. diag%settle_windows < 2 .or. size(section, 2) < 200) exit
+         if (window_difference(section(1, :), section(2, :), 2, pr%period, pr%strain_range, &
+             pr%strain_rate_range) <= diag%settle_tolerance) exit
+         if (cfg%transient_periods + added + cfg%record_periods > budget) then
+            settled = .false.;  pr%settled = 0
+            exit
+         end if
+         ! the attractor changed: a new record from the exponent's end, and all again
+         u = pr%u_end;  v = pr%v_end
+         call run(more, u, v)
+         if (allocated(err)) return
+         run_steps = run_steps + int(res%steps_accepted)
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         added = added + cfg%record_periods
+      end do
+      ! still changing after every attempt: not settled
+      if (attempt > 8) then
+         settled = .false.;  pr%settled = 0
+      end if
+      ! a settled run, stable with confidence, whose orbit has not converged yet (no period
+      ! within the tolerance, or a period p whose divisor d repeats nearly, within
+      ! sqrt(tolerance): an orbit of period d still losing a slowly decaying component): run
+      ! on for the periods its contraction needs (at the exponent's rate, or the slower rate
+      ! the repeat distance showed), while the distance shrinks and the budget lasts
+      if (settled .and. pending > tol .and. diag%lyapunov_periods > 0 .and. &
+          pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp) then
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         rate = -pr%lyapunov * period
+         u = pr%u_end;  v = pr%v_end
+         do tries = 1, 8
+            n_more = ceiling(1.5_dp * log(pending / tol) / rate)
+            n_more = max(1, min(n_more, budget - cfg%transient_periods - added))
+            if (budget - cfg%transient_periods - added < 1) exit
+            more%transient_periods = n_more
+            distance = pending
+            call run(more, u, v)
+            if (allocated(err)) return
+            run_steps = run_steps + int(res%steps_accepted)
+            discarded = discarded + n_more
+            added = added + n_more
+            call label_record(res, diag, tol, pr, p, settled, pending)
+            u = res%u;  v = res%v
+            pr%u_end = u;  pr%v_end = v
+            if (.not. (pending > tol) .or. .not. (pending < distance)) exit
+            ! the rate the distance showed over the periods between the two records
+            rate = min(rate, log(distance / pending) / real(n_more + cfg%record_periods, dp))
+            discarded = discarded + cfg%record_periods
+            added = added + cfg%record_periods
+         end do
+      end if
+      pr%transient_periods = discarded
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas, &
+                          pr%settled == 1, diag%lyapunov_periods > 0)
+      call copy_statistics(res, pr)
+      pr%steps = run_steps
+      pr%seconds_label = thread_cpu_seconds() - cpu0
+
+   contains
+
+      !> One run of c from (ua, va) into res (err set on failure), told to the monitor.
+      subroutine run(c, ua, va)
+         type(solver_settings_t), intent(in) :: c     !! settings of this run
+         real(dp), intent(in) :: ua(:), va(:)         !! start
+         if (present(monitor)) then
+            call integrate(model, c, out, ua, va, res, err, monitor=watch)
+            watch%offset = watch%offset + real(c%transient_periods, dp) &
+                           + real(c%record_periods, dp)
+         else
+            call integrate(model, c, out, ua, va, res, err)
+         end if
+      end subroutine run
+   end subroutine diagnose
+
+   !> Period, Lyapunov exponent and label of a finished transient run (no extension: the
+   !> settling test is reported, and an unsettled record is labelled so).
+   !> A `monitor` is told the forcing periods integrated by the exponent's two trajectories.
    subroutine point_diagnostics(model, cfg, diag, res, pr, err, monitor)
       type(model_t), intent(in) :: model                !! model at this forcing
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
@@ -40,51 +202,189 @@ contains
       type(transient_result_t), intent(in) :: res        !! the run
       type(point_result_t), intent(inout) :: pr          !! period, exponent, label set
       type(error_t), allocatable, intent(out) :: err     !! solver failure in the exponent
-      class(monitor_t), intent(inout), optional :: monitor   !! told the progress
-      type(lyapunov_t) :: lyap
-      real(dp) :: sx, sy
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
+      integer :: p
+      logical :: settled
+      call label_record(res, diag, auto_period_tolerance(model, cfg, diag), pr, p, settled)
+      call exponent(model, cfg, diag, res%u, res%v, pr, err, monitor=monitor)
+      if (allocated(err)) return
+      pr%transient_periods = cfg%transient_periods
+      pr%method = res%method
+      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas, &
+                          pr%settled == 1, diag%lyapunov_periods > 0)
+   end subroutine point_diagnostics
+
+   !> Period search and settling test of a record, with their evidence in pr. `pending` is
+   !> the distance still to converge: the closest repeat distance when no period is found;
+   !> with a period p, the repeat distance of its largest divisor d < p that repeats within
+   !> sqrt(tol) (0 when none does).
+   subroutine label_record(res, diag, tol, pr, p, settled, pending)
+      type(transient_result_t), intent(in) :: res        !! the record
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      real(dp), intent(in) :: tol                        !! period tolerance [-]
+      type(point_result_t), intent(inout) :: pr          !! evidence set
+      integer, intent(out) :: p                          !! period (0: none)
+      logical, intent(out) :: settled                    !! windows agree (or no test)
+      real(dp), intent(out), optional :: pending         !! distance still to converge [-]
+      real(dp) :: sx, sy, dd
+      integer :: d
       sx = res%strain_max - res%strain_min
       sy = res%strain_rate_max - res%strain_rate_min
-      pr%period = detect_period(res%p_strain, res%p_strain_rate, diag%period_max, &
-                                diag%period_tolerance, diag%period_points, sx, sy)
-      pr%u_end = res%u;  pr%v_end = res%v
+      call period_search(res%p_strain, res%p_strain_rate, diag%period_max, tol, &
+         diag%period_points, sx, sy, p, pr%closest_period, pr%repeat_distance, &
+         pr%period_max_tested)
+      pr%period = p
+      pr%period_tolerance = tol
+      pr%strain_range = sx;  pr%strain_rate_range = sy
+      pr%settle_windows = 0;  pr%window_difference = 0.0_dp
+      if (diag%settle_windows >= 2 .and. size(res%p_strain) >= diag%settle_windows) then
+         pr%settle_windows = diag%settle_windows
+         pr%window_difference = window_difference(res%p_strain, res%p_strain_rate, &
+                                                  diag%settle_windows, p, sx, sy)
+      end if
+      settled = pr%window_difference <= diag%settle_tolerance
+      pr%settled = merge(1, 0, settled)
+      if (.not. present(pending)) return
+      if (p == 0) then
+         pending = pr%repeat_distance
+         if (pending >= huge(1.0_dp)) pending = 0.0_dp
+         return
+      end if
+      pending = 0.0_dp
+      do d = p / 2, 1, -1
+         if (mod(p, d) /= 0) cycle
+         dd = repeat_distance(res%p_strain, res%p_strain_rate, d, diag%period_points, sx, sy)
+         if (dd <= sqrt(tol)) then
+            pending = dd
+            return
+         end if
+      end do
+   end subroutine label_record
+
+   !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
+   !> pr%v_end: the reference state after the exponent's periods.
+   subroutine exponent(model, cfg, diag, u, v, pr, err, section, monitor)
+      type(model_t), intent(in) :: model                 !! model
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      real(dp), intent(in) :: u(:), v(:)                 !! state on the attractor
+      type(point_result_t), intent(inout) :: pr          !! exponent and its evidence
+      type(error_t), allocatable, intent(out) :: err     !! solver failure
+      !> root strain and its rate at the end of each of the exponent's periods (2, N)
+      real(dp), allocatable, intent(out), optional :: section(:, :)
+      class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
+      type(lyapunov_t) :: lyap
+      if (present(section)) allocate(section(2, 0))
+      pr%u_end = u;  pr%v_end = v
+      pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
+      pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       if (diag%lyapunov_periods > 0) then
-         call largest_lyapunov(model, cfg, res%u, res%v, diag%lyapunov_periods, &
-            diag%lyapunov_perturbation, lyap, pr%u_end, pr%v_end, err, monitor)
+         call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
+                               pr%period, monitor)
          if (allocated(err)) return
+         if (present(section)) section = lyap%section
          pr%lyapunov = lyap%exponent
          pr%lyapunov_error = lyap%uncertainty
          pr%lyapunov_running = lyap%running
+         pr%lyapunov_periods = lyap%periods
+         pr%lyapunov_converged = merge(1, 0, lyap%converged)
       else
-         allocate(pr%lyapunov_running(0))
+         pr%lyapunov_running = [real(dp) ::]
       end if
-      pr%label = classify(pr%period, pr%lyapunov, pr%lyapunov_error, diag%chaos_sigmas)
-   end subroutine point_diagnostics
+   end subroutine exponent
 
-   !> Largest Lyapunov exponent from the state (u, v) at a period boundary.
-   subroutine largest_lyapunov(model, cfg, u, v, n_periods, perturbation, lyap, u_end, v_end, &
-                               err, monitor)
+   !> Impact statistics and Poincare points of the final record into pr.
+   subroutine copy_statistics(res, pr)
+      type(transient_result_t), intent(in) :: res     !! the record
+      type(point_result_t), intent(inout) :: pr       !! point
+      pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
+      pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
+      pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
+      pr%normal_work_rate = res%normal_work_rate;  pr%sliding_distance = res%sliding_distance
+      pr%friction_work_rate = res%friction_work_rate
+      pr%wear_volume_rate = res%wear_volume_rate
+      pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
+   end subroutine copy_statistics
+
+   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for the
+   !> exact integrator and for fixed steps (a periodic orbit of a deterministic map repeats to
+   !> round-off), 10 x the tolerance for error control (rk_rtol for rk45), 1e-3 for the
+   !> paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
+   real(dp) function auto_period_tolerance(model, cfg, diag) result(tol)
+      type(model_t), intent(in) :: model                 !! model (its stop laws)
+      type(solver_settings_t), intent(in) :: cfg         !! solver settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
+      if (diag%period_tolerance > 0.0_dp) then
+         tol = diag%period_tolerance
+         return
+      end if
+      call resolve_method(model, cfg, eff, reason)
+      if (eff%method == 'exact' .or. eff%step_control == 'fixed') then
+         tol = 1.0e-6_dp
+      else if (eff%step_control == 'half_step') then
+         tol = 1.0e-3_dp
+      else if (eff%method == 'rk45') then
+         tol = 10.0_dp * eff%rk_rtol
+      else
+         tol = 10.0_dp * eff%tolerance
+      end if
+      tol = min(1.0e-2_dp, max(1.0e-6_dp, tol))
+   end function auto_period_tolerance
+
+   !> Most periods discarded in all: the deck's, else 10 x transient_periods (at least the
+   !> transient and one record).
+   pure integer function transient_budget(cfg, diag) result(n)
+      type(solver_settings_t), intent(in) :: cfg         !! horizon
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      if (diag%transient_max_periods > 0) then
+         n = max(diag%transient_max_periods, cfg%transient_periods)
+      else
+         n = int(min(10_int64 * cfg%transient_periods, int(huge(1), int64) / 2))
+         n = max(n, cfg%transient_periods + cfg%record_periods)
+      end if
+   end function transient_budget
+
+   !> Most periods averaged for the exponent: the deck's, else 20 x lyapunov_periods.
+   pure integer function lyapunov_budget(diag) result(n)
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      if (diag%lyapunov_max_periods > 0) then
+         n = max(diag%lyapunov_max_periods, diag%lyapunov_periods)
+      else
+         n = int(min(20_int64 * diag%lyapunov_periods, int(huge(1), int64) / 2))
+      end if
+   end function lyapunov_budget
+
+   !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
+   !> standard error meets the target of `diag` (or its most periods).
+   subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period, &
+                               monitor)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
-      integer, intent(in) :: n_periods                 !! periods averaged
-      real(dp), intent(in) :: perturbation             !! initial separation, relative [-]
+      type(diagnostics_settings_t), intent(in) :: diag !! periods, targets, perturbation
       type(lyapunov_t), intent(out) :: lyap            !! result
       real(dp), allocatable, intent(out) :: u_end(:), v_end(:)  !! reference state at the end
       type(error_t), allocatable, intent(out) :: err   !! solver failure
+      !> period of the orbit (0 or absent: none): blocks are whole multiples of it
+      integer, intent(in), optional :: orbit_period
       class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
       class(integrator_t), allocatable :: integ
       type(state_t) :: sa, sb
-      real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:)
-      real(dp) :: d0, d, period, x_norm
-      integer :: k
+      real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
+      real(dp) :: d0, d, period, x_norm, target, sigma, lambda
+      integer :: k, n, n_max, n_next, q
 
       period = 2.0_dp * pi / model%omega
+      n_max = lyapunov_budget(diag)
+      q = 1
+      if (present(orbit_period)) q = max(1, orbit_period)
       call make_integrator(model, lyapunov_settings(cfg), integ, err)
       if (allocated(err)) return
       x_norm = energy_norm(model, u, v)
       if (x_norm == 0.0_dp) x_norm = 1.0_dp
-      d0 = perturbation * x_norm
+      d0 = diag%lyapunov_perturbation * x_norm
       ! first direction: along the velocity and displacement of the reference state
       du = u;  dv = v
       d = energy_norm(model, du, dv)
@@ -92,28 +392,58 @@ contains
          du = 1.0_dp;  dv = 0.0_dp;  d = energy_norm(model, du, dv)
       end if
       ua = u;  va = v
-      allocate(lyap%running(n_periods), logs(n_periods))
-      do k = 1, n_periods
-         ! both start each period in equilibrium, so that the acceleration the methods carry
-         ! is the same function of (u, v) in both: the map compared is that of (u, v)
-         call start_state(model, 0.0_dp, ua, va, sa)
-         call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
-         call integ%advance(sa, period, err=err);  if (allocated(err)) return
-         call integ%advance(sb, period, err=err);  if (allocated(err)) return
-         ua = sa%u;  va = sa%v
-         du = sb%u - ua;  dv = sb%v - va
-         d = energy_norm(model, du, dv)
-         if (d == 0.0_dp) then
-            logs(k) = log(tiny(1.0_dp))
-            du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
+      allocate(logs(n_max), strain(2, n_max))
+      k = 0
+      n = diag%lyapunov_periods
+      do
+         do while (k < n)
+            k = k + 1
+            ! both start each period in equilibrium, so that the acceleration the methods carry
+            ! is the same function of (u, v) in both: the map compared is that of (u, v)
+            call start_state(model, 0.0_dp, ua, va, sa)
+            call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
+            call integ%advance(sa, period, err=err);  if (allocated(err)) return
+            call integ%advance(sb, period, err=err);  if (allocated(err)) return
+            ua = sa%u;  va = sa%v
+            strain(1, k) = dot_product(model%sys%strain_row, ua)
+            strain(2, k) = dot_product(model%sys%strain_row, va)
+            du = sb%u - ua;  dv = sb%v - va
+            d = energy_norm(model, du, dv)
+            if (d == 0.0_dp) then
+               logs(k) = log(tiny(1.0_dp))
+               du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
+            else
+               logs(k) = log(d / d0)
+            end if
+            if (present(monitor)) call monitor%update(real(2 * k, dp))
+         end do
+         lambda = sum(logs(1:n)) / (real(n, dp) * period)
+         sigma = block_standard_error(logs(1:n), period, q)
+         target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
+         lyap%converged = sigma <= target
+         if (lyap%converged .or. n >= n_max) exit
+         ! sigma ~ 1/sqrt(N): the N that meets the target, 20 % more, whole blocks of 10
+         if (target > 0.0_dp) then
+            n_next = int(min(real(n_max, dp), 1.2_dp * real(n, dp) * (sigma / target)**2))
          else
-            logs(k) = log(d / d0)
+            n_next = n_max
          end if
-         lyap%running(k) = sum(logs(1:k)) / (real(k, dp) * period)
-         if (present(monitor)) call monitor%update(real(2 * k, dp))
+         ! at most 4 x at a time: early on, sigma also carries the 1/N start-up bias
+         n_next = min(n_next, 4 * n)
+         n_next = max(n_next, n + max(10, diag%lyapunov_periods / 2))
+         n_next = min(n_max, 10 * ((n_next + 9) / 10))
+         n = n_next
       end do
-      lyap%exponent = lyap%running(n_periods)
-      lyap%uncertainty = block_standard_error(logs, period)
+      lyap%periods = n
+      lyap%section = strain(:, 1:n)
+      lyap%uncertainty = sigma
+      allocate(lyap%running(n))
+      lambda = 0.0_dp
+      do k = 1, n
+         lambda = lambda + logs(k)
+         lyap%running(k) = lambda / (real(k, dp) * period)
+      end do
+      lyap%exponent = lyap%running(n)
       u_end = ua;  v_end = va
    end subroutine largest_lyapunov
 
@@ -133,14 +463,18 @@ contains
       one%locate_events = .true.
    end function lyapunov_settings
 
-   !> Standard error of the mean exponent over 10 blocks of periods [1/s].
-   pure real(dp) function block_standard_error(logs, period) result(se)
+   !> Standard error of the mean exponent over 10 blocks of periods [1/s]; with an orbit of
+   !> period q, each block is a whole number of orbit periods where the record allows (the
+   !> stretching varies along a periodic orbit, and part of a cycle would read as noise).
+   pure real(dp) function block_standard_error(logs, period, q) result(se)
       real(dp), intent(in) :: logs(:)     !! ln(d_k / d_0) per period
       real(dp), intent(in) :: period      !! forcing period [s]
+      integer, intent(in) :: q            !! orbit period (1: none)
       real(dp) :: block(10), mean, var
       integer :: nb, b, per_block
       nb = min(10, size(logs))
       per_block = size(logs) / nb
+      if (q > 1 .and. per_block >= q) per_block = (per_block / q) * q
       do b = 1, nb
          block(b) = sum(logs((b - 1) * per_block + 1:b * per_block)) / (per_block * period)
       end do

@@ -1,138 +1,245 @@
-!> The forcing sweep: a line or grid of (frequency, amplitude) points, each run to its
-!> attractor and classified, in parallel with OpenMP.
+!> The sweep: a line or grid of points over one or two numeric deck variables (the forcing
+!> frequency and amplitude by default), each point run from one or several starts to its
+!> attractors, labelled, certified, in parallel with OpenMP.
 !>
-!> Points are numbered with the frequency fastest: p = i_f + (i_a - 1) n_f. In mode
-!> 'independent' every point starts from the deck's initial state and is one work item; in
-!> mode 'continuation' each line (all frequencies of one amplitude, or all amplitudes of one
-!> frequency) is one work item, swept up or down, each point starting from the final state of
-!> the one before, as in an experiment. A work item runs serially on one thread, so results
-!> are bitwise identical for any number of threads and any schedule. Work items are dealt to
-!> shards round robin (item k belongs to shard mod(k-1, N) + 1).
+!> Points are numbered with x fastest: p = i_x + (i_y - 1) n_x. A point's model is the deck's
+!> with the axis variables set to the point's values (an axis naming several variables sets
+!> each of them to its value) (gapbeam_deck_parameter: the model is
+!> rebuilt, so every rule of the deck applies again; a forcing variable only changes the
+!> forcing). Each point has n_s starts (gapbeam_starts: 'deck', 'rest', 'random', or 'up' /
+!> 'down' from the neighbour's final state along the lines of `axis`); the first start's
+!> label is the point's label and is certified (gapbeam_certify) when asked.
+!>
+!> Work: every (point, start) pair is a slot, s = p + (k - 1) n_p. Slots are computed by work
+!> items; an item is one start k over one group of points: with an 'up' or 'down' start the
+!> groups are the lines along `axis` (one per value of the other axis), and an item of an 'up'
+!> or 'down' start runs its line in that order, each point starting from the final state of
+!> the one before (as in an experiment); without such a start every point is a group. Item
+!> i = k + (g - 1) n_s. A work item runs serially on one thread, so results are bitwise
+!> identical for any number of threads and any schedule. Groups are dealt to shards round
+!> robin (group g belongs to shard mod(g - 1, N) + 1), so a shard holds whole points.
 module gapbeam_sweep
-   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
-   use gapbeam_error, only: error_t
-   use gapbeam_model, only: model_t
-   use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t, &
-      sweep_settings_t
-   use gapbeam_results, only: transient_result_t, point_result_t, lyapunov_t
-   use gapbeam_transient, only: integrate
-   use gapbeam_attractor, only: point_diagnostics
+   use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck, only: deck_t
-   use gapbeam_deck_variable, only: deck_variable_t
+   use gapbeam_model, only: model_t
+   use gapbeam_settings, only: output_settings_t
+   use gapbeam_results, only: transient_result_t, point_result_t, label_failed
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variables, check_deck_variable, &
+      deck_variables_label
    use gapbeam_deck_parameter, only: model_with_values
+   use gapbeam_attractor, only: diagnose
+   use gapbeam_certify, only: certify_point
+   use gapbeam_starts, only: start_list, random_state, group_attractors
    implicit none
    private
-   public :: n_points, n_items, item_points, point_forcing, run_point, run_items
+   public :: sweep_plan_t, make_plan, n_points, n_items, n_groups, group_of_item, item_slots, &
+      group_points, slot_index, point_values, run_slot, run_items, combine_point
+
+   integer, parameter :: stream_random = 1000000   !! generator streams of the random starts
+
+   !> What a sweep runs: its axes, its starts, its groups.
+   type :: sweep_plan_t
+      type(deck_variable_t) :: var(2)                    !! the x and y variables (the first
+                                                         !! of an axis of several)
+      type(deck_variable_t), allocatable :: set(:)       !! every variable a point sets
+      integer, allocatable :: set_axis(:)                !! its axis (1: x, 2: y)
+      character(len=160) :: label(2) = ''                !! the axes' names, as in the file
+      real(dp), allocatable :: x(:), y(:)                !! axis values
+      integer :: nx = 0, ny = 0, np = 0                  !! axis sizes, points
+      character(len=8), allocatable :: kinds(:)          !! start kinds, in order
+      integer, allocatable :: random_index(:)            !! number of a random start (0: none)
+      integer :: ns = 0                                  !! starts per point
+      logical :: lines = .false.                         !! some start runs along lines
+      integer :: line_axis = 1                           !! 1: lines along x, 2: along y
+   end type sweep_plan_t
 
 contains
 
-   !> Number of points of the sweep.
-   pure integer function n_points(sw)
-      type(sweep_settings_t), intent(in) :: sw   !! sweep
-      n_points = size(sw%frequency_hz) * size(sw%amplitude_pp)
+   !> The plan of a deck's sweep (axes parsed and checked on the deck).
+   subroutine make_plan(deck, plan, err)
+      type(deck_t), intent(in) :: deck                  !! validated deck
+      type(sweep_plan_t), intent(out) :: plan           !! plan
+      type(error_t), allocatable, intent(out) :: err    !! unknown or absent variable
+      character(len=8) :: default
+      integer :: j
+      type(deck_variable_t), allocatable :: xs(:), ys(:)
+      call parse_deck_variables(deck%sweep%x_variable, xs, err)
+      if (.not. allocated(err)) call parse_deck_variables(deck%sweep%y_variable, ys, err)
+      if (.not. allocated(err)) then
+         plan%set = [xs, ys]
+         plan%set_axis = [spread(1, 1, size(xs)), spread(2, 1, size(ys))]
+         do j = 1, size(plan%set)
+            if (.not. allocated(err)) call check_deck_variable(deck, plan%set(j), err)
+         end do
+      end if
+      if (allocated(err)) then
+         err%message = 'group &sweep: ' // err%message
+         return
+      end if
+      plan%var(1) = xs(1);  plan%var(2) = ys(1)
+      plan%label(1) = deck_variables_label(xs);  plan%label(2) = deck_variables_label(ys)
+      plan%x = deck%sweep%x;  plan%y = deck%sweep%y
+      plan%nx = size(plan%x);  plan%ny = size(plan%y);  plan%np = plan%nx * plan%ny
+      default = 'deck'
+      if (deck%sweep%mode == 'continuation') default = deck%sweep%direction
+      call start_list(deck%diagnostics, default, plan%kinds, plan%random_index)
+      plan%ns = size(plan%kinds)
+      plan%lines = any(plan%kinds == 'up' .or. plan%kinds == 'down')
+      plan%line_axis = 1
+      select case (deck%sweep%axis)
+      case ('y')
+         plan%line_axis = 2
+      case ('frequency', 'amplitude')
+         do j = 1, 2
+            if (plan%var(j)%group == 'forcing' .and. ((deck%sweep%axis == 'frequency' .and. &
+                plan%var(j)%name == 'frequency_hz') .or. (deck%sweep%axis == 'amplitude' &
+                .and. plan%var(j)%name == 'amplitude_pp'))) plan%line_axis = j
+         end do
+      end select
+   end subroutine make_plan
+
+   !> Number of points.
+   pure integer function n_points(plan)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      n_points = plan%np
    end function n_points
 
-   !> Number of work items (points, or lines in continuation mode).
-   pure integer function n_items(sw)
-      type(sweep_settings_t), intent(in) :: sw   !! sweep
-      if (sw%mode == 'continuation') then
-         if (sw%axis == 'frequency') then
-            n_items = size(sw%amplitude_pp)
-         else
-            n_items = size(sw%frequency_hz)
-         end if
+   !> Number of groups (lines, or points).
+   pure integer function n_groups(plan)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      if (.not. plan%lines) then
+         n_groups = plan%np
+      else if (plan%line_axis == 1) then
+         n_groups = plan%ny
       else
-         n_items = n_points(sw)
+         n_groups = plan%nx
       end if
+   end function n_groups
+
+   !> Number of work items (groups x starts).
+   pure integer function n_items(plan)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      n_items = n_groups(plan) * plan%ns
    end function n_items
 
-   !> Points of work item k, in the order they are run.
-   pure function item_points(sw, k) result(pts)
-      type(sweep_settings_t), intent(in) :: sw   !! sweep
-      integer, intent(in) :: k                   !! work item
+   !> Group of work item i.
+   pure integer function group_of_item(plan, i)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      integer, intent(in) :: i                 !! work item
+      group_of_item = (i - 1) / plan%ns + 1
+   end function group_of_item
+
+   !> Points of group g, ascending along the line axis.
+   pure function group_points(plan, g) result(pts)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      integer, intent(in) :: g                 !! group
       integer, allocatable :: pts(:)
-      integer :: nf, na, j
-      nf = size(sw%frequency_hz);  na = size(sw%amplitude_pp)
-      if (sw%mode /= 'continuation') then
-         pts = [k]
-      else if (sw%axis == 'frequency') then
-         pts = [(j + (k - 1) * nf, j = 1, nf)]
+      integer :: j
+      if (.not. plan%lines) then
+         pts = [g]
+      else if (plan%line_axis == 1) then
+         pts = [(j + (g - 1) * plan%nx, j = 1, plan%nx)]
       else
-         pts = [(k + (j - 1) * nf, j = 1, na)]
+         pts = [(g + (j - 1) * plan%nx, j = 1, plan%ny)]
       end if
-      if (sw%mode == 'continuation' .and. sw%direction == 'down') pts = pts(size(pts):1:-1)
-   end function item_points
+   end function group_points
 
-   !> Forcing frequency and amplitude of point p.
-   pure subroutine point_forcing(sw, p, f_hz, a_pp)
-      type(sweep_settings_t), intent(in) :: sw   !! sweep
-      integer, intent(in) :: p                   !! point
-      real(dp), intent(out) :: f_hz, a_pp        !! [Hz], [m]
-      integer :: nf
-      nf = size(sw%frequency_hz)
-      f_hz = sw%frequency_hz(mod(p - 1, nf) + 1)
-      a_pp = sw%amplitude_pp((p - 1) / nf + 1)
-   end subroutine point_forcing
+   !> Slot of point p, start k.
+   pure integer function slot_index(plan, p, k)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      integer, intent(in) :: p, k              !! point, start
+      slot_index = p + (k - 1) * plan%np
+   end function slot_index
 
-   !> Run one point from (u0, v0): transient, record, diagnostics. With `deck` and `vars` the
-   !> amplitude-axis value `a_pp` is the value of every variable of `vars` instead (the model
-   !> rebuilt from the deck with them set: gapbeam_deck_parameter).
-   subroutine run_point(base, cfg, out, diag, f_hz, a_pp, u0, v0, pr, deck, vars)
-      type(model_t), intent(in) :: base                !! model (forcing replaced)
-      type(solver_settings_t), intent(in) :: cfg         !! solver settings
-      type(output_settings_t), intent(in) :: out         !! recording settings
-      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
-      real(dp), intent(in) :: f_hz, a_pp                 !! forcing [Hz], [m]
-      real(dp), intent(in) :: u0(:), v0(:)               !! initial state
-      type(point_result_t), intent(out) :: pr            !! result
-      type(deck_t), intent(in), optional :: deck         !! deck of `base`
-      type(deck_variable_t), intent(in), optional :: vars(:)   !! variables the axis sets
+   !> Slots of work item i, in the order they are run.
+   pure function item_slots(plan, i) result(slots)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      integer, intent(in) :: i                 !! work item
+      integer, allocatable :: slots(:), pts(:)
+      integer :: k
+      k = mod(i - 1, plan%ns) + 1
+      pts = group_points(plan, group_of_item(plan, i))
+      if (plan%kinds(k) == 'down') pts = pts(size(pts):1:-1)
+      slots = pts + (k - 1) * plan%np
+   end function item_slots
+
+   !> Axis values of point p.
+   pure subroutine point_values(plan, p, x, y)
+      type(sweep_plan_t), intent(in) :: plan   !! plan
+      integer, intent(in) :: p                 !! point
+      real(dp), intent(out) :: x, y            !! values [their units]
+      x = plan%x(mod(p - 1, plan%nx) + 1)
+      y = plan%y((p - 1) / plan%nx + 1)
+   end subroutine point_values
+
+   !> Run slot s (point p, start k) from the state its kind asks for: (u_prev, v_prev) for
+   !> 'up' / 'down' (the previous point's final state, or the deck's start at a line's first
+   !> point), the deck's (u0, v0), rest, or a seeded random state. The first start is
+   !> certified when the deck asks. A failure is recorded in the slot (status 1, its message,
+   !> label 'failed'); nothing is printed.
+   subroutine run_slot(deck, base, plan, s, u0, v0, u_prev, v_prev, sr)
+      type(deck_t), intent(in) :: deck                   !! deck
+      type(model_t), intent(in) :: base                  !! model of the deck itself
+      type(sweep_plan_t), intent(in) :: plan             !! plan
+      integer, intent(in) :: s                           !! slot
+      real(dp), intent(in) :: u0(:), v0(:)               !! the deck's initial state
+      real(dp), intent(in) :: u_prev(:), v_prev(:)       !! state handed along a line
+      type(point_result_t), intent(out) :: sr            !! result of the slot
       type(model_t) :: model
       type(transient_result_t) :: res
       type(output_settings_t) :: o
       type(error_t), allocatable :: err
-      integer(int64) :: c0, c1, rate
-      call system_clock(c0, rate)
-      if (present(vars)) then
-         call model_with_values(deck, vars, spread(a_pp, 1, size(vars)), model, err)
-      else
-         model = base
-         model%half_amplitude = 0.5_dp * a_pp
-      end if
-      model%omega = 2.0_dp * pi * f_hz
-      o = out
-      o%history_periods = 0
-      if (.not. allocated(err)) call integrate(model, cfg, o, u0, v0, res, err)
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: amplitude
+      integer :: p, k
+      p = mod(s - 1, plan%np) + 1
+      k = (s - 1) / plan%np + 1
+      call point_values(plan, p, sr%x, sr%y)
+      call model_with_values(deck, plan%set, merge(sr%x, sr%y, plan%set_axis == 1), model, err, &
+                             base)
       if (.not. allocated(err)) then
-         pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
-         pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
-         pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
-         pr%normal_work_rate = res%normal_work_rate
-         pr%sliding_distance = res%sliding_distance
-         pr%friction_work_rate = res%friction_work_rate
-         pr%wear_volume_rate = res%wear_volume_rate
-         pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
-         pr%steps = res%steps_accepted
-         call point_diagnostics(model, cfg, diag, res, pr, err)
+         sr%f1_open_hz = model%f1_open_hz
+         select case (plan%kinds(k))
+         case ('up', 'down')
+            u = u_prev;  v = v_prev
+         case ('rest')
+            allocate(u(size(u0)), v(size(v0)), source=0.0_dp)
+         case ('random')
+            amplitude = deck%diagnostics%random_amplitude
+            if (.not. (amplitude > 0.0_dp)) amplitude = 2.0_dp * model%half_amplitude
+            call random_state(model, deck%diagnostics%random_seed, &
+               stream_random + plan%ns * (p - 1) + k, amplitude, u, v, err)
+         case default
+            u = u0;  v = v0
+         end select
       end if
+      if (.not. allocated(err)) then
+         o = deck%output
+         o%history_periods = 0
+         call diagnose(model, deck%solver, o, deck%diagnostics, u, v, res, sr, err)
+      end if
+      if (.not. allocated(err) .and. k == 1 .and. deck%diagnostics%certify) &
+         call certify_point(model, deck%solver, o, deck%diagnostics, u, v, p, sr)
       if (allocated(err)) then
-         pr%status = 1
-         pr%message = err%message
-         call fill_failed(pr, base%n_stops, cfg%record_periods, u0, v0)
+         sr%status = 1
+         sr%message = 'point ' // str(p) // ' (' // trim(plan%label(1)) // ' = ' &
+            // str(sr%x) // ', ' // trim(plan%label(2)) // ' = ' // str(sr%y) &
+            // '), start ' // str(k) // " ('" // trim(plan%kinds(k)) // "'): " // err%message
+         call fill_failed(sr, base%n_stops, deck%solver%record_periods, u_prev, v_prev)
       end if
-      call system_clock(c1)
-      pr%seconds = real(c1 - c0, dp) / real(rate, dp)
-   end subroutine run_point
+      sr%seconds = sr%seconds_label + sr%seconds_certify
+   end subroutine run_slot
 
-   !> A failed point keeps NaN results of the right shapes.
+   !> A failed slot keeps NaN results of the right shapes, label 'failed'; a line goes on from
+   !> the state it was given.
    subroutine fill_failed(pr, ns, nrec, u0, v0)
       type(point_result_t), intent(inout) :: pr
       integer, intent(in) :: ns, nrec
       real(dp), intent(in) :: u0(:), v0(:)
       real(dp) :: nan
-      nan = transfer(-2251799813685248_int64, 1.0_dp)
-      pr%period = 0;  pr%label = 0;  pr%lyapunov = nan;  pr%lyapunov_error = nan
+      nan = transfer(-2251799813685248_8, 1.0_dp)
+      pr%period = 0;  pr%label = label_failed;  pr%lyapunov = nan;  pr%lyapunov_error = nan
       if (allocated(pr%n_impacts)) deallocate(pr%n_impacts)
       allocate(pr%n_impacts(ns), source=0)
       pr%peak_force = spread(nan, 1, ns);  pr%rms_force = pr%peak_force
@@ -141,60 +248,60 @@ contains
       pr%normal_work_rate = pr%peak_force;  pr%sliding_distance = pr%peak_force
       pr%friction_work_rate = pr%peak_force;  pr%wear_volume_rate = pr%peak_force
       pr%p_strain = spread(nan, 1, nrec);  pr%p_strain_rate = pr%p_strain
-      if (.not. allocated(pr%lyapunov_running)) allocate(pr%lyapunov_running(0))
+      if (allocated(pr%lyapunov_running)) deallocate(pr%lyapunov_running)
+      allocate(pr%lyapunov_running(0))
       pr%u_end = u0;  pr%v_end = v0
+      if (.not. allocated(pr%method)) pr%method = ''
    end subroutine fill_failed
 
    !> Run work items `items` in parallel (OpenMP, dynamic schedule, one item per thread at a
-   !> time); results(p) is written only by the thread that runs point p. No I/O in here.
-   !> In continuation mode a line's first point starts from (u0, v0) and every later one from
-   !> the final state of the point before; with `first`, `last` only positions first..last of
-   !> each line are run, the point before `first` having been run already (its final state is
-   !> in `results`), so a line run in several calls gives the same results as in one.
-   subroutine run_items(base, sw, cfg, out, diag, items, u0, v0, results, first, last, deck, &
-                        vars)
-      type(model_t), intent(in) :: base                !! model
-      type(sweep_settings_t), intent(in) :: sw           !! sweep
-      type(solver_settings_t), intent(in) :: cfg         !! solver settings
-      type(output_settings_t), intent(in) :: out         !! recording settings
-      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+   !> time); slots(s) is written only by the thread that runs slot s. No I/O in here.
+   !> Along a line every slot is handed the final state of the one before; with `first`,
+   !> `last` only positions first..last of each item's slots are run, the slot before `first`
+   !> having been run already (its final state is in `slots`), so a line run in several calls
+   !> gives the same results as in one.
+   subroutine run_items(deck, base, plan, items, u0, v0, slots, first, last)
+      type(deck_t), intent(in) :: deck                   !! deck
+      type(model_t), intent(in) :: base                  !! model of the deck itself
+      type(sweep_plan_t), intent(in) :: plan             !! plan
       integer, intent(in) :: items(:)                    !! work items to run
-      real(dp), intent(in) :: u0(:), v0(:)               !! initial state of every item
-      type(point_result_t), intent(inout) :: results(:)  !! indexed by point
-      integer, intent(in), optional :: first, last       !! positions along each line to run
-      type(deck_t), intent(in), optional :: deck         !! deck of `base` (with `vars`)
-      type(deck_variable_t), intent(in), optional :: vars(:)   !! variables the amplitude
-                                                         !! axis sets (run_point)
-      integer :: i, j, p, j1, j2
-      integer, allocatable :: pts(:)
+      real(dp), intent(in) :: u0(:), v0(:)               !! the deck's initial state
+      type(point_result_t), intent(inout) :: slots(:)    !! indexed by slot
+      integer, intent(in), optional :: first, last       !! positions along each item to run
+      integer :: i, j, j1, j2
+      integer, allocatable :: ss(:)
       real(dp), allocatable :: u(:), v(:)
-      real(dp) :: f_hz, a_pp
       j1 = 1;  j2 = huge(1)
       if (present(first)) j1 = max(1, first)
       if (present(last)) j2 = last
       !$omp parallel do default(none) schedule(dynamic, 1) &
-      !$omp shared(base, sw, cfg, out, diag, items, u0, v0, results, j1, j2, deck, vars) &
-      !$omp private(i, j, p, pts, u, v, f_hz, a_pp)
+      !$omp shared(deck, base, plan, items, u0, v0, slots, j1, j2) private(i, j, ss, u, v)
       do i = 1, size(items)
-         pts = item_points(sw, items(i))
-         if (j1 > 1 .and. j1 <= size(pts) .and. sw%mode == 'continuation') then
-            u = results(pts(j1 - 1))%u_end;  v = results(pts(j1 - 1))%v_end
+         ss = item_slots(plan, items(i))
+         if (j1 > 1 .and. j1 <= size(ss)) then
+            u = slots(ss(j1 - 1))%u_end;  v = slots(ss(j1 - 1))%v_end
          else
             u = u0;  v = v0
          end if
-         do j = j1, min(j2, size(pts))
-            p = pts(j)
-            call point_forcing(sw, p, f_hz, a_pp)
-            if (present(vars)) then
-               call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p), deck, vars)
-            else
-               call run_point(base, cfg, out, diag, f_hz, a_pp, u, v, results(p))
-            end if
-            if (sw%mode == 'continuation') then
-               u = results(p)%u_end;  v = results(p)%v_end
-            end if
+         do j = j1, min(j2, size(ss))
+            call run_slot(deck, base, plan, ss(j), u0, v0, u, v, slots(ss(j)))
+            u = slots(ss(j))%u_end;  v = slots(ss(j))%v_end
          end do
       end do
       !$omp end parallel do
    end subroutine run_items
+
+   !> The result of point p: its first start's slot, with every start's label and the
+   !> distinct attractors they reached (gapbeam_starts).
+   function combine_point(deck, plan, slots, p) result(pr)
+      type(deck_t), intent(in) :: deck                   !! deck (tolerances)
+      type(sweep_plan_t), intent(in) :: plan             !! plan
+      type(point_result_t), intent(in) :: slots(:)       !! all slots
+      integer, intent(in) :: p                           !! point
+      type(point_result_t) :: pr
+      integer :: k
+      pr = slots(p)
+      call group_attractors([(slots(slot_index(plan, p, k)), k = 1, plan%ns)], &
+                            deck%diagnostics, pr)
+   end function combine_point
 end module gapbeam_sweep

@@ -16,6 +16,9 @@
 !>   &point_forces(i) amplitude
 !>   &damping mass_coefficient stiffness_coefficient frequency1_hz ratio1 frequency2_hz ratio2
 !>   &forcing frequency_hz amplitude_pp
+!> A list of names separated by commas, '&stops gap(1), &stops gap(2)', names several variables
+!> set together to one value (a sweep axis that moves both baffles' clearance): they must have
+!> one unit, and a forcing variable stands alone (parse_deck_variables).
 !> Setting a damping ratio or frequency with model = 'ratios' recomputes the Rayleigh
 !> coefficients (as the deck reader does); setting a coefficient needs model = 'rayleigh'.
 module gapbeam_deck_variable
@@ -26,7 +29,8 @@ module gapbeam_deck_variable
    implicit none
    private
    public :: deck_variable_t, parse_deck_variable, check_deck_variable, get_deck_value, &
-      set_deck_value, deck_variable_words, deck_variable_label
+      set_deck_value, deck_variable_words, deck_variable_label, parse_deck_variables, &
+      deck_variables_label
 
    !> The variables, 'group:name' (documentation and messages).
    character(len=*), parameter :: deck_variable_words = '&beam length, youngs_modulus, ' &
@@ -104,6 +108,65 @@ contains
          end if
       end select
    end subroutine parse_deck_variable
+
+   !> Parse a list of names separated by commas (one name: parse_deck_variable). The names
+   !> must differ, share one unit, and a forcing variable must be the only one.
+   subroutine parse_deck_variables(text, vars, err)
+      character(len=*), intent(in) :: text                    !! the names as written
+      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! the variables, in order
+      type(error_t), allocatable, intent(out) :: err          !! unknown variable, bad list
+      type(deck_variable_t) :: var
+      integer :: a, b, j
+      allocate(vars(0))
+      a = 1
+      do
+         b = index(text(a:), ',')
+         if (b == 0) then
+            b = len(text) + 1
+         else
+            b = a + b - 1
+         end if
+         if (len_trim(text(a:b - 1)) == 0) then
+            call fatal_error(err, "variables '" // trim(text) // "': an empty name in the " &
+               // "list (names are separated by commas, e.g. '&stops gap(1), &stops gap(2)')")
+            return
+         end if
+         call parse_deck_variable(text(a:b - 1), var, err)
+         if (allocated(err)) return
+         do j = 1, size(vars)
+            if (deck_variable_label(vars(j)) == deck_variable_label(var)) then
+               call fatal_error(err, "variables '" // trim(text) // "': '" &
+                  // deck_variable_label(var) // "' is named twice")
+               return
+            end if
+            if (vars(j)%units /= var%units) then
+               call fatal_error(err, "variables '" // trim(text) // "': '" &
+                  // deck_variable_label(var) // "' [" // trim(var%units) // '] and ' // "'" &
+                  // deck_variable_label(vars(j)) // "' [" // trim(vars(j)%units) // '] ' &
+                  // 'differ in unit: variables set together need one unit')
+               return
+            end if
+         end do
+         vars = [vars, var]
+         if (b > len(text)) exit
+         a = b + 1
+      end do
+      if (size(vars) > 1 .and. any(vars%group == 'forcing')) call fatal_error(err, &
+         "variables '" // trim(text) // "': a &forcing variable cannot be set together with " &
+         // 'others (it must be the only name)')
+   end subroutine parse_deck_variables
+
+   !> The labels of a list of variables, separated by ', '.
+   pure function deck_variables_label(vars) result(s)
+      type(deck_variable_t), intent(in) :: vars(:)   !! variables
+      character(len=:), allocatable :: s
+      integer :: j
+      s = ''
+      do j = 1, size(vars)
+         if (j > 1) s = s // ', '
+         s = s // deck_variable_label(vars(j))
+      end do
+   end function deck_variables_label
 
    !> Unit and range of a known variable.
    subroutine describe(var, err)

@@ -7,11 +7,17 @@ module gapbeam_results
    implicit none
    private
    public :: modes_t, transient_result_t, allocate_result, lyapunov_t, point_result_t, &
-      series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach
-   public :: label_chaotic, label_undecided
+      series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach, certificate_text
+   public :: label_chaotic, label_undecided, label_unsettled, label_failed
+   public :: certificate_none, certificate_certified, certificate_disputed
 
    integer, parameter :: label_chaotic = -1     !! label code of a chaotic response
    integer, parameter :: label_undecided = 0    !! neither periodic nor provably chaotic
+   integer, parameter :: label_unsettled = -2   !! the transient did not settle
+   integer, parameter :: label_failed = -3      !! the run failed (no label)
+   integer, parameter :: certificate_none = 0       !! not checked (off, or the point failed)
+   integer, parameter :: certificate_certified = 1  !! independent checks agree
+   integer, parameter :: certificate_disputed = 2   !! a check disagrees (or failed)
 
    !> Natural frequencies and mode shapes of the open structure.
    type :: modes_t
@@ -93,6 +99,11 @@ module gapbeam_results
       real(dp) :: exponent = 0.0_dp              !! lambda [1/s]
       real(dp) :: uncertainty = 0.0_dp           !! standard error over 10 blocks [1/s]
       real(dp), allocatable :: running(:)        !! estimate after each period [1/s]
+      integer :: periods = 0                     !! periods averaged [-]
+      logical :: converged = .false.             !! the uncertainty met its target
+      !> root strain [-] and its rate [1/s] of the reference trajectory at the end of each
+      !> period (forcing phase 0): (2, periods)
+      real(dp), allocatable :: section(:, :)
    end type lyapunov_t
 
    !> Everything one point produces.
@@ -119,6 +130,46 @@ module gapbeam_results
       real(dp), allocatable :: u_end(:), v_end(:)    !! final state at a period boundary
       integer(int64) :: steps = 0                    !! Newmark steps of the point
       real(dp) :: seconds = 0.0_dp                   !! elapsed time of the point [s]
+      ! --- the evidence of the label
+      character(len=:), allocatable :: method        !! the method that ran (resolved)
+      integer :: lyapunov_periods = 0                !! periods averaged for lambda [-]
+      integer :: lyapunov_converged = 0              !! 1: sigma met its target, 0: stopped at max
+      integer :: period_max_tested = 0               !! periods 1..this were tried [-]
+      real(dp) :: period_tolerance = 0.0_dp          !! repeat tolerance used [-]
+      integer :: closest_period = 0                  !! the period that repeats best [-]
+      real(dp) :: repeat_distance = 0.0_dp           !! its largest repeat distance / size [-]
+      integer :: transient_periods = 0               !! periods discarded in all [-]
+      integer :: settle_windows = 0                  !! windows compared (0: no test) [-]
+      real(dp) :: window_difference = 0.0_dp         !! largest difference / orbit size [-]
+      integer :: settled = 0                         !! 1: windows agree (or no test), 0: not
+      real(dp) :: strain_range = 0.0_dp              !! orbit size: root strain range [-]
+      real(dp) :: strain_rate_range = 0.0_dp         !! root strain rate range [1/s]
+      real(dp) :: seconds_label = 0.0_dp             !! CPU time of the labelled run [s]
+      ! --- the certificate: an accuracy check and a perturbed start
+      integer :: certificate = 0                     !! certificate_* code
+      character(len=:), allocatable :: certificate_reason  !! why (one line)
+      character(len=:), allocatable :: accuracy_method  !! the accuracy check's method ('' none)
+      integer :: accuracy_label = 0                  !! its label (label_failed: it failed)
+      real(dp) :: accuracy_lyapunov = 0.0_dp         !! its exponent [1/s]
+      real(dp) :: accuracy_lyapunov_error = 0.0_dp   !! its standard error [1/s]
+      real(dp) :: accuracy_distance = 0.0_dp         !! its orbit / statistics distance [-]
+      integer :: perturbed_label = 0                 !! the perturbed start's label
+      real(dp) :: perturbed_lyapunov = 0.0_dp        !! its exponent [1/s]
+      real(dp) :: perturbed_lyapunov_error = 0.0_dp  !! its standard error [1/s]
+      real(dp) :: perturbed_distance = 0.0_dp        !! its orbit / statistics distance [-]
+      real(dp) :: seconds_certify = 0.0_dp           !! CPU time of the checks [s]
+      ! --- coexisting attractors: every start and the distinct attractors they reached
+      integer, allocatable :: start_label(:)         !! label of each start
+      integer, allocatable :: start_attractor(:)     !! attractor each start reached (0: failed)
+      real(dp), allocatable :: start_lyapunov(:)     !! exponent of each start [1/s]
+      integer :: n_attractors = 0                    !! distinct attractors found
+      integer, allocatable :: attractor_label(:)     !! label of each attractor
+      real(dp), allocatable :: attractor_fraction(:) !! fraction of the starts reaching it [-]
+      real(dp), allocatable :: attractor_lyapunov(:) !! exponent of its first start [1/s]
+      ! --- the values of the sweep axes at this point
+      real(dp) :: x = 0.0_dp                         !! x axis value [its unit]
+      real(dp) :: y = 0.0_dp                         !! y axis value [its unit]
+      real(dp) :: f1_open_hz = 0.0_dp                !! first frequency of the point's model [Hz]
    end type point_result_t
 
    !> One series of the work-precision study.
@@ -188,7 +239,18 @@ contains
                res%tangential_force(n_hist, ns), source=0.0_dp)
    end subroutine allocate_result
 
-   !> Text of a label code: 'period_3', 'chaotic', 'undecided'.
+   !> Text of a certificate code: 'certified', 'disputed', 'none'.
+   pure function certificate_text(code) result(t)
+      integer, intent(in) :: code    !! certificate code
+      character(len=:), allocatable :: t
+      select case (code)
+      case (certificate_certified);  t = 'certified'
+      case (certificate_disputed);  t = 'disputed'
+      case default;  t = 'none'
+      end select
+   end function certificate_text
+
+   !> Text of a label code: 'period_3', 'chaotic', 'undecided', 'unsettled', 'failed'.
    pure function label_text(code) result(t)
       integer, intent(in) :: code    !! label code
       character(len=:), allocatable :: t
@@ -197,6 +259,10 @@ contains
          t = 'chaotic'
       else if (code == label_undecided) then
          t = 'undecided'
+      else if (code == label_unsettled) then
+         t = 'unsettled'
+      else if (code == label_failed) then
+         t = 'failed'
       else
          write(buf, '(i0)') code
          t = 'period_' // trim(buf)

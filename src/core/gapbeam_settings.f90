@@ -11,7 +11,7 @@ module gapbeam_settings
       study_settings_t, batch_options_t
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
-      sweep_direction_words, sweep_axis_words, series_words
+      sweep_direction_words, sweep_axis_words, series_words, start_words
 
    character(len=*), parameter :: method_words = "'auto', 'newmark', 'hht', 'generalized_alpha', " &
       // "'central_difference', 'rk4', 'rk45', 'exact'"
@@ -26,7 +26,8 @@ module gapbeam_settings
       "'root_k_theta', 'spring', 'thickness', 'width'"
    character(len=*), parameter :: sweep_mode_words = "'independent', 'continuation'"
    character(len=*), parameter :: sweep_direction_words = "'up', 'down'"
-   character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude'"
+   character(len=*), parameter :: sweep_axis_words = "'frequency', 'amplitude', 'x', 'y'"
+   character(len=*), parameter :: start_words = "'deck', 'rest', 'up', 'down', 'random'"
    character(len=*), parameter :: series_words = "'newmark_half_step', 'newmark_fixed', " &
       // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
       // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact', 'newmark_error', " &
@@ -105,14 +106,38 @@ module gapbeam_settings
       real(dp), allocatable :: velocity(:)          !! [m/s or rad/s]
    end type initial_state_t
 
-   !> How a forced run is classified: period detection and the largest Lyapunov exponent.
+   !> How a forced run is classified and its label certified: the settling test, period
+   !> detection, the adaptive Lyapunov exponent, the independent re-checks and the starts.
+   !> Zero (or negative, where said) means 'automatic' for the variables that say so.
    type :: diagnostics_settings_t
-      integer  :: period_max = 16                 !! largest period looked for [periods]
-      real(dp) :: period_tolerance = 1.0e-3_dp    !! repeat distance / orbit size [-]
-      integer  :: period_points = 64              !! last Poincare points tested [-]
-      integer  :: lyapunov_periods = 100          !! periods averaged (0: no exponent) [-]
+      integer  :: period_max = 64                 !! largest period looked for [periods]
+      !> repeat distance / orbit size [-]; 0: from the integration accuracy (1e-6 for the
+      !> exact and fixed-step methods, 10 x the tolerance for error control, within 1e-6..1e-2)
+      real(dp) :: period_tolerance = 0.0_dp
+      integer  :: period_points = 64              !! last Poincare points tested (>= 2p) [-]
+      integer  :: lyapunov_periods = 100          !! first periods averaged (0: no exponent) [-]
+      integer  :: lyapunov_max_periods = 0        !! most periods averaged (0: 20 x the first) [-]
+      real(dp) :: lyapunov_rel_error = 0.1_dp     !! stop when sigma <= this x |lambda| [-]
+      real(dp) :: lyapunov_abs_error = 0.05_dp    !! ... or when sigma <= this [1/s]
       real(dp) :: lyapunov_perturbation = 1.0e-7_dp  !! initial separation / state norm [-]
       real(dp) :: chaos_sigmas = 3.0_dp           !! chaotic: lambda > chaos_sigmas * uncertainty
+      integer  :: settle_windows = 2              !! windows of the record compared (0: no test)
+      real(dp) :: settle_tolerance = 0.1_dp       !! window statistics agree within this [-]
+      !> most forcing periods discarded in all, the deck's transient included, while the
+      !> windows disagree (0: 10 x transient_periods, at least transient + record periods)
+      integer  :: transient_max_periods = 0
+      logical  :: certify = .true.                !! re-check every label independently
+      real(dp) :: certify_ratio = 10.0_dp         !! accuracy check: settings tightened by this
+      real(dp) :: certify_perturbation = 1.0e-3_dp  !! perturbed start: size / state norm [-]
+      real(dp) :: orbit_tolerance = 0.01_dp       !! same periodic orbit: distance / size [-]
+      !> initial states of every point, the first one labelled and certified: 'deck' (&initial),
+      !> 'rest', 'up' and 'down' (a sweep's neighbour below / above along its lines), 'random'
+      !> (random_starts seeded states); '' ends the list (none given: one start, from the sweep
+      !> mode, or 'deck')
+      character(len=8) :: starts(8) = ''
+      integer  :: random_starts = 4               !! states for each 'random' [-]
+      integer  :: random_seed = 1                 !! seed of the random states [-]
+      real(dp) :: random_amplitude = 0.0_dp       !! tip scale of a random state (0: A_pp) [m]
    end type diagnostics_settings_t
 
    !> Which model the analysis integrates: the full finite element model or a modal one.
@@ -137,11 +162,16 @@ module gapbeam_settings
       character(len=16) :: mode = 'independent'      !! 'independent' or 'continuation'
       character(len=16) :: direction = 'up'          !! continuation: 'up' or 'down'
       character(len=16) :: axis = 'frequency'        !! continuation lines run along this axis
-      real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz]
-      real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m]
-      !> deck variables that the amplitude axis sets instead of &forcing amplitude_pp (each to
-      !> the axis value, e.g. '&stops gap(1)', '&stops gap(2)'); blank: amplitude_pp
-      character(len=48) :: variable(8) = ''
+      real(dp), allocatable :: frequency_hz(:)       !! frequency axis [Hz] (or the &forcing one)
+      real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m] (or one)
+      !> the two axes, numeric deck variables by name (gapbeam_deck_variable): x (fastest) is
+      !> '&forcing frequency_hz' and y '&forcing amplitude_pp' unless x_variable / y_variable
+      !> name others; an axis may name several variables of one unit, separated by commas
+      !> ('&stops gap(1), &stops gap(2)'), all set to the axis value
+      character(len=160) :: x_variable = '&forcing frequency_hz'
+      character(len=160) :: y_variable = '&forcing amplitude_pp'
+      real(dp), allocatable :: x(:)                  !! values of the x axis [its unit]
+      real(dp), allocatable :: y(:)                  !! values of the y axis [its unit]
       logical :: progress = .true.                   !! progress on standard error
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come

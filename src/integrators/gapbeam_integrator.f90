@@ -133,22 +133,6 @@ module gapbeam_integrator
 
 contains
 
-   ! --- continuation hook (issue 14)
-   !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with
-   !> mass (see gapbeam_exact_jacobian); this integrator has no such Jacobian: an error, the
-   !> state unchanged. Callers use finite differences of `advance` instead.
-   subroutine advance_jacobian_none(self, state, t_target, jac, err)
-      class(integrator_t), intent(inout), target :: self   !! integrator
-      type(state_t), intent(inout) :: state            !! state (unchanged)
-      real(dp), intent(in) :: t_target                 !! target time [s]
-      real(dp), allocatable, intent(out) :: jac(:, :)  !! not allocated
-      type(error_t), allocatable, intent(out) :: err   !! always set
-      allocate(err)
-      err%message = "gapbeam_integrator: method '" // self%method // "' gives no exact " &
-         // "Jacobian of its flow (use &continuation jacobian = 'finite_difference')"
-   end subroutine advance_jacobian_none
-   ! --- end of the continuation hook
-
    !> The settings a run uses: method 'auto' resolved (the exact integrator when every stop is
    !> piecewise linear, else Newmark with error control) and step_control 'auto' resolved
    !> ('error' for the methods with an error estimate, 'fixed' for the others; 'embedded' is
@@ -305,6 +289,22 @@ contains
       fda = 0.0_dp;  ev = 0.0_dp;  coef = 0.0_dp
       has = .false.
    end subroutine no_local_error
+
+   ! --- continuation hook (issue 14)
+   !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with
+   !> mass (see gapbeam_exact_jacobian); this integrator has no such Jacobian: an error, the
+   !> state unchanged. Callers use finite differences of `advance` instead.
+   subroutine advance_jacobian_none(self, state, t_target, jac, err)
+      class(integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state            !! state (unchanged)
+      real(dp), intent(in) :: t_target                 !! target time [s]
+      real(dp), allocatable, intent(out) :: jac(:, :)  !! not allocated
+      type(error_t), allocatable, intent(out) :: err   !! always set
+      allocate(err)
+      err%message = "gapbeam_integrator: method '" // self%method // "' gives no exact " &
+         // "Jacobian of its flow (use &continuation jacobian = 'finite_difference')"
+   end subroutine advance_jacobian_none
+   ! --- end of the continuation hook
 
    !> The state at time t from a displacement and a velocity: massless dofs (lumped mass
    !> without rotary inertia) put in equilibrium with the others, contact forces from the

@@ -2,7 +2,9 @@
 !> so a sweep killed at any moment and started again with the same deck runs only the points
 !> not yet recorded, and ends with the same results as an uninterrupted run.
 !>
-!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-2', the deck
+!> A record holds one slot of the sweep (a point's start, gapbeam_sweep), indexed by slot.
+!>
+!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-4', the deck
 !> hash (int64: CRC-32 of the signature), the signature length (int64) and the signature (the
 !> effective deck text and the shard), then records: begin mark (int32), point index (int32),
 !> payload length m (int32), m reals (pack_point), checksum (int64: CRC-32 of the bytes of
@@ -24,8 +26,10 @@ module gapbeam_checkpoint
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
       unpack_point, crc32
 
-   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-2'
+   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-4'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused
+   character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'   ! no evidence: refused
+   character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'   ! no wear: refused
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
 
@@ -95,6 +99,16 @@ contains
       if (head == magic_1) then
          call refuse(ck, 'was written by an older gapbeam, without checksums: remove it (its ' &
             // 'points are then computed again)', err)
+         return
+      end if
+      if (head == magic_2) then
+         call refuse(ck, 'was written by an older gapbeam, without the evidence and ' &
+            // 'certificates of the labels: remove it (its points are then computed again)', err)
+         return
+      end if
+      if (head == magic_3) then
+         call refuse(ck, 'was written by an older gapbeam, without the wear outputs of the ' &
+            // 'supports: remove it (its points are then computed again)', err)
          return
       end if
       if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
@@ -293,7 +307,8 @@ contains
       s = trim(buf)
    end function str_int64
 
-   !> A point's results as one real array (for checkpoints); integers are stored exactly.
+   !> A point's results as one real array (for checkpoints); integers and characters are
+   !> stored exactly (a text as its length, then one character code per real).
    pure function pack_point(pr) result(x)
       type(point_result_t), intent(in) :: pr   !! a finished point
       real(dp), allocatable :: x(:)
@@ -304,6 +319,16 @@ contains
            pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
            real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
            real(size(pr%u_end), dp), pr%u_end, pr%v_end, &
+           real(pr%lyapunov_periods, dp), real(pr%lyapunov_converged, dp), &
+           real(pr%period_max_tested, dp), pr%period_tolerance, real(pr%closest_period, dp), &
+           pr%repeat_distance, real(pr%transient_periods, dp), real(pr%settle_windows, dp), &
+           pr%window_difference, real(pr%settled, dp), pr%strain_range, pr%strain_rate_range, &
+           pr%seconds_label, real(pr%certificate, dp), real(pr%accuracy_label, dp), &
+           pr%accuracy_lyapunov, pr%accuracy_lyapunov_error, pr%accuracy_distance, &
+           real(pr%perturbed_label, dp), pr%perturbed_lyapunov, pr%perturbed_lyapunov_error, &
+           pr%perturbed_distance, pr%seconds_certify, pr%x, pr%y, pr%f1_open_hz, &
+           text_reals(pr%method), text_reals(pr%certificate_reason), &
+           text_reals(pr%accuracy_method), &
            real(size(wear(pr%normal_work_rate)), dp), wear(pr%normal_work_rate), &
            wear(pr%sliding_distance), wear(pr%friction_work_rate), wear(pr%wear_volume_rate)]
    end function pack_point
@@ -319,12 +344,26 @@ contains
       end if
    end function wear
 
+   !> A text (possibly unallocated: '') as its length and character codes.
+   pure function text_reals(t) result(x)
+      character(len=:), allocatable, intent(in) :: t   !! text
+      real(dp), allocatable :: x(:)
+      integer :: i
+      if (.not. allocated(t)) then
+         x = [0.0_dp]
+      else
+         x = [real(len(t), dp), (real(iachar(t(i:i)), dp), i = 1, len(t))]
+      end if
+   end function text_reals
+
    !> Inverse of pack_point; ok is false when x is not a well-formed record.
    pure subroutine unpack_point(x, pr, ok)
       real(dp), intent(in) :: x(:)                !! packed record
       type(point_result_t), intent(out) :: pr     !! the point
       logical, intent(out) :: ok                  !! record well formed
       integer :: k, m, ns, nr, n
+      integer, parameter :: n_scalars = 26
+      real(dp) :: s(n_scalars)
       ok = .false.
       if (size(x) < 9) return
       pr%status = nint(x(1));  pr%period = nint(x(2));  pr%label = nint(x(3))
@@ -346,11 +385,29 @@ contains
       pr%p_strain = x(k + 1:k + nr);  k = k + nr
       pr%p_strain_rate = x(k + 1:k + nr);  k = k + nr + 1
       if (k > size(x)) return
-      n = nint(x(k));  if (n < 0 .or. k + 2 * n > size(x)) return
+      n = nint(x(k));  if (n < 0 .or. k + 2 * n + n_scalars > size(x)) return
       pr%u_end = x(k + 1:k + n);  k = k + n
-      pr%v_end = x(k + 1:k + n);  k = k + n + 1
+      pr%v_end = x(k + 1:k + n);  k = k + n
+      s = x(k + 1:k + n_scalars);  k = k + n_scalars
+      pr%lyapunov_periods = nint(s(1));  pr%lyapunov_converged = nint(s(2))
+      pr%period_max_tested = nint(s(3));  pr%period_tolerance = s(4)
+      pr%closest_period = nint(s(5));  pr%repeat_distance = s(6)
+      pr%transient_periods = nint(s(7));  pr%settle_windows = nint(s(8))
+      pr%window_difference = s(9);  pr%settled = nint(s(10))
+      pr%strain_range = s(11);  pr%strain_rate_range = s(12);  pr%seconds_label = s(13)
+      pr%certificate = nint(s(14));  pr%accuracy_label = nint(s(15))
+      pr%accuracy_lyapunov = s(16);  pr%accuracy_lyapunov_error = s(17)
+      pr%accuracy_distance = s(18);  pr%perturbed_label = nint(s(19))
+      pr%perturbed_lyapunov = s(20);  pr%perturbed_lyapunov_error = s(21)
+      pr%perturbed_distance = s(22);  pr%seconds_certify = s(23)
+      pr%x = s(24);  pr%y = s(25);  pr%f1_open_hz = s(26)
+      call take_text(x, k, pr%method, ok);  if (.not. ok) return
+      call take_text(x, k, pr%certificate_reason, ok);  if (.not. ok) return
+      call take_text(x, k, pr%accuracy_method, ok);  if (.not. ok) return
       ! the wear block: its size, then four per-stop arrays
-      if (k > size(x)) return
+      ok = .false.
+      if (k + 1 > size(x)) return
+      k = k + 1
       ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns /= size(x)) return
       pr%normal_work_rate = x(k + 1:k + ns);  k = k + ns
       pr%sliding_distance = x(k + 1:k + ns);  k = k + ns
@@ -358,4 +415,25 @@ contains
       pr%wear_volume_rate = x(k + 1:k + ns)
       ok = .true.
    end subroutine unpack_point
+
+   !> The text stored after x(k) (see text_reals); k moves past it.
+   pure subroutine take_text(x, k, t, ok)
+      real(dp), intent(in) :: x(:)                        !! packed record
+      integer, intent(inout) :: k                         !! last position read
+      character(len=:), allocatable, intent(out) :: t     !! the text
+      logical, intent(out) :: ok                          !! well formed
+      integer :: n, i, c
+      ok = .false.
+      if (k + 1 > size(x)) return
+      n = nint(x(k + 1))
+      if (n < 0 .or. k + 1 + n > size(x)) return
+      allocate(character(len=n) :: t)
+      do i = 1, n
+         c = nint(x(k + 1 + i))
+         if (c < 0 .or. c > 127) return
+         t(i:i) = achar(c)
+      end do
+      k = k + 1 + n
+      ok = .true.
+   end subroutine take_text
 end module gapbeam_checkpoint

@@ -124,10 +124,11 @@ module gapbeam_hdf5_output
       procedure, private :: read_r2 => reader_read_r2
       procedure, private :: read_i0 => reader_read_i0
       procedure, private :: read_i1 => reader_read_i1
+      procedure, private :: read_i2 => reader_read_i2
       procedure, private :: read_s1 => reader_read_s1
       !> Read a real(dp) scalar / rank-1 / rank-2, an integer scalar / rank-1 or a string array
       !> dataset; arrays are allocated to the stored shape.
-      generic :: read => read_r0, read_r1, read_r2, read_i0, read_i1, read_s1
+      generic :: read => read_r0, read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
       procedure :: read_text => reader_read_text       !! scalar string dataset
       procedure :: read_units => reader_read_units     !! the `units` attribute of a dataset
       procedure :: read_attr => reader_read_attr       !! a string attribute of a group or dataset
@@ -752,6 +753,31 @@ contains
       end if
       call close_dataset(proc, dset_id, dset_path, self%path, err)
    end subroutine reader_read_i1
+
+   !> Read an integer rank-2 dataset.
+   subroutine reader_read_i2(self, dset_path, value, err)
+      class(h5_reader_t), intent(in) :: self             !! reader with an open file
+      character(len=*), intent(in) :: dset_path          !! dataset, e.g. '/sweep/starts/label'
+      integer, allocatable, intent(out) :: value(:, :)   !! stored values [units attribute]
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), parameter :: proc = 'read_i2'
+      integer(hid_t) :: dset_id
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr
+
+      call open_numeric(self, proc, dset_path, H5T_INTEGER_F, dims, dset_id, err)
+      if (allocated(err)) then
+         allocate(value(0, 0))
+         return
+      end if
+      allocate(value(dims(1), dims(2)))
+      if (size(value) > 0) then
+         call h5dread_f(dset_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot read ' &
+            // at('dataset', dset_path, self%path))
+      end if
+      call close_dataset(proc, dset_id, dset_path, self%path, err)
+   end subroutine reader_read_i2
 
    !> Read a rank-1 fixed-length string dataset; NUL padding comes back as blanks.
    subroutine reader_read_s1(self, dset_path, value, err)

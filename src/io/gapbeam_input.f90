@@ -22,8 +22,12 @@ module gapbeam_input
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
       linear_solver_words, method_words, initial_state_words, sweep_mode_words, &
-      sweep_direction_words, sweep_axis_words, series_words, calibration_words, analysis_words
+      sweep_direction_words, sweep_axis_words, series_words, calibration_words, analysis_words, &
+      start_words
    use gapbeam_deck, only: deck_t
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
+      get_deck_value, set_deck_value, deck_variable_label, parse_deck_variables, &
+      deck_variables_label
    implicit none
    private
    public :: read_deck, known_groups
@@ -84,6 +88,7 @@ contains
       character(len=:), allocatable :: text
       character(len=32), allocatable :: names(:)
       character(len=:), allocatable :: block(:)
+      type(sweep_settings_t) :: sweep
       integer :: s, i, j
       logical :: closed
 
@@ -154,6 +159,7 @@ contains
       end if
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
       if (failed(err, path)) return
+      call check_root_spring(deck%structure, err);  if (failed(err, path)) return
       call read_modes(srcs, deck%n_print_modes, err);  if (failed(err, path)) return
       call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
       call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
@@ -164,14 +170,19 @@ contains
       call read_solver(srcs, deck%solver, err);  if (failed(err, path)) return
       call read_initial(srcs, deck%structure, deck%initial, err);  if (failed(err, path)) return
       call read_output(srcs, deck%output, err);  if (failed(err, path)) return
+      ! no Lyapunov exponent by default with ring supports (refused when asked for: below)
+      if (any_ring(deck%stops)) deck%diagnostics%lyapunov_periods = 0
       call read_diagnostics(srcs, deck%diagnostics, err);  if (failed(err, path)) return
-      call read_sweep(srcs, deck%forcing, deck%sweep, err);  if (failed(err, path)) return
+      sweep = deck%sweep
+      call read_sweep(srcs, deck, sweep, err);  if (failed(err, path)) return
+      deck%sweep = sweep
       call read_study(srcs, deck%study, err);  if (failed(err, path)) return
       call read_model_size(srcs, deck%model_size, err);  if (failed(err, path)) return
       call read_reduction(srcs, deck%reduction, err);  if (failed(err, path)) return
       call read_continuation(srcs, deck, group_present(srcs, 'continuation'), err)   ! issue 14
       if (failed(err, path)) return
       call check_sizes(deck, err);  if (failed(err, path)) return
+      call check_starts(deck, err);  if (failed(err, path)) return
       if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
           (deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep')) then
          ! the two trajectories restart from (u, v) every period: a stick anchor is not part
@@ -180,7 +191,8 @@ contains
             // str(deck%diagnostics%lyapunov_periods) // ': the Lyapunov exponent is not ' &
             // 'available with ring supports (circular clearance or friction: their stick ' &
             // 'state is not part of the state (u, v) the exponent perturbs); set ' &
-            // 'lyapunov_periods = 0 (the label then comes from the period detection alone)')
+            // 'lyapunov_periods = 0, the default with ring supports (the label then comes from the ' &
+            // 'period detection alone)')
          return
       end if
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
@@ -231,7 +243,7 @@ contains
    subroutine check_sizes(deck, err)
       type(deck_t), intent(in) :: deck                 !! deck, every group validated
       type(error_t), allocatable, intent(inout) :: err !! set when an array would be too large
-      integer(int64) :: samples, per_point, points
+      integer(int64) :: samples, per_point, points, lyap
       if (allocated(err)) return
       samples = int(min(deck%output%history_periods, deck%solver%record_periods), int64) &
                 * deck%output%samples_per_period
@@ -264,19 +276,67 @@ contains
          end if
       end if
       if (deck%job%analysis /= 'sweep') return
-      ! per point: Poincare strain and rate, the running Lyapunov estimate, the final state
-      per_point = 2_int64 * deck%solver%record_periods + deck%diagnostics%lyapunov_periods &
+      ! per run (point and start): Poincare strain and rate, the running Lyapunov estimate (at
+      ! most lyapunov_max_periods), the final state
+      lyap = deck%diagnostics%lyapunov_max_periods
+      if (lyap == 0) lyap = 20_int64 * deck%diagnostics%lyapunov_periods
+      per_point = 2_int64 * deck%solver%record_periods + lyap &
                   + 4_int64 * deck%structure%beam%planes * (deck%structure%beam%n_elem + 1) &
                   + 16_int64 * size(deck%stops)
-      points = int(size(deck%sweep%frequency_hz), int64) * size(deck%sweep%amplitude_pp)
+      points = int(size(deck%sweep%x), int64) * size(deck%sweep%y) * n_starts(deck%diagnostics)
       if (points * per_point > max_values) then
-         call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' points x ' &
-            // str_int64(per_point) // ' values kept per point (2 x &solver record_periods + ' &
-            // '&diagnostics lyapunov_periods + the final state) = ' &
+         call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' runs (points x ' &
+            // 'starts) x ' // str_int64(per_point) // ' values kept per run (2 x &solver ' &
+            // 'record_periods + &diagnostics lyapunov_max_periods + the final state) = ' &
             // str_int64(points * per_point) // ': at most ' // str_int64(max_values) &
-            // ' values; sweep fewer points (n_frequency, n_amplitude) or record fewer periods')
+            // ' values; sweep fewer points (n_frequency, n_amplitude, n_x, n_y), use fewer ' &
+            // 'starts or record fewer periods')
       end if
    end subroutine check_sizes
+
+   !> Starts per point of a deck's diagnostics ('random' counts random_starts).
+   pure integer function n_starts(diag)
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      integer :: j
+      n_starts = 0
+      do j = 1, size(diag%starts)
+         if (len_trim(diag%starts(j)) == 0) exit
+         if (diag%starts(j) == 'random') then
+            n_starts = n_starts + diag%random_starts
+         else
+            n_starts = n_starts + 1
+         end if
+      end do
+      n_starts = max(1, n_starts)
+   end function n_starts
+
+   !> 'up' and 'down' starts need the lines of a sweep, along an axis the sweep has.
+   subroutine check_starts(deck, err)
+      type(deck_t), intent(in) :: deck                 !! deck, every group validated
+      type(error_t), allocatable, intent(inout) :: err !! set on a start that cannot be made
+      logical :: lines
+      if (allocated(err)) return
+      lines = any(deck%diagnostics%starts == 'up' .or. deck%diagnostics%starts == 'down')
+      if (lines .and. deck%job%analysis /= 'sweep') then
+         call fatal_error(err, "group &diagnostics: starts 'up' and 'down' start from a " &
+            // "sweep neighbour's final state: only with analysis = 'sweep' (this deck runs '" &
+            // trim(deck%job%analysis) // "')")
+         return
+      end if
+      if (deck%job%analysis /= 'sweep') return
+      if (all(len_trim(deck%diagnostics%starts) == 0)) lines = deck%sweep%mode == 'continuation'
+      if (.not. lines) return
+      if ((deck%sweep%axis == 'frequency' .and. deck%sweep%x_variable /= '&forcing frequency_hz' &
+           .and. deck%sweep%y_variable /= '&forcing frequency_hz') .or. &
+          (deck%sweep%axis == 'amplitude' .and. deck%sweep%x_variable /= '&forcing amplitude_pp' &
+           .and. deck%sweep%y_variable /= '&forcing amplitude_pp')) then
+         call fatal_error(err, "group &sweep: axis = '" // trim(deck%sweep%axis) // "': the " &
+            // 'lines of a continuation run along an axis of the sweep, and neither ' &
+            // "x_variable ('" // trim(deck%sweep%x_variable) // "') nor y_variable ('" &
+            // trim(deck%sweep%y_variable) // "') is the " // trim(deck%sweep%axis) &
+            // "; use axis = 'x' or 'y'")
+      end if
+   end subroutine check_starts
 
    !> ' (a quote opened in the value of VAR is never closed)' when the last assignment of an
    !> unclosed group holds a quote left open (the '/' then belongs to the string), else ''.
@@ -401,6 +461,27 @@ contains
          return
       end do
    end subroutine apply_group
+
+   !> A root spring negligible against the beam (kappa = k_theta L / EI below 1e-12) with no
+   !> &springs: to double precision the root is a pin and the beam a mechanism, whose stiffness
+   !> matrix is singular (the eigen-solve would fail far from the deck variables).
+   subroutine check_root_spring(st, err)
+      type(structure_t), intent(in) :: st                !! beam, root, springs
+      type(error_t), allocatable, intent(out) :: err     !! the spring is negligible
+      real(dp) :: kappa, ei_l
+      if (st%root%condition /= 'spring') return
+      if (allocated(st%springs)) then
+         if (size(st%springs) > 0) return
+      end if
+      kappa = st%root%k_theta * st%beam%length / beam_ei(st%beam)
+      ei_l = beam_ei(st%beam) / st%beam%length
+      if (kappa < 1.0e-12_dp) call fatal_error(err, 'group &root: k_theta = ' &
+         // str(st%root%k_theta) // ' N m/rad against the beam (&beam youngs_modulus, width, ' &
+         // 'thickness or second_moment, length: EI/L = ' // str(ei_l) // ' N m): kappa = ' &
+         // 'k_theta L / EI = ' // str(kappa) // ' is below ' &
+         // '1e-12; to double precision the root is a pin and the beam, with no &springs, a ' &
+         // 'mechanism (its stiffness matrix is singular)')
+   end subroutine check_root_spring
 
    !> The list variables of group `name` assigned whole ('node = 2, 3', not 'node(2) = 3') in
    !> the sources after source `s`, as ' a b ' (blank separated, blanks around), or ''.
@@ -1202,6 +1283,15 @@ contains
       case ('rayleigh')
          call require_nonnegative('damping', 'mass_coefficient', mass_coefficient, err)
          call require_nonnegative('damping', 'stiffness_coefficient', stiffness_coefficient, err)
+         ! the beam's scale rule (check_beam_scales): beta M and gamma K must not overflow
+         ! (beta = 1e308 made every damping term infinite and the run never end)
+         if (.not. allocated(err) .and. mass_coefficient > sqrt(huge(1.0_dp))) &
+            call fatal_error(err, 'group &damping: mass_coefficient = ' // str(mass_coefficient) &
+               // ': must be at most ' // str(sqrt(huge(1.0_dp))) // ' (1/s)')
+         if (.not. allocated(err) .and. stiffness_coefficient > sqrt(huge(1.0_dp))) &
+            call fatal_error(err, 'group &damping: stiffness_coefficient = ' &
+               // str(stiffness_coefficient) // ': must be at most ' // str(sqrt(huge(1.0_dp))) &
+               // ' (s)')
       case ('ratios')
          call require_positive('damping', 'frequency1_hz', frequency1_hz, err)
          call require_positive('damping', 'frequency2_hz', frequency2_hz, err)
@@ -1528,29 +1618,96 @@ contains
       type(source_t), intent(in) :: srcs(:)
       type(diagnostics_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      integer :: period_max, period_points, lyapunov_periods
-      real(dp) :: period_tolerance, lyapunov_perturbation, chaos_sigmas
+      integer :: period_max, period_points, lyapunov_periods, lyapunov_max_periods, &
+         settle_windows, transient_max_periods, random_starts, random_seed, j, k
+      real(dp) :: period_tolerance, lyapunov_perturbation, chaos_sigmas, lyapunov_rel_error, &
+         lyapunov_abs_error, settle_tolerance, certify_ratio, certify_perturbation, &
+         orbit_tolerance, random_amplitude
+      logical :: certify
+      character(len=8) :: starts(8)
       namelist /diagnostics/ period_max, period_tolerance, period_points, lyapunov_periods, &
-         lyapunov_perturbation, chaos_sigmas
+         lyapunov_perturbation, chaos_sigmas, lyapunov_max_periods, lyapunov_rel_error, &
+         lyapunov_abs_error, settle_windows, settle_tolerance, transient_max_periods, &
+         certify, certify_ratio, certify_perturbation, orbit_tolerance, starts, &
+         random_starts, random_seed, random_amplitude
       period_max = cfg%period_max;  period_tolerance = cfg%period_tolerance
       period_points = cfg%period_points;  lyapunov_periods = cfg%lyapunov_periods
       lyapunov_perturbation = cfg%lyapunov_perturbation;  chaos_sigmas = cfg%chaos_sigmas
+      lyapunov_max_periods = cfg%lyapunov_max_periods
+      lyapunov_rel_error = cfg%lyapunov_rel_error;  lyapunov_abs_error = cfg%lyapunov_abs_error
+      settle_windows = cfg%settle_windows;  settle_tolerance = cfg%settle_tolerance
+      transient_max_periods = cfg%transient_max_periods;  certify = cfg%certify
+      certify_ratio = cfg%certify_ratio;  certify_perturbation = cfg%certify_perturbation
+      orbit_tolerance = cfg%orbit_tolerance;  starts = cfg%starts
+      random_starts = cfg%random_starts;  random_seed = cfg%random_seed
+      random_amplitude = cfg%random_amplitude
       call apply_group(srcs, 'diagnostics', 'period_max period_tolerance period_points ' &
-         // 'lyapunov_periods lyapunov_perturbation chaos_sigmas', reader, err)
+         // 'lyapunov_periods lyapunov_perturbation chaos_sigmas lyapunov_max_periods ' &
+         // 'lyapunov_rel_error lyapunov_abs_error settle_windows settle_tolerance ' &
+         // 'transient_max_periods certify certify_ratio certify_perturbation ' &
+         // 'orbit_tolerance starts():8 random_starts random_seed random_amplitude', reader, err)
       if (allocated(err)) return
       call require_int('diagnostics', 'period_max', period_max, 1, 1000, err)
-      call require_range('diagnostics', 'period_tolerance', period_tolerance, 1.0e-12_dp, &
-         0.5_dp, err)
+      if (period_tolerance /= 0.0_dp) call require_range('diagnostics', 'period_tolerance', &
+         period_tolerance, 1.0e-12_dp, 0.5_dp, err)
       call require_int('diagnostics', 'period_points', period_points, 1, huge(1), err)
       call require_int('diagnostics', 'lyapunov_periods', lyapunov_periods, 0, max_periods, err, &
          'every period keeps its running estimate')
+      call require_int('diagnostics', 'lyapunov_max_periods', lyapunov_max_periods, 0, &
+         max_periods, err, '0: 20 x lyapunov_periods')
+      if (lyapunov_max_periods > 0) call require_int('diagnostics', 'lyapunov_max_periods', &
+         lyapunov_max_periods, lyapunov_periods, max_periods, err, 'at least lyapunov_periods = ' &
+         // str(lyapunov_periods) // '; 0: 20 x lyapunov_periods')
+      call require_range('diagnostics', 'lyapunov_rel_error', lyapunov_rel_error, 0.0_dp, &
+         10.0_dp, err)
+      call require_range('diagnostics', 'lyapunov_abs_error', lyapunov_abs_error, 0.0_dp, &
+         1.0e6_dp, err)
       call require_range('diagnostics', 'lyapunov_perturbation', lyapunov_perturbation, &
          1.0e-14_dp, 1.0e-2_dp, err)
       call require_range('diagnostics', 'chaos_sigmas', chaos_sigmas, 0.0_dp, 100.0_dp, err)
+      call require_int('diagnostics', 'settle_windows', settle_windows, 0, 100, err, &
+         '0: no settling test; 1 is not allowed')
+      if (settle_windows == 1) call require_int('diagnostics', 'settle_windows', &
+         settle_windows, 2, 100, err, '0: no settling test; 1 is not allowed')
+      call require_range('diagnostics', 'settle_tolerance', settle_tolerance, 1.0e-6_dp, &
+         10.0_dp, err)
+      call require_int('diagnostics', 'transient_max_periods', transient_max_periods, 0, &
+         max_periods, err, '0: 10 x &solver transient_periods')
+      call require_range('diagnostics', 'certify_ratio', certify_ratio, 1.5_dp, 1.0e4_dp, err)
+      call require_range('diagnostics', 'certify_perturbation', certify_perturbation, &
+         1.0e-12_dp, 1.0_dp, err)
+      call require_range('diagnostics', 'orbit_tolerance', orbit_tolerance, 1.0e-12_dp, &
+         1.0_dp, err)
+      call require_int('diagnostics', 'random_starts', random_starts, 1, 1000, err)
+      call require_nonnegative('diagnostics', 'random_amplitude', random_amplitude, err)
+      if (allocated(err)) return
+      do j = 1, size(starts)
+         if (len_trim(starts(j)) == 0) then
+            if (any(len_trim(starts(j + 1:)) > 0)) call fatal_error(err, 'group &diagnostics: ' &
+               // 'starts(' // str(j) // ") is empty but a later entry is given: list the " &
+               // 'starts from starts(1) on, without gaps')
+            exit
+         end if
+         call require_word('diagnostics', 'starts(' // str(j) // ')', starts(j), start_words, &
+                           err)
+         do k = 1, j - 1
+            if (starts(k) == starts(j) .and. .not. allocated(err)) call fatal_error(err, &
+               'group &diagnostics: starts(' // str(j) // ") = '" // trim(starts(j)) &
+               // "' is also starts(" // str(k) // '): each start at most once (' &
+               // "'random' gives random_starts states)")
+         end do
+      end do
       if (allocated(err)) return
       cfg = diagnostics_settings_t(period_max=period_max, period_tolerance=period_tolerance, &
          period_points=period_points, lyapunov_periods=lyapunov_periods, &
-         lyapunov_perturbation=lyapunov_perturbation, chaos_sigmas=chaos_sigmas)
+         lyapunov_max_periods=lyapunov_max_periods, lyapunov_rel_error=lyapunov_rel_error, &
+         lyapunov_abs_error=lyapunov_abs_error, lyapunov_perturbation=lyapunov_perturbation, &
+         chaos_sigmas=chaos_sigmas, settle_windows=settle_windows, &
+         settle_tolerance=settle_tolerance, transient_max_periods=transient_max_periods, &
+         certify=certify, certify_ratio=certify_ratio, &
+         certify_perturbation=certify_perturbation, orbit_tolerance=orbit_tolerance, &
+         starts=starts, random_starts=random_starts, random_seed=random_seed, &
+         random_amplitude=random_amplitude)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -1560,64 +1717,120 @@ contains
       end subroutine reader
    end subroutine read_diagnostics
 
-   subroutine read_sweep(srcs, forcing, cfg, err)
+   !> &sweep. The axes: x is '&forcing frequency_hz' (values from frequency_hz or its range)
+   !> and y '&forcing amplitude_pp' (amplitude_pp or its range) unless x_variable / y_variable
+   !> name other numeric deck variables, whose values come from x_values / y_values or their
+   !> ranges (x_start, x_end, n_x; the deck's value when neither is given). Every value is
+   !> checked by setting it on a copy of the deck (gapbeam_deck_variable).
+   subroutine read_sweep(srcs, deck, cfg, err)
       type(source_t), intent(in) :: srcs(:)
-      type(forcing_t), intent(in) :: forcing
+      type(deck_t), intent(in) :: deck                   !! deck read so far
       type(sweep_settings_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
       character(len=*), parameter :: vars = 'mode:16 direction:16 axis:16 frequency_hz() ' &
          // 'amplitude_pp() frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint variable():48'
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint x_variable:160 ' &
+         // 'y_variable:160 x_values() y_values() x_start x_end n_x y_start y_end n_y'
       character(len=16) :: mode, direction, axis
-      character(len=48) :: variable(8)
-      real(dp), allocatable :: frequency_hz(:), amplitude_pp(:), f_given(:), a_given(:)
-      real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp
-      integer :: n_frequency, n_amplitude, chunk, nf, na
+      character(len=160) :: x_variable, y_variable
+      real(dp), allocatable :: frequency_hz(:), amplitude_pp(:), f_given(:), a_given(:), &
+         x_values(:), y_values(:), x_given(:), y_given(:), fa(:), aa(:)
+      real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp, &
+         x_start, x_end, y_start, y_end
+      integer :: n_frequency, n_amplitude, chunk, nf, na, n_x, n_y, nx, ny
       logical :: progress, checkpoint
+      type(deck_variable_t) :: var(2)
+      type(deck_variable_t), allocatable :: xvars(:), yvars(:)
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         progress, chunk, checkpoint, variable
-      allocate(frequency_hz(naxis), amplitude_pp(naxis))
-      variable = cfg%variable
+         progress, chunk, checkpoint, x_variable, y_variable, x_values, y_values, x_start, &
+         x_end, n_x, y_start, y_end, n_y
+      allocate(frequency_hz(naxis), amplitude_pp(naxis), x_values(naxis), y_values(naxis))
       mode = cfg%mode;  direction = cfg%direction;  axis = cfg%axis
-      frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp
+      x_variable = cfg%x_variable;  y_variable = cfg%y_variable
+      frequency_hz = -1.0_dp;  amplitude_pp = -1.0_dp;  x_values = -1.0_dp;  y_values = -1.0_dp
       frequency_start_hz = 0.0_dp;  frequency_end_hz = 0.0_dp;  n_frequency = 0
       amplitude_start_pp = 0.0_dp;  amplitude_end_pp = 0.0_dp;  n_amplitude = 0
+      x_start = 0.0_dp;  x_end = 0.0_dp;  n_x = 0;  y_start = 0.0_dp;  y_end = 0.0_dp;  n_y = 0
       progress = cfg%progress;  chunk = cfg%chunk;  checkpoint = cfg%checkpoint
       call apply_group(srcs, 'sweep', vars, reader, err)
       if (allocated(err)) return
       ! the lists are read twice, from two markers, to tell the entries given (-1 included)
-      f_given = frequency_hz;  a_given = amplitude_pp
-      frequency_hz = -2.0_dp;  amplitude_pp = -2.0_dp
+      f_given = frequency_hz;  a_given = amplitude_pp;  x_given = x_values;  y_given = y_values
+      frequency_hz = -2.0_dp;  amplitude_pp = -2.0_dp;  x_values = -2.0_dp;  y_values = -2.0_dp
       call apply_group(srcs, 'sweep', vars, reader, err)
       call list_entries('sweep', 'frequency_hz', f_given, frequency_hz, nf, err)
       call list_entries('sweep', 'amplitude_pp', a_given, amplitude_pp, na, err)
+      call list_entries('sweep', 'x_values', x_given, x_values, nx, err)
+      call list_entries('sweep', 'y_values', y_given, y_values, ny, err)
       call require_word('sweep', 'mode', mode, sweep_mode_words, err)
       call require_word('sweep', 'direction', direction, sweep_direction_words, err)
       call require_word('sweep', 'axis', axis, sweep_axis_words, err)
       call require_int('sweep', 'chunk', chunk, 0, huge(1), err)
       call require_int('sweep', 'n_frequency', n_frequency, 0, max_axis, err)
       call require_int('sweep', 'n_amplitude', n_amplitude, 0, max_axis, err)
+      call require_int('sweep', 'n_x', n_x, 0, max_axis, err)
+      call require_int('sweep', 'n_y', n_y, 0, max_axis, err)
       if (allocated(err)) return
+      call sweep_variable('x_variable', x_variable, deck, xvars, err)
+      call sweep_variable('y_variable', y_variable, deck, yvars, err)
+      if (allocated(err)) return
+      ! an axis of several variables is led by its first (forcing variables stand alone)
+      var(1) = xvars(1);  var(2) = yvars(1)
+      block
+         integer :: i, j
+         do i = 1, size(xvars)
+            do j = 1, size(yvars)
+               if (deck_variable_label(xvars(i)) == deck_variable_label(yvars(j))) then
+                  call fatal_error(err, "group &sweep: x_variable and y_variable both name '" &
+                     // deck_variable_label(xvars(i)) // "': the two axes need two variables")
+                  return
+               end if
+            end do
+         end do
+      end block
       call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
          frequency_hz(1:nf), frequency_start_hz, frequency_end_hz, n_frequency, &
-         forcing%frequency_hz, .true., cfg%frequency_hz, err)
+         deck%forcing%frequency_hz, .true., fa, err)
       if (allocated(err)) return
       call make_axis('amplitude_pp', 'amplitude_start_pp', 'amplitude_end_pp', 'n_amplitude', &
          amplitude_pp(1:na), amplitude_start_pp, amplitude_end_pp, n_amplitude, &
-         forcing%amplitude_pp, .false., cfg%amplitude_pp, err)
+         deck%forcing%amplitude_pp, .false., aa, err)
       if (allocated(err)) return
-      if (int(size(cfg%frequency_hz), int64) * size(cfg%amplitude_pp) > max_points) then
-         call fatal_error(err, 'group &sweep: ' // str(size(cfg%frequency_hz)) // ' frequencies ' &
-            // '(frequency_hz or n_frequency) x ' // str(size(cfg%amplitude_pp)) // ' amplitudes ' &
-            // '(amplitude_pp or n_amplitude) = ' // str_int64(int(size(cfg%frequency_hz), &
-            int64) * size(cfg%amplitude_pp)) // ' points: at most ' // str(max_points) &
+      ! a forcing list given while no axis is that variable would be ignored silently
+      if ((nf > 0 .or. n_frequency > 0) .and. &
+          .not. any(label_of(var) == '&forcing frequency_hz')) call fatal_error(err, &
+         'group &sweep: frequency_hz (or n_frequency) is given but ' &
+         // "neither x_variable nor y_variable is '&forcing frequency_hz'")
+      if ((na > 0 .or. n_amplitude > 0) .and. &
+          .not. any(label_of(var) == '&forcing amplitude_pp')) call fatal_error(err, &
+         'group &sweep: amplitude_pp (or n_amplitude) is given but ' &
+         // "neither x_variable nor y_variable is '&forcing amplitude_pp'")
+      if (allocated(err)) return
+      call variable_axis(1, xvars, x_values(1:nx), x_start, x_end, n_x, fa, aa, deck, cfg%x, err)
+      if (allocated(err)) return
+      call variable_axis(2, yvars, y_values(1:ny), y_start, y_end, n_y, fa, aa, deck, cfg%y, err)
+      if (allocated(err)) return
+      if (int(size(cfg%x), int64) * size(cfg%y) > max_points) then
+         call fatal_error(err, 'group &sweep: ' // str(size(cfg%x)) // ' values of x (' &
+            // axis_source(var(1), 'x') // ') x ' // str(size(cfg%y)) // ' values of y (' &
+            // axis_source(var(2), 'y') // ') = ' // str_int64(int(size(cfg%x), int64) &
+            * size(cfg%y)) // ' points: at most ' // str(max_points) &
             // ' points in one sweep (split the map into several decks)')
          return
       end if
+      cfg%frequency_hz = fa;  cfg%amplitude_pp = aa
+      if (deck_variable_label(var(1)) == '&forcing frequency_hz') cfg%frequency_hz = cfg%x
+      if (deck_variable_label(var(2)) == '&forcing frequency_hz') cfg%frequency_hz = cfg%y
+      if (deck_variable_label(var(1)) == '&forcing amplitude_pp') cfg%amplitude_pp = cfg%x
+      if (deck_variable_label(var(2)) == '&forcing amplitude_pp') cfg%amplitude_pp = cfg%y
+      if (all(label_of(var) /= '&forcing frequency_hz')) cfg%frequency_hz = &
+         [deck%forcing%frequency_hz]
+      if (all(label_of(var) /= '&forcing amplitude_pp')) cfg%amplitude_pp = &
+         [deck%forcing%amplitude_pp]
+      cfg%x_variable = deck_variables_label(xvars);  cfg%y_variable = deck_variables_label(yvars)
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
-      cfg%variable = variable
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -1626,6 +1839,115 @@ contains
          read(lines, nml=sweep, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_sweep
+
+   !> Where the values of a sweep axis come from, for messages.
+   pure function axis_source(var, c) result(t)
+      type(deck_variable_t), intent(in) :: var           !! the axis variable
+      character(len=1), intent(in) :: c                  !! 'x' or 'y'
+      character(len=:), allocatable :: t
+      if (deck_variable_label(var) == '&forcing frequency_hz') then
+         t = "'&forcing frequency_hz': frequency_hz or n_frequency"
+      else if (deck_variable_label(var) == '&forcing amplitude_pp') then
+         t = "'&forcing amplitude_pp': amplitude_pp or n_amplitude"
+      else
+         t = "'" // deck_variable_label(var) // "': " // c // '_values or n_' // c
+      end if
+   end function axis_source
+
+   !> Labels of sweep variables ('&forcing frequency_hz', '&stops gap(1)').
+   pure function label_of(var) result(t)
+      type(deck_variable_t), intent(in) :: var(:)       !! variables
+      character(len=64) :: t(size(var))
+      integer :: k
+      do k = 1, size(var)
+         t(k) = deck_variable_label(var(k))
+      end do
+   end function label_of
+
+   !> Parse and check one axis variable of &sweep.
+   subroutine sweep_variable(name, text, deck, vars, err)
+      character(len=*), intent(in) :: name               !! 'x_variable' or 'y_variable'
+      character(len=*), intent(in) :: text               !! its value: names, comma separated
+      type(deck_t), intent(in) :: deck                   !! deck read so far
+      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! parsed
+      type(error_t), allocatable, intent(inout) :: err   !! unknown or absent variable
+      integer :: j
+      if (allocated(err)) return
+      call parse_deck_variables(text, vars, err)
+      do j = 1, size(vars)
+         if (.not. allocated(err)) call check_deck_variable(deck, vars(j), err)
+      end do
+      if (allocated(err)) err%message = "group &sweep: " // name // " = '" // trim(text) &
+         // "': " // err%message
+   end subroutine sweep_variable
+
+   !> Values of axis j: the forcing axes from their own lists, another variable from
+   !> values / start-end-count or the deck's value; each value checked on a deck copy.
+   subroutine variable_axis(j, vars, list, x0, x1, n, fa, aa, deck, axis_out, err)
+      integer, intent(in) :: j                           !! 1: x, 2: y
+      type(deck_variable_t), intent(in) :: vars(:)       !! the axis variables (one or more)
+      real(dp), intent(in) :: list(:)                    !! x_values / y_values given
+      real(dp), intent(in) :: x0, x1                     !! range ends
+      integer, intent(in) :: n                           !! range count (0: none)
+      real(dp), intent(in) :: fa(:), aa(:)               !! frequency and amplitude axes
+      type(deck_t), intent(in) :: deck                   !! deck read so far
+      real(dp), allocatable, intent(out) :: axis_out(:)  !! values
+      type(error_t), allocatable, intent(inout) :: err   !! bad value
+      character(len=1) :: c
+      type(deck_t) :: d
+      type(deck_variable_t) :: var
+      integer :: k, i
+      if (allocated(err)) return
+      c = merge('x', 'y', j == 1)
+      var = vars(1)
+      if (deck_variable_label(var) == '&forcing frequency_hz' .or. &
+          deck_variable_label(var) == '&forcing amplitude_pp') then
+         if (size(list) > 0 .or. n > 0) then
+            call fatal_error(err, 'group &sweep: ' // c // '_values (or n_' // c // ") is " &
+               // "given for '" // deck_variable_label(var) // "': give its values as " &
+               // trim(merge('frequency_hz', 'amplitude_pp', var%name == 'frequency_hz')) &
+               // ' (or its range) instead')
+            return
+         end if
+         if (var%name == 'frequency_hz') then
+            axis_out = fa
+         else
+            axis_out = aa
+         end if
+         return
+      end if
+      if (size(list) > 0 .and. n > 0) then
+         call fatal_error(err, 'group &sweep: give either the list ' // c // '_values or ' &
+            // c // '_start, ' // c // '_end and n_' // c // ', not both')
+         return
+      end if
+      if (size(list) > 0) then
+         axis_out = list
+      else if (n == 1) then
+         axis_out = [x0]
+      else if (n > 1) then
+         axis_out = [(x0 + (x1 - x0) * real(k - 1, dp) / real(n - 1, dp), k = 1, n)]
+         if (.not. all(ieee_is_finite(axis_out))) then
+            call fatal_error(err, 'group &sweep: ' // c // '_start = ' // str(x0) // ', ' // c &
+               // '_end = ' // str(x1) // ': the range between them overflows (its values ' &
+               // 'must be finite)')
+            return
+         end if
+      else
+         axis_out = [get_deck_value(deck, var)]
+      end if
+      do k = 1, size(axis_out)
+         d = deck
+         do i = 1, size(vars)
+            call set_deck_value(d, vars(i), axis_out(k), err)
+            if (allocated(err)) then
+               err%message = 'group &sweep: ' // c // " axis ('" // deck_variable_label(vars(i)) &
+                  // "') value " // str(k) // ': ' // err%message
+               return
+            end if
+         end do
+      end do
+   end subroutine variable_axis
 
    !> A sweep axis from the list `list` (the entries given), or from start, end and count
    !> (`x0`, `x1`, `n`); `default` (the &forcing value) if neither is given.
@@ -1661,6 +1983,12 @@ contains
             axis_out = [x0]
          else
             axis_out = [(x0 + (x1 - x0) * real(j - 1, dp) / real(n - 1, dp), j = 1, n)]
+            if (.not. all(ieee_is_finite(axis_out))) then
+               call fatal_error(err, 'group &sweep: ' // vstart // ' = ' // str(x0) // ', ' &
+                  // vend // ' = ' // str(x1) // ': the range between them overflows (its ' &
+                  // 'values must be finite)')
+               return
+            end if
          end if
       else
          axis_out = [default]

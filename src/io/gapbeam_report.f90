@@ -12,13 +12,18 @@ module gapbeam_report
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
-   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text
+   use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text, &
+      certificate_text
    use gapbeam_kinds, only: pi
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_file_info, write_parameter_set, write_dof_map
    implicit none
    private
+
+   !> The label codes, for long names.
+   character(len=*), parameter :: label_codes = 'p >= 1: period p; 0: undecided; -1: ' &
+      // 'chaotic; -2: unsettled; -3: failed'
    public :: write_modes, write_transient, write_calibration, mode_shape_table
 
    !> Points per element of the mode shape curves (Hermite shape functions).
@@ -297,10 +302,10 @@ contains
       call write_wear_h5(h5, deck, model, res, err);  if (write_failed(h5, err)) return
       call h5%write('/diagnostics/period', diag%period, '1', err, 'detected period in ' &
          // 'forcing periods; 0: none up to period_max');  if (write_failed(h5, err)) return
-      call h5%write('/diagnostics/label', diag%label, '1', err, 'label code: p >= 1 period p, ' &
-         // '0 undecided, -1 chaotic');  if (write_failed(h5, err)) return
+      call h5%write('/diagnostics/label', diag%label, '1', err, 'label code: ' // label_codes)
+      if (write_failed(h5, err)) return
       call h5%write_text('/diagnostics/label_text', label_text(diag%label), err, &
-                         'label: period_<p>, chaotic or undecided')
+                         'label: period_<p>, chaotic, undecided, unsettled or failed')
       if (write_failed(h5, err)) return
       call h5%write('/diagnostics/lyapunov', diag%lyapunov, 's-1', err, 'largest Lyapunov ' &
          // 'exponent (0 when lyapunov_periods = 0)');  if (write_failed(h5, err)) return
@@ -310,6 +315,7 @@ contains
       call h5%write('/diagnostics/lyapunov_running', diag%lyapunov_running, 's-1', err, &
                     'running estimate of the largest Lyapunov exponent after each period')
       if (write_failed(h5, err)) return
+      call write_evidence(h5, diag, err);  if (write_failed(h5, err)) return
       call h5%write('/final/u', res%u, 'm', err, 'displacement of each dof at the end of the ' &
          // 'run, before the Lyapunov periods (w in m, theta in rad: /model/dof_type)')
       if (write_failed(h5, err)) return
@@ -701,4 +707,103 @@ contains
          [character(len=20) :: 'strain', 'strain_rate', 'tip_displacement', 'tip_velocity', &
          'time'], [character(len=20) :: '-', '1/s', 'm', 'm/s', 's'], cols, err, in_place=.true.)
    end subroutine write_transient_tables
+
+   !> The evidence of a transient run's label, its certificate and its starts: the
+   !> /diagnostics datasets besides period, label, lyapunov (docs/labels.md).
+   subroutine write_evidence(h5, diag, err)
+      type(h5_writer_t), intent(inout) :: h5            !! writer with an open file
+      type(point_result_t), intent(in) :: diag          !! diagnosed run
+      type(error_t), allocatable, intent(out) :: err    !! I/O failure
+      character(len=*), parameter :: g = '/diagnostics/'
+      integer :: ns
+      character(len=*), parameter :: rel = ', relative to the orbit size'
+      call h5%write(g // 'lyapunov_periods', diag%lyapunov_periods, '1', err, 'forcing ' &
+         // 'periods averaged for the Lyapunov exponent');  if (allocated(err)) return
+      call h5%write(g // 'lyapunov_converged', diag%lyapunov_converged, '1', err, '1: sigma ' &
+         // 'met its target, 0: stopped at the most periods');  if (allocated(err)) return
+      call h5%write(g // 'period_max_tested', diag%period_max_tested, '1', err, 'periods ' &
+         // '1..this were tried for a period');  if (allocated(err)) return
+      call h5%write(g // 'period_tolerance', diag%period_tolerance, '1', err, 'period ' &
+         // 'tolerance used' // rel);  if (allocated(err)) return
+      call h5%write(g // 'closest_period', diag%closest_period, '1', err, 'best-repeating ' &
+         // 'candidate period in forcing periods');  if (allocated(err)) return
+      call h5%write(g // 'repeat_distance', diag%repeat_distance, '1', err, 'repeat ' &
+         // 'distance of the closest period' // rel);  if (allocated(err)) return
+      call h5%write(g // 'transient_periods', diag%transient_periods, '1', err, 'forcing ' &
+         // 'periods before the final record, in all');  if (allocated(err)) return
+      call h5%write(g // 'settle_windows', diag%settle_windows, '1', err, 'windows of the ' &
+         // 'record compared by the settling test');  if (allocated(err)) return
+      call h5%write(g // 'window_difference', diag%window_difference, '1', err, 'largest ' &
+         // 'difference of the settling windows' // rel);  if (allocated(err)) return
+      call h5%write(g // 'settled', diag%settled, '1', err, '1: the windows agree (or no ' &
+         // 'test), 0: not settled');  if (allocated(err)) return
+      call h5%write(g // 'strain_range', diag%strain_range, '1', err, 'range of the root ' &
+         // 'strain over the final record');  if (allocated(err)) return
+      call h5%write(g // 'strain_rate_range', diag%strain_rate_range, 's-1', err, 'range of ' &
+         // 'the root strain rate over the final record');  if (allocated(err)) return
+      call h5%write(g // 'seconds_label', diag%seconds_label, 's', err, 'CPU time of the ' &
+         // 'labelled run');  if (allocated(err)) return
+      call h5%write(g // 'seconds_certify', diag%seconds_certify, 's', err, 'CPU time of the ' &
+         // 'certificate''s checks');  if (allocated(err)) return
+      call h5%write(g // 'certificate', diag%certificate, '1', err, 'certificate: 0 none, ' &
+         // '1 certified, 2 disputed');  if (allocated(err)) return
+      call h5%write_text(g // 'certificate_text', certificate_text(diag%certificate), err, &
+                         'certificate: certified, disputed or none')
+      if (allocated(err)) return
+      call h5%write_text(g // 'certificate_reason', text_or(diag%certificate_reason, &
+         'certification is off (&diagnostics certify = .false.)'), err, 'the certificate ' &
+         // 'and its reason');  if (allocated(err)) return
+      call h5%write_text(g // 'method', text_or(diag%method, ''), err, 'integration method ' &
+         // 'of the labelled run');  if (allocated(err)) return
+      call h5%write_text(g // 'accuracy_method', text_or(diag%accuracy_method, ''), err, &
+                         'what the accuracy check ran ('''' when none)')
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_label', diag%accuracy_label, '1', err, 'label code of the ' &
+         // 'accuracy check (-3: the check failed)');  if (allocated(err)) return
+      call h5%write(g // 'accuracy_lyapunov', diag%accuracy_lyapunov, 's-1', err, 'Lyapunov ' &
+         // 'exponent of the accuracy check');  if (allocated(err)) return
+      call h5%write(g // 'accuracy_lyapunov_error', diag%accuracy_lyapunov_error, 's-1', err, &
+         'standard error of the Lyapunov exponent of the accuracy check')
+      if (allocated(err)) return
+      call h5%write(g // 'accuracy_distance', diag%accuracy_distance, '1', err, 'distance ' &
+         // 'of the accuracy check''s orbit to the run''s' // rel);  if (allocated(err)) return
+      call h5%write(g // 'perturbed_label', diag%perturbed_label, '1', err, 'label code of ' &
+         // 'the perturbed start (-3: the check failed)');  if (allocated(err)) return
+      call h5%write(g // 'perturbed_lyapunov', diag%perturbed_lyapunov, 's-1', err, &
+                    'Lyapunov exponent of the perturbed start');  if (allocated(err)) return
+      call h5%write(g // 'perturbed_lyapunov_error', diag%perturbed_lyapunov_error, 's-1', &
+         err, 'standard error of the Lyapunov exponent of the perturbed start')
+      if (allocated(err)) return
+      call h5%write(g // 'perturbed_distance', diag%perturbed_distance, '1', err, 'distance ' &
+         // 'of the perturbed start''s orbit to the run''s' // rel);  if (allocated(err)) return
+      ns = 0
+      if (allocated(diag%start_label)) ns = size(diag%start_label)
+      if (ns == 0) return
+      call h5%write(g // 'starts/label', diag%start_label, '1', err, 'label code of every ' &
+         // 'start (' // label_codes // ')');  if (allocated(err)) return
+      call h5%write(g // 'starts/attractor', diag%start_attractor, '1', err, 'attractor ' &
+         // 'number each start reached (0: failed)');  if (allocated(err)) return
+      call h5%write(g // 'starts/lyapunov', diag%start_lyapunov, 's-1', err, 'largest ' &
+         // 'Lyapunov exponent of every start');  if (allocated(err)) return
+      call h5%write(g // 'n_attractors', diag%n_attractors, '1', err, 'distinct attractors ' &
+         // 'reached by the starts');  if (allocated(err)) return
+      call h5%write(g // 'attractors/label', diag%attractor_label, '1', err, 'label code of ' &
+         // 'each distinct attractor');  if (allocated(err)) return
+      call h5%write(g // 'attractors/fraction', diag%attractor_fraction, '1', err, 'fraction ' &
+         // 'of the starts that reached each attractor');  if (allocated(err)) return
+      call h5%write(g // 'attractors/lyapunov', diag%attractor_lyapunov, 's-1', err, &
+                    'largest Lyapunov exponent of each attractor''s first start')
+   end subroutine write_evidence
+
+   !> `t`, or `default` when t is not allocated.
+   pure function text_or(t, default) result(s)
+      character(len=:), allocatable, intent(in) :: t    !! text
+      character(len=*), intent(in) :: default           !! when absent
+      character(len=:), allocatable :: s
+      if (allocated(t)) then
+         s = t
+      else
+         s = default
+      end if
+   end function text_or
 end module gapbeam_report

@@ -1,12 +1,17 @@
 !> Sweep result files: HDF5 (one per shard, or the whole sweep), gnuplot-ready text, and the
 !> merge of shard files into the file a single process would have written.
 !>
-!> HDF5 layout: /deck; /sweep/grid_frequency_hz, /sweep/grid_amplitude_pp (the axes);
-!> /sweep/shard_index, /sweep/shard_count, /sweep/n_points_total; per point of the file, in
-!> point order: /sweep/point_index, frequency_hz, amplitude_pp, period, label, label_text,
-!> lyapunov, lyapunov_error, status, steps, seconds; /sweep/impacts/<stat>; /sweep/poincare/
-!> strain and strain_rate; /sweep/lyapunov_running; /parameters (gapbeam_file_info). In C order
-!> (h5py) every per-point array has the point first: (point, stop), (point, period).
+!> HDF5 layout: /deck; /sweep/grid_frequency_hz, /sweep/grid_amplitude_pp (the forcing axes, or
+!> the &forcing value), /sweep/grid_x, /sweep/grid_y, /sweep/x_variable, /sweep/y_variable
+!> (the axes); /sweep/shard_index, /sweep/shard_count, /sweep/n_points_total; per point of the
+!> file, in point order: /sweep/point_index, x, y, frequency_hz, amplitude_pp, the integer and
+!> real fields of `int_names` and `real_names`, the texts of `text_names`, label_text and
+!> certificate_text; /sweep/impacts/<stat> (points, stops); /sweep/poincare/strain and
+!> strain_rate (recorded periods, points); /sweep/lyapunov_running (periods, points);
+!> /sweep/starts/kind (starts), /sweep/starts/label, attractor, lyapunov (starts, points);
+!> /sweep/attractors/label, fraction, lyapunov (starts, points; padded past n_attractors);
+!> /parameters (gapbeam_file_info). Shapes above are Fortran's: in C order (h5py) every
+!> per-point array has the point first: (point, stop), (point, period), (point, start).
 module gapbeam_sweep_output
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -15,7 +20,7 @@ module gapbeam_sweep_output
    use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t, write_failed
    use gapbeam_files, only: write_table, real_path, file_exists
    use gapbeam_output_set, only: output_set_t
-   use gapbeam_results, only: point_result_t, label_text
+   use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_file_info, write_parameter_set
    implicit none
@@ -26,19 +31,88 @@ module gapbeam_sweep_output
    type :: sweep_file_t
       character(len=:), allocatable :: deck_text     !! effective deck text
       character(len=:), allocatable :: title         !! job title
-      real(dp), allocatable :: grid_frequency_hz(:)  !! frequency axis [Hz]
-      real(dp), allocatable :: grid_amplitude_pp(:)  !! amplitude axis [m]
-      !> what the amplitude axis sets: 'amplitudes' (amplitude_pp of the base motion) or
-      !> 'values of &stops gap(1), ...' (&sweep variable)
-      character(len=:), allocatable :: axis_variable
-      character(len=:), allocatable :: axis_units    !! units of the amplitude axis ('m')
+      real(dp), allocatable :: grid_frequency_hz(:)  !! frequency axis [Hz] (or the one value)
+      real(dp), allocatable :: grid_amplitude_pp(:)  !! amplitude axis [m] (or the one value)
+      character(len=:), allocatable :: x_variable    !! x axis variable ('&forcing frequency_hz')
+      character(len=:), allocatable :: y_variable    !! y axis variable
+      character(len=:), allocatable :: x_units       !! its unit
+      character(len=:), allocatable :: y_units       !! its unit
+      real(dp), allocatable :: grid_x(:)             !! x axis values
+      real(dp), allocatable :: grid_y(:)             !! y axis values
+      character(len=8), allocatable :: start_kind(:) !! kind of each start
       integer :: shard_index = 1                     !! this file's shard
       integer :: shard_count = 1                     !! shards of the sweep
       integer, allocatable :: points(:)              !! point indices in the file (ascending)
       type(parameter_set_t) :: parameters            !! the run's parameters (/parameters)
       !> a file whose /parameters are copied instead (a merge: the first shard's)
       character(len=:), allocatable :: parameters_source
+      real(dp) :: cpu_seconds = -1.0_dp              !! CPU time of the process, all threads [s]
+      real(dp) :: wall_seconds = -1.0_dp             !! elapsed time of the job [s]
+      integer :: threads = 0                         !! OpenMP threads of the run
    end type sweep_file_t
+
+   !> A list of texts (one text dataset of a file).
+   type :: text_list_t
+      character(len=:), allocatable :: v(:)        !! the texts, blank padded
+   end type text_list_t
+
+   !> Integer fields per point: name, units (see point_result_t).
+   character(len=*), parameter :: int_names(14) = [character(len=20) :: 'period', 'label', &
+      'status', 'certificate', 'lyapunov_periods', 'lyapunov_converged', 'period_max_tested', &
+      'closest_period', 'transient_periods', 'settle_windows', 'settled', 'accuracy_label', &
+      'perturbed_label', 'n_attractors']
+   character(len=*), parameter :: label_codes = 'p >= 1: period p; 0: undecided; -1: ' &
+      // 'chaotic; -2: unsettled; -3: failed'
+   !> their UDUNITS-2 units and long names
+   character(len=*), parameter :: int_units(14) = [character(len=1) :: '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', &
+      '1', '1', '1']
+   character(len=*), parameter :: int_long(14) = [character(len=100) :: &
+      'detected period in forcing periods; 0: none up to period_max', &
+      'label code of the point (' // label_codes // ')', &
+      'status of the point: 0 done, 1 failed (results NaN)', &
+      'certificate: 0 none, 1 certified, 2 disputed', &
+      'forcing periods averaged for the Lyapunov exponent', &
+      'exponent converged: 1 sigma met its target, 0 stopped at the most periods', &
+      'periods 1..this were tried for a period', &
+      'best-repeating candidate period in forcing periods', &
+      'forcing periods before the final record, in all', &
+      'windows of the record compared by the settling test', &
+      'settled: 1 the windows agree (or no test), 0 not settled', &
+      'label code of the accuracy check (-3: the check failed)', &
+      'label code of the perturbed start (-3: the check failed)', &
+      'distinct attractors reached by the starts of the point']
+   !> Real fields per point.
+   character(len=*), parameter :: real_names(18) = [character(len=24) :: 'lyapunov', &
+      'lyapunov_error', 'seconds', 'steps', 'f1_open_hz', 'period_tolerance', &
+      'repeat_distance', 'window_difference', 'strain_range', 'strain_rate_range', &
+      'seconds_label', 'seconds_certify', 'accuracy_lyapunov', 'accuracy_lyapunov_error', &
+      'accuracy_distance', 'perturbed_lyapunov', 'perturbed_lyapunov_error', &
+      'perturbed_distance']
+   character(len=*), parameter :: real_units(18) = [character(len=3) :: 's-1', 's-1', &
+      's', '1', 'Hz', '1', '1', '1', '1', 's-1', 's', 's', 's-1', 's-1', '1', 's-1', 's-1', '1']
+   character(len=*), parameter :: real_long(18) = [character(len=100) :: &
+      'largest Lyapunov exponent', 'standard error of the largest Lyapunov exponent', &
+      'CPU time of the point (labelled run and certificate)', &
+      'accepted integration steps of the labelled run (Lyapunov periods not counted)', &
+      'first natural frequency of the point''s model, stops open', &
+      'period tolerance used, relative to the orbit size', &
+      'repeat distance of the closest period, relative to the orbit size', &
+      'largest difference of the settling windows, relative to the orbit size', &
+      'range of the root strain over the final record', &
+      'range of the root strain rate over the final record', &
+      'CPU time of the labelled run', 'CPU time of the certificate''s checks', &
+      'Lyapunov exponent of the accuracy check', &
+      'standard error of the Lyapunov exponent of the accuracy check', &
+      'distance of the accuracy check''s orbit to the run''s, relative to the orbit size', &
+      'Lyapunov exponent of the perturbed start', &
+      'standard error of the Lyapunov exponent of the perturbed start', &
+      'distance of the perturbed start''s orbit to the run''s, relative to the orbit size']
+   !> Texts per point.
+   character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
+      'certificate_reason', 'accuracy_method', 'message']
+   character(len=*), parameter :: text_long(4) = [character(len=60) :: &
+      'integration method of the labelled run', 'the certificate and its reason', &
+      'what the accuracy check ran ('''' when none)', 'failure message ('''' when done)']
 
 contains
 
@@ -68,23 +142,6 @@ contains
       if (.not. allocated(err) .and. write_text) call sweep_tables(set, sf, results, err)
       call set%finish(err)
    end subroutine write_sweep
-
-   !> What the amplitude axis sets, 'amplitudes' unless the sweep names deck variables.
-   pure function axis_text(sf) result(t)
-      type(sweep_file_t), intent(in) :: sf
-      character(len=:), allocatable :: t
-      t = 'amplitudes'
-      if (allocated(sf%axis_variable)) t = sf%axis_variable
-   end function axis_text
-
-   !> '' or '; amplitude axis: values of <variables> [units]' for the table's title line.
-   function axis_note(sf) result(t)
-      type(sweep_file_t), intent(in) :: sf
-      character(len=:), allocatable :: t
-      t = ''
-      if (axis_text(sf) /= 'amplitudes') t = '; amplitude axis: ' // axis_text(sf) &
-         // ' [' // sf%axis_units // ']'
-   end function axis_note
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
    !> points that succeeded (from all points when none did).
@@ -165,6 +222,195 @@ contains
       end do
    end function impact_counts
 
+   !> Integer field j (int_names) of a point.
+   pure integer function int_field(pr, j) result(v)
+      type(point_result_t), intent(in) :: pr   !! point
+      integer, intent(in) :: j                 !! field
+      select case (j)
+      case (1);  v = pr%period
+      case (2);  v = pr%label
+      case (3);  v = pr%status
+      case (4);  v = pr%certificate
+      case (5);  v = pr%lyapunov_periods
+      case (6);  v = pr%lyapunov_converged
+      case (7);  v = pr%period_max_tested
+      case (8);  v = pr%closest_period
+      case (9);  v = pr%transient_periods
+      case (10);  v = pr%settle_windows
+      case (11);  v = pr%settled
+      case (12);  v = pr%accuracy_label
+      case (13);  v = pr%perturbed_label
+      case default;  v = pr%n_attractors
+      end select
+   end function int_field
+
+   !> Set integer field j of a point.
+   pure subroutine set_int_field(pr, j, v)
+      type(point_result_t), intent(inout) :: pr   !! point
+      integer, intent(in) :: j, v                 !! field, value
+      select case (j)
+      case (1);  pr%period = v
+      case (2);  pr%label = v
+      case (3);  pr%status = v
+      case (4);  pr%certificate = v
+      case (5);  pr%lyapunov_periods = v
+      case (6);  pr%lyapunov_converged = v
+      case (7);  pr%period_max_tested = v
+      case (8);  pr%closest_period = v
+      case (9);  pr%transient_periods = v
+      case (10);  pr%settle_windows = v
+      case (11);  pr%settled = v
+      case (12);  pr%accuracy_label = v
+      case (13);  pr%perturbed_label = v
+      case default;  pr%n_attractors = v
+      end select
+   end subroutine set_int_field
+
+   !> Real field j (real_names) of a point.
+   pure real(dp) function real_field(pr, j) result(v)
+      type(point_result_t), intent(in) :: pr   !! point
+      integer, intent(in) :: j                 !! field
+      select case (j)
+      case (1);  v = pr%lyapunov
+      case (2);  v = pr%lyapunov_error
+      case (3);  v = pr%seconds
+      case (4);  v = real(pr%steps, dp)
+      case (5);  v = pr%f1_open_hz
+      case (6);  v = pr%period_tolerance
+      case (7);  v = pr%repeat_distance
+      case (8);  v = pr%window_difference
+      case (9);  v = pr%strain_range
+      case (10);  v = pr%strain_rate_range
+      case (11);  v = pr%seconds_label
+      case (12);  v = pr%seconds_certify
+      case (13);  v = pr%accuracy_lyapunov
+      case (14);  v = pr%accuracy_lyapunov_error
+      case (15);  v = pr%accuracy_distance
+      case (16);  v = pr%perturbed_lyapunov
+      case (17);  v = pr%perturbed_lyapunov_error
+      case default;  v = pr%perturbed_distance
+      end select
+   end function real_field
+
+   !> Set real field j of a point.
+   pure subroutine set_real_field(pr, j, v)
+      type(point_result_t), intent(inout) :: pr   !! point
+      integer, intent(in) :: j                    !! field
+      real(dp), intent(in) :: v                   !! value
+      select case (j)
+      case (1);  pr%lyapunov = v
+      case (2);  pr%lyapunov_error = v
+      case (3);  pr%seconds = v
+      case (4);  pr%steps = nint(v, int64)
+      case (5);  pr%f1_open_hz = v
+      case (6);  pr%period_tolerance = v
+      case (7);  pr%repeat_distance = v
+      case (8);  pr%window_difference = v
+      case (9);  pr%strain_range = v
+      case (10);  pr%strain_rate_range = v
+      case (11);  pr%seconds_label = v
+      case (12);  pr%seconds_certify = v
+      case (13);  pr%accuracy_lyapunov = v
+      case (14);  pr%accuracy_lyapunov_error = v
+      case (15);  pr%accuracy_distance = v
+      case (16);  pr%perturbed_lyapunov = v
+      case (17);  pr%perturbed_lyapunov_error = v
+      case default;  pr%perturbed_distance = v
+      end select
+   end subroutine set_real_field
+
+   !> Text field j (text_names) of a point ('' when unset).
+   pure function text_field(pr, j) result(t)
+      type(point_result_t), intent(in) :: pr   !! point
+      integer, intent(in) :: j                 !! field
+      character(len=:), allocatable :: t
+      t = ''
+      select case (j)
+      case (1);  if (allocated(pr%method)) t = pr%method
+      case (2);  if (allocated(pr%certificate_reason)) t = pr%certificate_reason
+      case (3);  if (allocated(pr%accuracy_method)) t = pr%accuracy_method
+      case default;  if (allocated(pr%message)) t = pr%message
+      end select
+   end function text_field
+
+   !> Set text field j of a point.
+   pure subroutine set_text_field(pr, j, t)
+      type(point_result_t), intent(inout) :: pr   !! point
+      integer, intent(in) :: j                    !! field
+      character(len=*), intent(in) :: t           !! text
+      select case (j)
+      case (1);  pr%method = t
+      case (2);  pr%certificate_reason = t
+      case (3);  pr%accuracy_method = t
+      case default;  pr%message = t
+      end select
+   end subroutine set_text_field
+
+   !> Forcing frequency and amplitude of point p of a file's sweep, and its axis values.
+   pure subroutine point_axes(sf, p, x, y, f, a)
+      type(sweep_file_t), intent(in) :: sf           !! file description
+      integer, intent(in) :: p                       !! point
+      real(dp), intent(out) :: x, y, f, a            !! axis values, [Hz], [m]
+      integer :: nx
+      nx = size(sf%grid_x)
+      x = sf%grid_x(mod(p - 1, nx) + 1)
+      y = sf%grid_y((p - 1) / nx + 1)
+      f = sf%grid_frequency_hz(1);  a = sf%grid_amplitude_pp(1)
+      if (sf%x_variable == '&forcing frequency_hz') f = x
+      if (sf%y_variable == '&forcing frequency_hz') f = y
+      if (sf%x_variable == '&forcing amplitude_pp') a = x
+      if (sf%y_variable == '&forcing amplitude_pp') a = y
+   end subroutine point_axes
+
+   !> Strings of one text field for the points of a file, as a fixed-length array.
+   function texts(results, points, j) result(t)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: j                           !! text field
+      character(len=:), allocatable :: t(:)
+      integer :: k, w
+      w = 1
+      do k = 1, size(points)
+         w = max(w, len(text_field(results(points(k)), j)))
+      end do
+      allocate(character(len=w) :: t(size(points)))
+      do k = 1, size(points)
+         t(k) = text_field(results(points(k)), j)
+      end do
+   end function texts
+
+   !> Starts and attractors of the points, (n_starts, points): labels and attractor numbers
+   !> (0 past the end), exponents and fractions (NaN past the end).
+   subroutine start_tables(results, points, ns, s_label, s_attr, s_lyap, a_label, a_frac, &
+                           a_lyap)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: ns                          !! starts per point
+      integer, allocatable, intent(out) :: s_label(:, :), s_attr(:, :), a_label(:, :)
+      real(dp), allocatable, intent(out) :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :)
+      integer :: j, m, n
+      real(dp) :: nan
+      nan = ieee_value(0.0_dp, ieee_quiet_nan)
+      m = size(points)
+      allocate(s_label(ns, m), s_attr(ns, m), a_label(ns, m), source=0)
+      allocate(s_lyap(ns, m), a_frac(ns, m), a_lyap(ns, m), source=nan)
+      do j = 1, m
+         associate (r => results(points(j)))
+            if (allocated(r%start_label)) then
+               n = min(ns, size(r%start_label))
+               s_label(1:n, j) = r%start_label(1:n);  s_attr(1:n, j) = r%start_attractor(1:n)
+               s_lyap(1:n, j) = r%start_lyapunov(1:n)
+            end if
+            if (allocated(r%attractor_label)) then
+               n = min(ns, size(r%attractor_label))
+               a_label(1:n, j) = r%attractor_label(1:n)
+               a_frac(1:n, j) = r%attractor_fraction(1:n)
+               a_lyap(1:n, j) = r%attractor_lyapunov(1:n)
+            end if
+         end associate
+      end do
+   end subroutine start_tables
+
    !> PREFIX.h5 of a sweep: the datasets listed in the module header.
    subroutine sweep_h5(h5, set, sf, results, err)
       type(h5_writer_t), intent(inout) :: h5             !! writer, file created; closed here
@@ -172,9 +418,11 @@ contains
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       type(error_t), allocatable, intent(out) :: err     !! I/O failure
-      integer :: m, ns, nr, nl, j, p, nf
-      real(dp), allocatable :: f(:), a(:), r2(:, :)
-      character(len=16), allocatable :: labels(:)
+      integer :: m, ns, nr, nl, j, p, k
+      real(dp), allocatable :: f(:), a(:), x(:), y(:), r2(:, :), s_lyap(:, :), a_frac(:, :), &
+         a_lyap(:, :)
+      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :)
+      character(len=16), allocatable :: labels(:), certs(:)
       character(len=*), parameter :: stat_names(5) = [character(len=18) :: 'peak_force', &
          'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
       character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '1', &
@@ -195,14 +443,14 @@ contains
          'impulse of each stop per forcing period', &
          'mean rate of contact work of each stop']
 
-      m = size(sf%points);  nf = size(sf%grid_frequency_hz)
+      m = size(sf%points)
       call point_sizes(results, sf%points, ns, nr, nl)
-      allocate(f(m), a(m), labels(m))
+      allocate(f(m), a(m), x(m), y(m), labels(m), certs(m))
       do j = 1, m
          p = sf%points(j)
-         f(j) = sf%grid_frequency_hz(mod(p - 1, nf) + 1)
-         a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
+         call point_axes(sf, p, x(j), y(j), f(j), a(j))
          labels(j) = label_text(results(p)%label)
+         certs(j) = certificate_text(results(p)%certificate)
       end do
       call write_file_info(h5, 'sweep', sf%deck_text, err);  if (write_failed(h5, err)) return
       call h5%write_text('/deck', sf%deck_text, err, 'the effective deck text: deck file ' &
@@ -216,60 +464,70 @@ contains
       if (write_failed(h5, err)) return
       call h5%write_text('/sweep/title', sf%title, err, '&job title')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
-                    'frequency axis of the sweep grid')
-      if (write_failed(h5, err)) return
-      if (axis_text(sf) == 'amplitudes') then
-         call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
-                       'amplitude axis of the sweep grid, base displacement peak to peak')
-      else
-         call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, sf%axis_units, err, &
-                       'second axis of the sweep grid: ' // axis_text(sf) &
-                       // ' (&sweep variable)')
+      if (sf%threads > 0) then   ! a run, not a merge (a merge's shards hold their own)
+         call h5%write('/run/cpu_seconds', sf%cpu_seconds, 's', err, 'CPU time of the ' &
+                       // 'process up to the writing of the results, all threads')
+         if (write_failed(h5, err)) return
+         call h5%write('/run/wall_seconds', sf%wall_seconds, 's', err, 'wall time of the ' &
+                       // 'job up to the writing of the results')
+         if (write_failed(h5, err)) return
+         call h5%write('/run/threads', sf%threads, '1', err, 'OpenMP threads of the run')
+         if (write_failed(h5, err)) return
       end if
+      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
+                    'forcing frequency axis of the sweep grid (or the one &forcing value)')
       if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/amplitude_axis', axis_text(sf), err, 'what the second ' &
-         // "axis sets: 'amplitudes' (base motion amplitude_pp) or the deck variables")
+      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
+                    'base displacement amplitude axis, peak to peak (or the one &forcing value)')
+      if (write_failed(h5, err)) return
+      call h5%write_text('/sweep/x_variable', sf%x_variable, err, 'deck variable of the x axis')
+      if (write_failed(h5, err)) return
+      call h5%write_text('/sweep/y_variable', sf%y_variable, err, 'deck variable of the y axis')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/grid_x', sf%grid_x, unit_string(sf%x_units), err, &
+                    'x axis values (' // sf%x_variable // ')')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/grid_y', sf%grid_y, unit_string(sf%y_units), err, &
+                    'y axis values (' // sf%y_variable // ')')
       if (write_failed(h5, err)) return
       call h5%write('/sweep/shard_index', sf%shard_index, '1', err, &
                     'shard I of this file (1 for a whole or merged sweep)')
       if (write_failed(h5, err)) return
       call h5%write('/sweep/shard_count', sf%shard_count, '1', err, 'number N of shards')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/n_points_total', nf * size(sf%grid_amplitude_pp), '1', err, &
-                    'points of the whole sweep, n_frequency x n_amplitude')
+      call h5%write('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y), '1', err, &
+                    'points of the whole sweep, n_x x n_y')
       if (write_failed(h5, err)) return
-      call h5%write('/sweep/point_index', sf%points, '1', err, 'point number p = i_f + ' &
-         // '(i_a - 1) n_f of each point of the file (frequency fastest)')
+      call h5%write('/sweep/point_index', sf%points, '1', err, 'point number p = i_x + ' &
+         // '(i_y - 1) n_x of each point of the file (x fastest)')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/x', x, unit_string(sf%x_units), err, 'x axis value of the point')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/y', y, unit_string(sf%y_units), err, 'y axis value of the point')
       if (write_failed(h5, err)) return
       call h5%write('/sweep/frequency_hz', f, 'Hz', err, 'forcing frequency of the point')
       if (write_failed(h5, err)) return
       call h5%write('/sweep/amplitude_pp', a, 'm', err, 'base displacement amplitude of the ' &
          // 'point, peak to peak');  if (write_failed(h5, err)) return
-      call h5%write('/sweep/period', [(results(sf%points(j))%period, j = 1, m)], '1', err, &
-                    'detected period in forcing periods; 0: none up to period_max')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/label', [(results(sf%points(j))%label, j = 1, m)], '1', err, &
-                    'label code: p >= 1 period p, 0 undecided, -1 chaotic')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/label_text', labels, '1', err, 'label: period_<p>, chaotic or ' &
-         // 'undecided');  if (write_failed(h5, err)) return
-      call h5%write('/sweep/lyapunov', [(results(sf%points(j))%lyapunov, j = 1, m)], 's-1', &
-                    err, 'largest Lyapunov exponent')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/lyapunov_error', [(results(sf%points(j))%lyapunov_error, &
-                    j = 1, m)], 's-1', err, 'standard error of the largest Lyapunov exponent')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/status', [(results(sf%points(j))%status, j = 1, m)], '1', err, &
-                    'status of the point: 0 done, 1 failed (results NaN)')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/steps', [(real(results(sf%points(j))%steps, dp), j = 1, m)], '1', &
-                    err, 'accepted integration steps of the point''s run (Lyapunov periods ' &
-                    // 'not counted)')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/seconds', [(results(sf%points(j))%seconds, j = 1, m)], 's', err, &
-                    'wall time of the point (run and exponent)')
-      if (write_failed(h5, err)) return
+      do k = 1, size(int_names)
+         call h5%write('/sweep/' // trim(int_names(k)), [(int_field(results(sf%points(j)), k), &
+                       j = 1, m)], trim(int_units(k)), err, trim(int_long(k)))
+         if (write_failed(h5, err)) return
+      end do
+      do k = 1, size(real_names)
+         call h5%write('/sweep/' // trim(real_names(k)), [(real_field(results(sf%points(j)), &
+                       k), j = 1, m)], trim(real_units(k)), err, trim(real_long(k)))
+         if (write_failed(h5, err)) return
+      end do
+      call h5%write('/sweep/label_text', labels, '1', err, 'label: period_<p>, chaotic, ' &
+         // 'undecided, unsettled or failed');  if (write_failed(h5, err)) return
+      call h5%write('/sweep/certificate_text', certs, '1', err, 'certificate: certified, ' &
+         // 'disputed or none');  if (write_failed(h5, err)) return
+      do k = 1, size(text_names)
+         call h5%write('/sweep/' // trim(text_names(k)), texts(results, sf%points, k), '1', &
+                       err, trim(text_long(k)))
+         if (write_failed(h5, err)) return
+      end do
       call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '1', err, &
                     'contact onsets of each stop in the record', 'point stop')
       if (write_failed(h5, err)) return
@@ -290,46 +548,76 @@ contains
          r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
       end do
       call h5%write('/sweep/poincare/strain', r2, '1', err, 'root strain at the Poincare ' &
-         // 'section, every recorded period', 'point period')
+         // 'section, every recorded period of the final record', 'point period')
       if (write_failed(h5, err)) return
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain_rate, nr)
       end do
       call h5%write('/sweep/poincare/strain_rate', r2, 's-1', err, 'root strain rate at the ' &
-         // 'Poincare section, every recorded period', 'point period')
+         // 'Poincare section, every recorded period of the final record', 'point period')
       if (write_failed(h5, err)) return
       deallocate(r2);  allocate(r2(nl, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%lyapunov_running, nl)
       end do
       call h5%write('/sweep/lyapunov_running', r2, 's-1', err, 'running estimate of the ' &
-         // 'largest Lyapunov exponent after each period', 'point period')
+         // 'largest Lyapunov exponent after each period (NaN past the point''s own)', &
+         'point period')
+      if (write_failed(h5, err)) return
+      call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
+                        a_label, a_frac, a_lyap)
+      call h5%write('/sweep/starts/kind', sf%start_kind, '1', err, "kind of each start: " &
+                    // "'deck', 'rest', 'up', 'down' or 'random'")
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/starts/label', s_label, '1', err, 'label code of every start (' &
+                    // label_codes // ')', 'point start')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/starts/attractor', s_attr, '1', err, 'attractor number each ' &
+                    // 'start reached (0: failed)', 'point start')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/starts/lyapunov', s_lyap, 's-1', err, 'largest Lyapunov ' &
+                    // 'exponent of every start', 'point start')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/attractors/label', a_label, '1', err, 'label code of each ' &
+                    // 'distinct attractor (0 past n_attractors)', 'point attractor')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/attractors/fraction', a_frac, '1', err, 'fraction of the ' &
+                    // 'starts that reached each attractor (NaN past n_attractors)', &
+                    'point attractor')
+      if (write_failed(h5, err)) return
+      call h5%write('/sweep/attractors/lyapunov', a_lyap, 's-1', err, 'largest Lyapunov ' &
+                    // 'exponent of each attractor''s first start (NaN past n_attractors)', &
+                    'point attractor')
       if (write_failed(h5, err)) return
       call h5%close(err)
    end subroutine sweep_h5
 
    !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
-   !> with its forcing), under the set's temporary names.
+   !> with its axis values and the point's label and certificate), under the set's temporary
+   !> names. Columns 1 and 2 are the x and y axis values (frequency and amplitude_pp by
+   !> default).
    subroutine sweep_tables(set, sf, results, err)
       type(output_set_t), intent(in) :: set              !! files 2 and 3
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       type(error_t), allocatable, intent(out) :: err     !! I/O failure
-      integer :: m, ns, nr, nl, j, p, nf
-      real(dp), allocatable :: f(:), a(:), cols(:, :), row(:), counts(:, :)
-      character(len=24) :: names(14), units(14)
+      integer, parameter :: nc = 21
+      integer :: m, ns, nr, nl, j, p
+      real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
+      character(len=24) :: names(nc), units(nc), xn, yn, xu, yu
 
-      m = size(sf%points);  nf = size(sf%grid_frequency_hz)
+      ! (locals: gfortran mishandles deferred-length results inside array constructors)
+      xn = axis_name(sf%x_variable);  yn = axis_name(sf%y_variable)
+      xu = sf%x_units;  yu = sf%y_units
+      m = size(sf%points)
       call point_sizes(results, sf%points, ns, nr, nl)
-      allocate(f(m), a(m))
+      allocate(f(m), a(m), x(m), y(m))
       do j = 1, m
-         p = sf%points(j)
-         f(j) = sf%grid_frequency_hz(mod(p - 1, nf) + 1)
-         a(j) = sf%grid_amplitude_pp((p - 1) / nf + 1)
+         call point_axes(sf, sf%points(j), x(j), y(j), f(j), a(j))
       end do
-      allocate(cols(m, 14))
+      allocate(cols(m, nc))
       cols = 0.0_dp
-      cols(:, 1) = f;  cols(:, 2) = a
+      cols(:, 1) = x;  cols(:, 2) = y
       do j = 1, m
          p = sf%points(j)
          cols(j, 3) = results(p)%period;  cols(j, 4) = results(p)%label
@@ -340,39 +628,108 @@ contains
             row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
             row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
             row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
-            cols(j, 11) = sum(padded(results(p)%normal_work_rate, ns))
-            cols(j, 12) = sum(padded(results(p)%wear_volume_rate, ns))
-            cols(j, 13) = maxval(padded(results(p)%contact_fraction, ns))
-            cols(j, 14) = sum(counts(:, 1))
+            cols(j, 18) = sum(padded(results(p)%normal_work_rate, ns))
+            cols(j, 19) = sum(padded(results(p)%wear_volume_rate, ns))
+            cols(j, 20) = maxval(padded(results(p)%contact_fraction, ns))
+            cols(j, 21) = sum(counts(:, 1))
          end if
+         cols(j, 11) = results(p)%status;  cols(j, 12) = results(p)%certificate
+         cols(j, 13) = results(p)%n_attractors;  cols(j, 14) = results(p)%lyapunov_periods
+         cols(j, 15) = results(p)%transient_periods
       end do
-      names = [character(len=24) :: 'frequency', 'amplitude_pp', 'period', 'label', &
-         'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', 'rms_force_stop1', &
-         'work_rate_stop1', 'normal_work_rate_total', 'wear_volume_rate_total', &
-         'contact_fraction_max', 'impacts_total']
-      units = [character(len=24) :: 'Hz', 'm', 'periods', 'p|0|-1', '1/s', '1/s', '-', &
-         'N', 'N', 'W', 'W', 'm3/s', '-', '-']
+      cols(:, 16) = f;  cols(:, 17) = a
+      names = [character(len=24) :: xn, yn, &
+         'period', 'label', 'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', &
+         'rms_force_stop1', 'work_rate_stop1', 'status', 'certificate', 'n_attractors', &
+         'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp', &
+         'normal_work_rate_total', 'wear_volume_rate_total', 'contact_fraction_max', &
+         'impacts_total']
+      units = [character(len=24) :: xu, yu, 'periods', 'p|0|-1|-2|-3', '1/s', &
+         '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm', 'W', &
+         'm3/s', '-', '-']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
-         // ' 0 undecided, -1 chaotic); grid: ' // str(nf) // ' frequencies from ' &
-         // num(minval(sf%grid_frequency_hz)) // ' to ' // num(maxval(sf%grid_frequency_hz)) &
-         // ' Hz, ' // str(size(sf%grid_amplitude_pp)) // ' amplitudes from ' &
-         // num(minval(sf%grid_amplitude_pp)) // ' to ' // num(maxval(sf%grid_amplitude_pp)) &
-         // ' m' // trim(axis_note(sf)), names, units, cols, err, in_place=.true.)
+         // ' 0 undecided, -1 chaotic, -2 unsettled, -3 failed; certificate: 1 certified,' &
+         // ' 2 disputed, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
+         // ' from ' // num(minval(sf%grid_x)) // ' to ' // num(maxval(sf%grid_x)) // ' ' &
+         // one_word(xu) // ', ' // str(size(sf%grid_y)) // ' ' // trim(yn) // ' from ' &
+         // num(minval(sf%grid_y)) // ' to ' // num(maxval(sf%grid_y)) // ' ' // one_word(yu), &
+         names, units, cols, err, in_place=.true.)
       if (allocated(err)) return
-      deallocate(cols);  allocate(cols(m * nr, 4))
+      deallocate(cols);  allocate(cols(m * nr, 6))
       do j = 1, m
          p = sf%points(j)
-         cols((j - 1) * nr + 1:j * nr, 1) = f(j)
-         cols((j - 1) * nr + 1:j * nr, 2) = a(j)
+         cols((j - 1) * nr + 1:j * nr, 1) = x(j)
+         cols((j - 1) * nr + 1:j * nr, 2) = y(j)
          cols((j - 1) * nr + 1:j * nr, 3) = padded(results(p)%p_strain, nr)
          cols((j - 1) * nr + 1:j * nr, 4) = padded(results(p)%p_strain_rate, nr)
+         cols((j - 1) * nr + 1:j * nr, 5) = results(p)%label
+         cols((j - 1) * nr + 1:j * nr, 6) = results(p)%certificate
       end do
       call write_table(set%temp(3), sf%title // ': Poincare points of every sweep point', &
-         [character(len=24) :: 'frequency', 'amplitude_pp', 'strain', 'strain_rate'], &
-         [character(len=24) :: 'Hz', 'm', '-', '1/s'], cols, err, in_place=.true.)
+         [character(len=24) :: xn, yn, 'strain', 'strain_rate', 'label', 'certificate'], &
+         [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols, err, &
+         in_place=.true.)
    end subroutine sweep_tables
+
+   !> A deck variable's unit as UDUNITS-2 ('-' is '1', a pure number).
+   pure function unit_string(u) result(t)
+      character(len=*), intent(in) :: u                  !! unit ('-', 'm', 'N m/rad', ...)
+      character(len=:), allocatable :: t
+      t = trim(u)
+      if (t == '-' .or. len(t) == 0) t = '1'
+   end function unit_string
+
+   !> Column name of an axis: 'frequency' and 'amplitude_pp' for the forcing (as before),
+   !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2'); an axis of several
+   !> variables joins them: 'gap_1_2' (one name, its entries), else 'gap_1__friction_1'.
+   pure function axis_name(variable) result(t)
+      character(len=*), intent(in) :: variable           !! '&group name(i)', comma separated
+      character(len=:), allocatable :: t, part, base, first_base, joined, entries
+      logical :: same
+      integer :: a, b, k, n
+      if (variable == '&forcing frequency_hz') then
+         t = 'frequency'
+         return
+      else if (variable == '&forcing amplitude_pp') then
+         t = 'amplitude_pp'
+         return
+      end if
+      joined = '';  entries = '';  first_base = '';  same = .true.;  n = 0
+      a = 1
+      do
+         b = index(variable(a:), ',')
+         if (b == 0) then
+            b = len(variable) + 1
+         else
+            b = a + b - 1
+         end if
+         part = trim(adjustl(variable(a:b - 1)))
+         k = index(part, ' ')
+         part = trim(part(k + 1:))
+         base = part
+         k = index(part, '(')
+         if (k > 0) then
+            base = part(1:k - 1)
+            entries = entries // '_' // part(k + 1:len(part) - 1)
+            part = base // '_' // part(k + 1:len(part) - 1)
+         else
+            same = .false.
+         end if
+         n = n + 1
+         if (n == 1) then
+            joined = part;  first_base = base
+         else
+            same = same .and. base == first_base
+            joined = joined // '__' // part
+         end if
+         if (b > len(variable)) exit
+         a = b + 1
+      end do
+      t = joined
+      if (n > 1 .and. same) t = first_base // entries
+   end function axis_name
 
    !> Read a sweep file back: its description and its points into `results` (sized to all
    !> points of the sweep on return).
@@ -382,12 +739,14 @@ contains
       type(point_result_t), allocatable, intent(inout) :: results(:) !! points land here
       type(error_t), allocatable, intent(out) :: err               !! I/O failure
       type(h5_reader_t) :: h5
-      integer :: total, j, p
-      integer, allocatable :: period(:), label(:), status(:)
-      real(dp), allocatable :: lyap(:), lerr(:), steps(:), secs(:), cnt(:, :), pk(:, :), &
-         rms(:, :), cf(:, :), imp(:, :), wr(:, :), ps(:, :), pr(:, :), lr(:, :), &
-         wn(:, :), sd(:, :), fw(:, :), wv(:, :)
-      character(len=:), allocatable :: axis_order
+      integer :: total, j, p, k, n
+      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :)
+      real(dp), allocatable :: rv(:, :), cnt(:, :), pk(:, :), rms(:, :), cf(:, :), imp(:, :), &
+         wr(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), s_lyap(:, :), a_frac(:, :), &
+         a_lyap(:, :), one(:), wn(:, :), sd(:, :), fw(:, :), wv(:, :)
+      integer, allocatable :: ione(:)
+      type(text_list_t) :: tv(size(text_names))
+      character(len=:), allocatable :: kinds(:), axis_order
       call h5%open(path, err);  if (allocated(err)) return
       call h5%read_attr('/', 'axis_order', axis_order, err)
       if (allocated(err)) then
@@ -402,24 +761,35 @@ contains
       if (allocated(err)) goto 9
       call h5%read('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, err)
       if (allocated(err)) goto 9
-      sf%axis_variable = 'amplitudes';  sf%axis_units = 'm'
-      if (h5%exists('/sweep/amplitude_axis')) then
-         call h5%read_text('/sweep/amplitude_axis', sf%axis_variable, err)
-         if (allocated(err)) goto 9
-         call h5%read_attr('/sweep/grid_amplitude_pp', 'units', sf%axis_units, err)
-         if (allocated(err)) goto 9
-      end if
+      call h5%read_text('/sweep/x_variable', sf%x_variable, err);  if (allocated(err)) goto 9
+      call h5%read_text('/sweep/y_variable', sf%y_variable, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/grid_x', sf%grid_x, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/grid_y', sf%grid_y, err);  if (allocated(err)) goto 9
+      call h5%read_units('/sweep/grid_x', sf%x_units, err);  if (allocated(err)) goto 9
+      call h5%read_units('/sweep/grid_y', sf%y_units, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/shard_index', sf%shard_index, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/shard_count', sf%shard_count, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/n_points_total', total, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/point_index', sf%points, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/period', period, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/label', label, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/status', status, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/lyapunov', lyap, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/lyapunov_error', lerr, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/steps', steps, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/seconds', secs, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/x', xv, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/y', yv, err);  if (allocated(err)) goto 9
+      n = size(sf%points)
+      allocate(iv(n, size(int_names)), rv(n, size(real_names)))
+      do k = 1, size(int_names)
+         call h5%read('/sweep/' // trim(int_names(k)), ione, err);  if (allocated(err)) goto 9
+         if (size(ione) /= n) goto 8
+         iv(:, k) = ione
+      end do
+      do k = 1, size(real_names)
+         call h5%read('/sweep/' // trim(real_names(k)), one, err);  if (allocated(err)) goto 9
+         if (size(one) /= n) goto 8
+         rv(:, k) = one
+      end do
+      do k = 1, size(text_names)
+         call h5%read('/sweep/' // trim(text_names(k)), tv(k)%v, err)
+         if (allocated(err)) goto 9
+         if (size(tv(k)%v) /= n) goto 8
+      end do
       call h5%read('/sweep/impacts/count', cnt, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/impacts/peak_force', pk, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/impacts/rms_force', rms, err);  if (allocated(err)) goto 9
@@ -438,41 +808,69 @@ contains
          allocate(wn, sd, fw, wv, mold=wr)
          wn = 0.0_dp;  sd = 0.0_dp;  fw = 0.0_dp;  wv = 0.0_dp
       end if
+      call h5%read('/sweep/starts/kind', kinds, err);  if (allocated(err)) goto 9
+      sf%start_kind = kinds
+      call h5%read('/sweep/starts/label', s_label, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/starts/attractor', s_attr, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/starts/lyapunov', s_lyap, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/attractors/label', a_label, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/attractors/fraction', a_frac, err);  if (allocated(err)) goto 9
+      call h5%read('/sweep/attractors/lyapunov', a_lyap, err);  if (allocated(err)) goto 9
       if (.not. allocated(results)) allocate(results(total))
       if (size(results) /= total) then
          call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' has ' &
             // str(total) // ' points in all, the other files ' // str(size(results)))
          goto 9
       end if
-      do j = 1, size(sf%points)
+      do j = 1, n
          p = sf%points(j)
          if (p < 1 .or. p > total) then
             call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ': point ' &
                // 'index ' // str(p) // ' outside 1..' // str(total))
             goto 9
          end if
-         results(p)%period = period(j);  results(p)%label = label(j)
-         results(p)%status = status(j);  results(p)%lyapunov = lyap(j)
-         results(p)%lyapunov_error = lerr(j);  results(p)%steps = nint(steps(j), int64)
-         results(p)%seconds = secs(j);  results(p)%n_impacts = nint(cnt(:, j))
+         do k = 1, size(int_names)
+            call set_int_field(results(p), k, iv(j, k))
+         end do
+         do k = 1, size(real_names)
+            call set_real_field(results(p), k, rv(j, k))
+         end do
+         do k = 1, size(text_names)
+            call set_text_field(results(p), k, trim(tv(k)%v(j)))
+         end do
+         results(p)%x = xv(j);  results(p)%y = yv(j)
+         results(p)%n_impacts = nint(cnt(:, j))
          results(p)%peak_force = pk(:, j);  results(p)%rms_force = rms(:, j)
          results(p)%contact_fraction = cf(:, j);  results(p)%impulse_per_period = imp(:, j)
          results(p)%work_rate = wr(:, j);  results(p)%p_strain = ps(:, j)
-         results(p)%p_strain_rate = pr(:, j);  results(p)%lyapunov_running = lr(:, j)
+         results(p)%p_strain_rate = pr(:, j)
+         ! the running estimate without the padding past the point's own periods
+         results(p)%lyapunov_running = lr(1:min(size(lr, 1), &
+                                          max(0, results(p)%lyapunov_periods)), j)
+         results(p)%start_label = s_label(:, j);  results(p)%start_attractor = s_attr(:, j)
+         results(p)%start_lyapunov = s_lyap(:, j)
+         k = results(p)%n_attractors
+         results(p)%attractor_label = a_label(1:k, j)
+         results(p)%attractor_fraction = a_frac(1:k, j)
+         results(p)%attractor_lyapunov = a_lyap(1:k, j)
          results(p)%normal_work_rate = wn(:, j);  results(p)%sliding_distance = sd(:, j)
          results(p)%friction_work_rate = fw(:, j);  results(p)%wear_volume_rate = wv(:, j)
       end do
+      goto 9
+8     call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ': a per-point ' &
+         // 'dataset of /sweep does not have one entry per point')
 9     call h5%close()
    end subroutine read_sweep
 
    !> Merge shard files into OUT (prefix without '.h5'): all from one deck, shards 1..N each
    !> exactly once, every point present once. The result is written by write_sweep, like a
    !> single-process run.
-   subroutine merge_sweep(out_prefix, paths, write_text, err)
+   subroutine merge_sweep(out_prefix, paths, write_text, err, n_failed)
       character(len=*), intent(in) :: out_prefix         !! output prefix
       character(len=*), intent(in) :: paths(:)           !! shard files
       logical, intent(in) :: write_text                  !! also the text tables
       type(error_t), allocatable, intent(out) :: err     !! mismatch or I/O failure
+      integer, intent(out), optional :: n_failed         !! failed runs (points or starts)
       type(sweep_file_t) :: first, sf, merged
       type(point_result_t), allocatable :: results(:)
       logical, allocatable :: seen_shard(:), seen_point(:)
@@ -536,10 +934,20 @@ contains
          return
       end if
       merged = first
-      merged%parameters_source = trim(paths(1))
       merged%shard_index = 1;  merged%shard_count = 1
       merged%points = [(p, p = 1, size(results))]
+      merged%parameters_source = trim(paths(1))
       call write_sweep(out_prefix, merged, results, write_text, err)
+      if (present(n_failed)) then
+         n_failed = 0
+         do p = 1, size(results)
+            if (allocated(results(p)%start_label)) then
+               n_failed = n_failed + count(results(p)%start_label == label_failed)
+            else if (results(p)%status /= 0) then
+               n_failed = n_failed + 1
+            end if
+         end do
+      end if
    end subroutine merge_sweep
 
    !> Refuse a merge whose inputs name one file twice, or whose output is one of its inputs
@@ -581,6 +989,18 @@ contains
          end if
       end do
    end subroutine check_merge_paths
+
+   !> A unit as one word (blanks as '.', the UDUNITS-2 product): the grid line is read by words.
+   pure function one_word(u) result(t)
+      character(len=*), intent(in) :: u                  !! unit
+      character(len=:), allocatable :: t
+      integer :: k
+      t = trim(adjustl(u))
+      if (len(t) == 0) t = '1'
+      do k = 1, len(t)
+         if (t(k:k) == ' ') t(k:k) = '.'
+      end do
+   end function one_word
 
    !> A number with 17 significant digits and a decimal point, as every reader takes it.
    function num(x) result(t)

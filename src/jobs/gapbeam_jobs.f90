@@ -6,6 +6,7 @@ module gapbeam_jobs
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
+   use gapbeam_settings, only: output_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
@@ -15,12 +16,13 @@ module gapbeam_jobs
    use gapbeam_eigen, only: solve_modes
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
-   use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
+   use gapbeam_attractor, only: diagnose
+   use gapbeam_certify, only: certify_point
+   use gapbeam_starts, only: start_list, random_state, group_attractors
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters, parameter_set_t
-   use gapbeam_attractor, only: point_diagnostics
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
@@ -276,6 +278,91 @@ contains
                             run_parameters(dk))
    end subroutine run_model_size
 
+   !> The label of a transient run, its evidence and its certificate, on standard output.
+   subroutine print_label(diag)
+      type(point_result_t), intent(in) :: diag         !! diagnosed run
+      integer :: k
+      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+         // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; largest ' &
+         // 'Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' // str(diag%lyapunov_error) &
+         // ' 1/s over ' // str(diag%lyapunov_periods) // ' periods)'
+      write(output_unit, '(a)') 'evidence: periods 1..' // str(diag%period_max_tested) &
+         // ' tried at tolerance ' // str(diag%period_tolerance) // ' (closest: period ' &
+         // str(diag%closest_period) // ' at ' // str(diag%repeat_distance) // '); ' &
+         // str(diag%settle_windows) // ' windows differ by ' // str(diag%window_difference) &
+         // ' of the orbit size (' // trim(merge('settled    ', 'not settled', &
+         diag%settled == 1)) // ') after ' // str(diag%transient_periods) // ' transient ' &
+         // 'periods; lambda ' // trim(merge('met its target     ', 'stopped at its most', &
+         diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+      write(output_unit, '(a)') 'certificate: ' // cert_reason(diag)
+      if (allocated(diag%start_label)) then
+         if (size(diag%start_label) > 1) then
+            write(output_unit, '(a)') 'attractors: ' // str(diag%n_attractors) // ' found by ' &
+               // str(size(diag%start_label)) // ' starts'
+            do k = 1, diag%n_attractors
+               write(output_unit, '(a)') '  ' // str(k) // ': ' &
+                  // label_text(diag%attractor_label(k)) // ', lambda ' &
+                  // str(diag%attractor_lyapunov(k)) // ' 1/s, reached by ' &
+                  // str(nint(100.0_dp * diag%attractor_fraction(k))) // ' % of the starts'
+            end do
+         end if
+      end if
+   end subroutine print_label
+
+   !> The certificate's reason, or why there is none.
+   function cert_reason(diag) result(t)
+      type(point_result_t), intent(in) :: diag         !! diagnosed run
+      character(len=:), allocatable :: t
+      t = 'none: certification is off (&diagnostics certify = .false.)'
+      if (allocated(diag%certificate_reason)) t = diag%certificate_reason
+   end function cert_reason
+
+   !> The deck's other starts (&diagnostics starts after the first): each diagnosed, then all
+   !> grouped into distinct attractors (into `diag`).
+   subroutine other_starts(dk, model, u0, v0, diag, e)
+      type(deck_t), intent(in) :: dk                   !! deck
+      type(model_t), intent(in) :: model               !! model
+      real(dp), intent(in) :: u0(:), v0(:)             !! the deck's initial state
+      type(point_result_t), intent(inout) :: diag      !! the first start; summary added
+      type(error_t), allocatable, intent(out) :: e     !! a start could not be made
+      type(point_result_t), allocatable :: runs(:)
+      type(transient_result_t) :: res
+      type(output_settings_t) :: o
+      character(len=8), allocatable :: kinds(:)
+      integer, allocatable :: ridx(:)
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: amplitude
+      integer :: k
+      type(error_t), allocatable :: run_err
+      call start_list(dk%diagnostics, 'deck', kinds, ridx)
+      allocate(runs(size(kinds)))
+      runs(1) = diag
+      o = dk%output
+      o%history_periods = 0
+      do k = 2, size(kinds)
+         select case (kinds(k))
+         case ('rest')
+            allocate(u(size(u0)), v(size(v0)), source=0.0_dp)
+         case ('random')
+            amplitude = dk%diagnostics%random_amplitude
+            if (.not. (amplitude > 0.0_dp)) amplitude = 2.0_dp * model%half_amplitude
+            call random_state(model, dk%diagnostics%random_seed, 1000000 + k, amplitude, u, v, e)
+            if (allocated(e)) return
+         case default
+            u = u0;  v = v0
+         end select
+         call diagnose(model, dk%solver, o, dk%diagnostics, u, v, res, runs(k), run_err)
+         if (allocated(run_err)) then
+            runs(k)%status = 1
+            write(output_unit, '(a)') 'start ' // str(k) // " ('" // trim(kinds(k)) &
+               // "') failed: " // run_err%message
+            deallocate(run_err)
+         end if
+         deallocate(u, v)
+      end do
+      call group_attractors(runs, dk%diagnostics, diag)
+   end subroutine other_starts
+
    !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)
    !> count the forcing periods integrated: the run's, then the exponent's two trajectories.
    subroutine run_transient_analysis(dk, e, batch)
@@ -287,6 +374,7 @@ contains
       real(dp) :: n_run
       type(model_t) :: model
       type(transient_result_t) :: res
+      type(output_settings_t) :: quiet
       type(point_result_t) :: diag
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
@@ -317,22 +405,23 @@ contains
       call meter%start('transient', 'periods', &
          n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
          .not. opt%quiet, opt%progress_interval_s)
-      call integrate(model, dk%solver, dk%output, u0, v0, res, e, monitor=meter)
-      if (allocated(e)) then
-         call meter%finish(meter%done)
-         return
-      end if
-      call meter%break_line()
+      call diagnose(model, dk%solver, dk%output, dk%diagnostics, u0, v0, res, diag, e, meter)
+      ! settling, convergence and an adaptive exponent may have run more than the estimate
+      meter%total = max(meter%total, meter%done)
+      call meter%finish(meter%done)
+      if (allocated(e)) return
       write(output_unit, '(a)') 'steps: ' // str(int(res%steps_accepted)) // ' accepted, ' &
          // str(int(res%steps_rejected)) // ' rejected, ' // str(int(res%events)) &
          // ' split at contact events; dt from ' // str(res%dt_smallest) // ' to ' &
-         // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations'
+         // str(res%dt_largest) // ' s; ' // str(int(res%factorizations)) // ' factorizations' &
+         // ' (the last record)'
       if (dk%solver%stop_solution == 'fixed_point') write(output_unit, '(a)') &
          'fixed-point iterations: ' // str(int(res%fp_iterations))
       write(output_unit, '(a)') 'method: ' // res%method // ' (' // res%method_reason // ')'
       res%setup_seconds = setup
       write(output_unit, '(a)') 'cpu: ' // str(res%cpu_seconds) // ' s, wall ' &
-         // str(res%wall_seconds) // ' s (set-up: ' // str(setup) // ' s cpu)'
+         // str(res%wall_seconds) // ' s for the last record (set-up: ' // str(setup) &
+         // ' s cpu); ' // str(diag%seconds_label) // ' s cpu for the label'
       do j = 1, model%n_stops
          write(output_unit, '(a)') 'stop ' // str(j) // ': ' // str(res%n_impacts(j)) &
             // ' impacts in ' // str(dk%solver%record_periods) // ' periods, peak force ' &
@@ -353,16 +442,13 @@ contains
          // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation &
          - res%stored_energy_change) // ' J'
-      meter%offset = n_run
-      meter%t = -1.0_dp;  meter%dt = -1.0_dp
-      call point_diagnostics(model, dk%solver, dk%diagnostics, res, diag, e, meter)
-      call meter%finish(meter%done)
+      quiet = dk%output
+      quiet%history_periods = 0
+      if (dk%diagnostics%certify) &
+         call certify_point(model, dk%solver, quiet, dk%diagnostics, u0, v0, 0, diag)
+      call other_starts(dk, model, u0, v0, diag, e)
       if (allocated(e)) return
-      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-         // str(diag%period) // ' found up to ' // str(dk%diagnostics%period_max) &
-         // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
-         // str(diag%lyapunov_error) // ' 1/s over ' // str(dk%diagnostics%lyapunov_periods) &
-         // ' periods)'
+      call print_label(diag)
       call write_transient(dk, model, res, diag, e)
       if (allocated(e)) return
       block

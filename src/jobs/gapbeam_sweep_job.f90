@@ -14,9 +14,11 @@ module gapbeam_sweep_job
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: sweep_settings_t, batch_options_t
    use gapbeam_model, only: model_t
-   use gapbeam_results, only: point_result_t, label_chaotic, label_undecided
+   use gapbeam_results, only: point_result_t, label_chaotic, label_undecided, label_unsettled, &
+      label_failed, certificate_none, certificate_certified, certificate_disputed
    use gapbeam_model_builder, only: build_model
-   use gapbeam_sweep, only: n_points, n_items, item_points, run_items
+   use gapbeam_sweep, only: sweep_plan_t, make_plan, n_points, n_items, item_slots, run_items, &
+      group_of_item, group_points, slot_index, combine_point
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
@@ -24,14 +26,15 @@ module gapbeam_sweep_job
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters
    use gapbeam_kinds, only: pi
-   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
-      deck_variable_label
+   use gapbeam_clock, only: process_cpu_seconds
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
 
    !> Exit status of a sweep stopped by its time limit (checkpoint kept, run again to finish).
    integer, parameter, public :: status_interrupted = 3
+   !> Exit status of a sweep (or merge) that wrote everything but in which some runs failed.
+   integer, parameter, public :: status_failed_points = 5
 
 contains
 
@@ -46,36 +49,41 @@ contains
    end function sweep_prefix
 
    !> Run the deck's sweep (its shard); `complete` is false when the time limit stopped it.
-   subroutine run_sweep_job(deck, batch, complete, err)
+   !> `n_failed` counts the failed runs (points or other starts) of the shard, each listed on
+   !> standard error; the files are written whatever it is.
+   subroutine run_sweep_job(deck, batch, complete, n_failed, err)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(batch_options_t), intent(in) :: batch       !! shard and time limit
       logical, intent(out) :: complete                 !! all points of the shard done
+      integer, intent(out) :: n_failed                 !! failed runs of the shard
       type(error_t), allocatable, intent(out) :: err   !! setup, I/O or checkpoint failure
       type(model_t) :: base
-      type(point_result_t), allocatable :: results(:)
+      type(sweep_plan_t) :: plan
+      type(point_result_t), allocatable :: slots(:), results(:)
       type(checkpoint_t) :: ck
       type(sweep_file_t) :: sf
       logical, allocatable :: done(:)
-      integer, allocatable :: mine(:), todo(:), pts(:)
+      integer, allocatable :: mine(:), todo(:), ss(:), pts(:)
       real(dp), allocatable :: u0(:), v0(:)
-      integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_failed, &
-         n_pos, block, j1
+      integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_pos, &
+         n_round, j1
       type(meter_t) :: meter
       integer(int64) :: c0, c1, rate
-      real(dp) :: elapsed
+      real(dp) :: elapsed, cpu0
       character(len=:), allocatable :: prefix, report
-      type(deck_variable_t), allocatable :: vars(:)
 
       complete = .false.
+      n_failed = 0
       call system_clock(c0, rate)
+      cpu0 = process_cpu_seconds()
       call build_model(deck, base, u0, v0, err)
       if (allocated(err)) return
-      call axis_variables(deck, vars, err)
+      call make_plan(deck, plan, err)
       if (allocated(err)) return
-      np = n_points(deck%sweep);  ni = n_items(deck%sweep)
-      mine = pack([(k, k = 1, ni)], [(mod(k - 1, batch%shard_count) + 1 &
+      np = n_points(plan);  ni = n_items(plan)
+      mine = pack([(k, k = 1, ni)], [(mod(group_of_item(plan, k) - 1, batch%shard_count) + 1 &
                   == batch%shard_index, k = 1, ni)])
-      allocate(results(np), done(np))
+      allocate(slots(np * plan%ns), done(np * plan%ns))
       done = .false.
       prefix = sweep_prefix(deck, batch)
       n_loaded = 0
@@ -85,7 +93,7 @@ contains
       if (deck%sweep%checkpoint) then
          call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
             // '! shard ' // str(batch%shard_index) // ' of ' &
-            // str(batch%shard_count), results, done, n_loaded, report, err)
+            // str(batch%shard_count), slots, done, n_loaded, report, err)
          if (allocated(err)) return
          if (len(report) > 0) then
             write(error_unit, '(a)') 'sweep: checkpoint: ' // replace_new_lines(report, &
@@ -96,60 +104,50 @@ contains
       allocate(todo(0))
       n_total = 0
       do k = 1, size(mine)
-         pts = item_points(deck%sweep, mine(k))
-         n_total = n_total + size(pts)
-         if (.not. all(done(pts))) todo = [todo, mine(k)]
+         ss = item_slots(plan, mine(k))
+         n_total = n_total + size(ss)
+         if (.not. all(done(ss))) todo = [todo, mine(k)]
       end do
-      n_done = n_total - sum([(size(item_points(deck%sweep, todo(k))), k = 1, size(todo))])
+      n_done = n_total - sum([(size(item_slots(plan, todo(k))), k = 1, size(todo))])
       threads = 1
       !$ threads = omp_get_max_threads()
       ! work items between checkpoint writes and progress lines: each chunk ends in a barrier,
       ! so chunks are long; without checkpoint and progress the whole shard is one chunk
       chunk = deck%sweep%chunk
-      if (chunk == 0) chunk = merge(4, 64, deck%sweep%mode == 'continuation') * threads
+      if (chunk == 0) chunk = merge(4, 64, plan%lines) * threads
       if (.not. deck%sweep%checkpoint .and. .not. deck%sweep%progress .and. &
           deck%sweep%chunk == 0) chunk = max(1, size(todo))
-      write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' &
-         // str(size(deck%sweep%frequency_hz)) // ' frequencies x ' &
-         // str(size(deck%sweep%amplitude_pp)) // ' ' // axis_words(vars) // '), mode ' &
-         // trim(deck%sweep%mode) // ', shard ' // str(batch%shard_index) // ' of ' &
-         // str(batch%shard_count) // ': ' // str(n_total) // ' points, ' &
-         // str(n_done) // ' already in the checkpoint; ' // str(threads) // ' threads'
+      write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' // str(plan%nx) // ' x ' &
+         // str(plan%ny) // ': ' // trim(plan%label(1)) // ' x ' &
+         // trim(plan%label(2)) // '), ' // str(plan%ns) // ' start(s) per ' &
+         // 'point (' // start_names(plan) // '), certification ' &
+         // trim(merge('on ', 'off', deck%diagnostics%certify)) // ', shard ' &
+         // str(batch%shard_index) // ' of ' // str(batch%shard_count) // ': ' &
+         // str(n_total) // ' runs, ' // str(n_done) // ' already in the checkpoint; ' &
+         // str(threads) // ' threads'
 
       first = 1
-      call meter%start('sweep', 'points', real(n_total, dp), real(n_done, dp), &
-         deck%sweep%progress .and. .not. batch%quiet, batch%progress_interval_s)
+      call meter%start('sweep', trim(merge('points', 'runs  ', plan%ns == 1)), &
+         real(n_total, dp), real(n_done, dp), deck%sweep%progress .and. .not. batch%quiet, batch%progress_interval_s)
       do while (first <= size(todo))
          last = min(size(todo), first + chunk - 1)
-         if (deck%sweep%mode == 'continuation') then
-            ! rounds of `block` positions along every line of the chunk: about 8 points per
+         if (plan%lines) then
+            ! rounds of `n_round` positions along every line of the chunk: about 8 runs per
             ! thread per round, so that the barrier at the end of a round costs little
-            n_pos = size(item_points(deck%sweep, todo(first)))
-            block = max(1, (8 * threads + (last - first)) / (last - first + 1))
-            do j1 = 1, n_pos, block
-               if (size(vars) > 0) then
-                  call run_items(base, deck%sweep, deck%solver, deck%output, &
-                     deck%diagnostics, todo(first:last), u0, v0, results, j1, &
-                     j1 + block - 1, deck, vars)
-               else
-                  call run_items(base, deck%sweep, deck%solver, deck%output, &
-                     deck%diagnostics, todo(first:last), u0, v0, results, j1, j1 + block - 1)
-               end if
-               call finish_points(deck%sweep, todo(first:last), j1, j1 + block - 1, results, &
-                                  deck%sweep%checkpoint, ck, done, n_done, err)
+            n_pos = size(item_slots(plan, todo(first)))
+            n_round = max(1, (8 * threads + (last - first)) / (last - first + 1))
+            do j1 = 1, n_pos, n_round
+               call run_items(deck, base, plan, todo(first:last), u0, v0, slots, j1, &
+                              j1 + n_round - 1)
+               call finish_slots(plan, todo(first:last), j1, j1 + n_round - 1, slots, &
+                                 deck%sweep%checkpoint, ck, done, n_done, err)
                if (allocated(err)) return
                call meter%update(real(n_done, dp))
             end do
          else
-            if (size(vars) > 0) then
-               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                              todo(first:last), u0, v0, results, deck=deck, vars=vars)
-            else
-               call run_items(base, deck%sweep, deck%solver, deck%output, deck%diagnostics, &
-                              todo(first:last), u0, v0, results)
-            end if
-            call finish_points(deck%sweep, todo(first:last), 1, 1, results, &
-                               deck%sweep%checkpoint, ck, done, n_done, err)
+            call run_items(deck, base, plan, todo(first:last), u0, v0, slots)
+            call finish_slots(plan, todo(first:last), 1, huge(1), slots, &
+                              deck%sweep%checkpoint, ck, done, n_done, err)
             if (allocated(err)) return
             call meter%update(real(n_done, dp))
          end if
@@ -161,122 +159,109 @@ contains
             call meter%finish(real(n_done, dp))
             call checkpoint_close(ck, delete=.false.)
             write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
-               // str(n_total) // ' points; the checkpoint ' // prefix // '.checkpoint keeps ' &
+               // str(n_total) // ' runs; the checkpoint ' // prefix // '.checkpoint keeps ' &
                // 'them: run the same command again to finish'
             return
          end if
       end do
       call meter%finish()
 
-      n_failed = 0
-      do k = 1, size(mine)
-         pts = item_points(deck%sweep, mine(k))
-         do j = 1, size(pts)
-            if (results(pts(j))%status /= 0) then
-               n_failed = n_failed + 1
-               write(error_unit, '(a)') 'sweep: point ' // str(pts(j)) // ' failed: ' &
-                  // results(pts(j))%message
-            end if
+      ! every point of the shard: its first start with all starts' attractors; failures listed
+      pts = shard_points(plan, mine)
+      allocate(results(np))
+      do k = 1, size(pts)
+         results(pts(k)) = combine_point(deck, plan, slots, pts(k))
+         do j = 1, plan%ns
+            associate (sr => slots(slot_index(plan, pts(k), j)))
+               if (sr%status /= 0) then
+                  n_failed = n_failed + 1
+                  write(error_unit, '(a)') 'sweep: failed: ' // sr%message
+               end if
+            end associate
          end do
       end do
       sf%deck_text = deck%text
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
-      sf%axis_variable = axis_words(vars)
-      sf%axis_units = 'm'
-      if (size(vars) > 0) sf%axis_units = trim(vars(1)%units)
-      if (sf%axis_units == '-') sf%axis_units = '1'
+      sf%x_variable = trim(plan%label(1))
+      sf%y_variable = trim(plan%label(2))
+      sf%x_units = trim(plan%var(1)%units)
+      sf%y_units = trim(plan%var(2)%units)
+      sf%grid_x = plan%x
+      sf%grid_y = plan%y
+      sf%start_kind = plan%kinds
       sf%shard_index = batch%shard_index
       sf%shard_count = batch%shard_count
-      sf%points = sorted_points(deck%sweep, mine)
+      sf%points = pts
       sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
                                      base%omega_max / (2.0_dp * pi), base%n)
+      sf%cpu_seconds = process_cpu_seconds() - cpu0   ! inside the wall-time window
+      call system_clock(c1)
+      sf%wall_seconds = real(c1 - c0, dp) / real(rate, dp)
+      sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
-      call summary(results(sf%points), n_failed)
+      call summary(results(pts), n_failed, plan%ns)
+      write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
+         // str(sf%wall_seconds) // ' s, ' // str(threads) // ' thread(s)'
       call system_clock(c1)
-      write(output_unit, '(a)') 'sweep: ' // str(size(sf%points)) // ' points in ' &
+      write(output_unit, '(a)') 'sweep: ' // str(size(pts)) // ' points in ' &
          // str(real(c1 - c0, dp) / real(rate, dp)) // ' s; files: ' // prefix // '.h5' &
          // trim(merge(', .sweep.dat, .bifurcation.dat', '                              ', &
          deck%output%write_text))
+      if (n_failed > 0) write(output_unit, '(a)') 'sweep: ' // str(n_failed) // ' failed ' &
+         // 'run(s), listed above on standard error and marked in the files (status 1, label ' &
+         // "'failed')"
       complete = .true.
 
    end subroutine run_sweep_job
 
-   !> The deck variables that the amplitude axis sets (&sweep variable), parsed and checked on
-   !> the deck; none when the axis is the base motion's amplitude_pp. The continuation mode
-   !> needs the same model at every point of a line along the frequency axis only.
-   subroutine axis_variables(deck, vars, err)
-      type(deck_t), intent(in) :: deck                       !! validated deck
-      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! the variables
-      type(error_t), allocatable, intent(out) :: err         !! unknown or absent variable
-      integer :: k
-      allocate(vars(0))
-      do k = 1, size(deck%sweep%variable)
-         if (len_trim(deck%sweep%variable(k)) == 0) cycle
-         vars = [vars, deck_variable_t()]
-         call parse_deck_variable(deck%sweep%variable(k), vars(size(vars)), err)
-         if (.not. allocated(err)) call check_deck_variable(deck, vars(size(vars)), err)
-         if (allocated(err)) then
-            err%message = 'group &sweep: variable(' // str(k) // '): ' // err%message
-            return
-         end if
-      end do
-      if (size(vars) == 1) then
-         ! the base motion's own amplitude: the fast path, no rebuild
-         if (vars(1)%group == 'forcing' .and. vars(1)%name == 'amplitude_pp') deallocate(vars)
-         if (.not. allocated(vars)) allocate(vars(0))
-      end if
-      if (size(vars) > 0 .and. any(vars%group == 'forcing')) call fatal_error(err, &
-         "group &sweep: variable: the &forcing variables are the sweep's own axes " &
-         // "(frequency_hz, amplitude_pp); name other deck variables")
-   end subroutine axis_variables
-
-   !> 'amplitudes', or the variables the amplitude axis sets.
-   function axis_words(vars) result(t)
-      type(deck_variable_t), intent(in) :: vars(:)
+   !> The starts of a plan, comma separated ('random' counted once with its number).
+   function start_names(plan) result(t)
+      type(sweep_plan_t), intent(in) :: plan    !! plan
       character(len=:), allocatable :: t
       integer :: k
-      if (size(vars) == 0) then
-         t = 'amplitudes'
-         return
-      end if
-      t = 'values of'
-      do k = 1, size(vars)
-         if (k > 1) t = t // ','
-         t = t // ' ' // deck_variable_label(vars(k))
+      t = ''
+      do k = 1, plan%ns
+         if (plan%random_index(k) > 1) cycle
+         if (len(t) > 0) t = t // ', '
+         if (plan%kinds(k) == 'random') then
+            t = t // 'random x ' // str(count(plan%random_index > 0))
+         else
+            t = t // trim(plan%kinds(k))
+         end if
       end do
-   end function axis_words
+   end function start_names
 
-   !> Positions j_first..j_last of the lines (points) of `items` are done: mark them, count
-   !> them and append each successful one to the checkpoint (when there is one).
-   subroutine finish_points(sw, items, j_first, j_last, results, with_checkpoint, ck, done, &
-                            n_done, err)
-      type(sweep_settings_t), intent(in) :: sw           !! sweep
+   !> Positions j_first..j_last of the slots of `items` are done: mark them, count them and
+   !> append each successful one to the checkpoint (when there is one).
+   subroutine finish_slots(plan, items, j_first, j_last, slots, with_checkpoint, ck, done, &
+                           n_done, err)
+      type(sweep_plan_t), intent(in) :: plan             !! plan
       integer, intent(in) :: items(:)                    !! work items just run
       integer, intent(in) :: j_first, j_last             !! positions along each item
-      type(point_result_t), intent(in) :: results(:)     !! results, by point
+      type(point_result_t), intent(in) :: slots(:)       !! results, by slot
       logical, intent(in) :: with_checkpoint             !! append to `ck`
       type(checkpoint_t), intent(inout) :: ck            !! the checkpoint
-      logical, intent(inout) :: done(:)                  !! points done, by point
-      integer, intent(inout) :: n_done                   !! count of points done
+      logical, intent(inout) :: done(:)                  !! slots done, by slot
+      integer, intent(inout) :: n_done                   !! count of slots done
       type(error_t), allocatable, intent(out) :: err     !! checkpoint write failure
       integer :: k, j
-      integer, allocatable :: line(:)
+      integer, allocatable :: ss(:)
       do k = 1, size(items)
-         line = item_points(sw, items(k))
-         do j = j_first, min(j_last, size(line))
-            done(line(j)) = .true.
+         ss = item_slots(plan, items(k))
+         do j = j_first, min(j_last, size(ss))
+            done(ss(j)) = .true.
             n_done = n_done + 1
-            if (with_checkpoint .and. results(line(j))%status == 0) then
-               call checkpoint_append(ck, line(j), results(line(j)), err)
+            if (with_checkpoint .and. slots(ss(j))%status == 0) then
+               call checkpoint_append(ck, ss(j), slots(ss(j)), err)
                if (allocated(err)) return
             end if
          end do
       end do
-   end subroutine finish_points
+   end subroutine finish_slots
 
    !> `text` with every new line replaced by `by`.
    pure function replace_new_lines(text, by) result(t)
@@ -295,22 +280,23 @@ contains
    end function replace_new_lines
 
    !> All points of the given items, ascending.
-   function sorted_points(sw, items) result(pts)
-      type(sweep_settings_t), intent(in) :: sw
+   function shard_points(plan, items) result(pts)
+      type(sweep_plan_t), intent(in) :: plan
       integer, intent(in) :: items(:)
       integer, allocatable :: pts(:)
       logical, allocatable :: mask(:)
       integer :: k
-      allocate(mask(n_points(sw)), source=.false.)
+      allocate(mask(n_points(plan)), source=.false.)
       do k = 1, size(items)
-         mask(item_points(sw, items(k))) = .true.
+         mask(group_points(plan, group_of_item(plan, items(k)))) = .true.
       end do
       pts = pack([(k, k = 1, size(mask))], mask)
-   end function sorted_points
+   end function shard_points
 
-   subroutine summary(res, n_failed)
+   !> Counts of the labels, the certificates and the points with coexisting attractors.
+   subroutine summary(res, n_failed, n_starts)
       type(point_result_t), intent(in) :: res(:)
-      integer, intent(in) :: n_failed
+      integer, intent(in) :: n_failed, n_starts
       integer :: p, c
       character(len=:), allocatable :: line
       line = 'labels:'
@@ -319,8 +305,17 @@ contains
          if (c > 0) line = line // ' period ' // str(p) // ': ' // str(c) // ';'
       end do
       line = line // ' chaotic: ' // str(count(res%label == label_chaotic)) // '; undecided: ' &
-         // str(count(res%label == label_undecided .and. res%status == 0)) // '; failed: ' &
-         // str(n_failed)
+         // str(count(res%label == label_undecided)) // '; unsettled: ' &
+         // str(count(res%label == label_unsettled)) // '; failed: ' &
+         // str(count(res%label == label_failed))
       write(output_unit, '(a)') line
+      write(output_unit, '(a)') 'certificates: certified ' &
+         // str(count(res%certificate == certificate_certified)) // ', disputed ' &
+         // str(count(res%certificate == certificate_disputed)) // ', none ' &
+         // str(count(res%certificate == certificate_none))
+      if (n_starts > 1) write(output_unit, '(a)') 'attractors: ' &
+         // str(count(res%n_attractors > 1)) // ' point(s) with coexisting attractors (' &
+         // str(n_starts) // ' starts per point)'
+      if (n_failed > 0) write(output_unit, '(a)') 'failed runs: ' // str(n_failed)
    end subroutine summary
 end module gapbeam_sweep_job

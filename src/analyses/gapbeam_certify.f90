@@ -1,0 +1,192 @@
+!> The certificate of a label: two independent re-checks of a diagnosed point, each a full
+!> diagnosis (gapbeam_attractor: settling, period, adaptive exponent, label).
+!>
+!> 1. Accuracy: the same start at a second accuracy. Where the run was not exact and every
+!>    stop is piecewise linear, the exact integrator (accurate to round-off); else the run's
+!>    own method with every accuracy setting tightened `certify_ratio` times (tolerance,
+!>    rk_rtol and half_step_tolerance divided, steps_per_period multiplied, which also refines
+!>    the exponent's fixed steps). A run that was exact has no tighter accuracy: no check.
+!> 2. Perturbed start: the run's own settings from the start plus a random state (seeded by
+!>    the point) of `certify_perturbation` times the energy norm of the attractor's state.
+!>
+!> The point is certified when each check gives the same label and, for the accuracy check
+!> of a periodic label, the same orbit (within orbit_tolerance of its size); otherwise it is
+!> disputed, with the first disagreement as the reason (a check that fails numerically also
+!> disputes). A perturbed start that lands on another orbit of the same period is not a
+!> dispute of the label (it is recorded as a distance).
+module gapbeam_certify
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t
+   use gapbeam_model, only: model_t, energy_norm
+   use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
+   use gapbeam_results, only: point_result_t, transient_result_t, label_text, label_failed, &
+      certificate_certified, certificate_disputed
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_integrator, only: resolve_method
+   use gapbeam_attractor, only: diagnose
+   use gapbeam_starts, only: uniform_numbers, attractor_distance
+   use gapbeam_clock, only: thread_cpu_seconds
+   implicit none
+   private
+   public :: certify_point, accuracy_settings
+
+   integer, parameter :: stream_perturbation = 1000   !! generator stream offset of the checks
+
+contains
+
+   !> Run both checks of a diagnosed point `pr` (started from (u0, v0)) and set its certificate.
+   subroutine certify_point(model, cfg, out, diag, u0, v0, seed, pr)
+      type(model_t), intent(in) :: model                 !! model of the point
+      type(solver_settings_t), intent(in) :: cfg         !! the run's settings
+      type(output_settings_t), intent(in) :: out         !! recording settings
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      real(dp), intent(in) :: u0(:), v0(:)               !! the run's start
+      integer, intent(in) :: seed                        !! generator stream of this point
+      type(point_result_t), intent(inout) :: pr          !! diagnosed point; certificate set
+      type(solver_settings_t) :: tight
+      type(point_result_t) :: chk
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: what, reason
+      real(dp), allocatable :: du(:), dv(:)
+      real(dp) :: cpu0, scale, dn
+      logical :: needed
+
+      cpu0 = thread_cpu_seconds()
+      reason = ''
+      ! 1. accuracy
+      call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed)
+      pr%accuracy_method = ''
+      if (needed) then
+         call diagnose(model, tight, out, diag, u0, v0, res, chk, err)
+         if (allocated(err) .and. tight%method == 'exact') then
+            ! the exact integrator refused this model: tighten the run's own method instead
+            call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed, &
+                                   no_exact=.true.)
+            deallocate(err)
+            chk = point_result_t()
+            call diagnose(model, tight, out, diag, u0, v0, res, chk, err)
+         end if
+         pr%accuracy_method = what
+         call record_check(pr, chk, err, 'accuracy', what, diag, reason)
+      end if
+      ! 2. perturbed start
+      du = uniform_numbers(diag%random_seed, stream_perturbation + 2 * seed, size(u0))
+      dv = uniform_numbers(diag%random_seed, stream_perturbation + 2 * seed + 1, size(v0))
+      scale = energy_norm(model, pr%u_end, pr%v_end)
+      if (.not. (scale > 0.0_dp)) scale = energy_norm(model, u0, v0)
+      dn = energy_norm(model, du, dv)
+      if (scale > 0.0_dp .and. dn > 0.0_dp) then
+         du = du * (diag%certify_perturbation * scale / dn)
+         dv = dv * (diag%certify_perturbation * scale / dn)
+      else
+         du = du * diag%certify_perturbation;  dv = dv * diag%certify_perturbation
+      end if
+      chk = point_result_t()
+      call diagnose(model, cfg, out, diag, u0 + du, v0 + dv, res, chk, err)
+      call record_check(pr, chk, err, 'perturbed', 'a start perturbed by ' &
+         // num(diag%certify_perturbation) // ' of the state norm', diag, reason)
+      if (len(reason) == 0) then
+         pr%certificate = certificate_certified
+         if (needed) then
+            pr%certificate_reason = 'certified: ' // what // ' and a perturbed start give ' &
+               // label_text(pr%label) // ' too'
+         else
+            pr%certificate_reason = 'certified: a perturbed start gives ' &
+               // label_text(pr%label) // ' too (the run was exact: no tighter accuracy)'
+         end if
+      else
+         pr%certificate = certificate_disputed
+         pr%certificate_reason = 'disputed: ' // reason
+      end if
+      pr%seconds_certify = thread_cpu_seconds() - cpu0
+   end subroutine certify_point
+
+   !> Compare one check with the point; the first disagreement becomes `reason`.
+   subroutine record_check(pr, chk, err, kind, what, diag, reason)
+      type(point_result_t), intent(inout) :: pr          !! the point
+      type(point_result_t), intent(in) :: chk            !! the check's diagnosis
+      type(error_t), allocatable, intent(in) :: err      !! the check's failure
+      character(len=*), intent(in) :: kind               !! 'accuracy' or 'perturbed'
+      character(len=*), intent(in) :: what              !! what the check ran, in words
+      type(diagnostics_settings_t), intent(in) :: diag   !! orbit tolerance
+      character(len=:), allocatable, intent(inout) :: reason  !! '' until a disagreement
+      integer :: label
+      real(dp) :: lam, sig, dist
+      character(len=:), allocatable :: why
+      why = ''
+      if (allocated(err)) then
+         label = label_failed;  lam = 0.0_dp;  sig = 0.0_dp;  dist = 0.0_dp
+         why = 'the check with ' // what // ' failed: ' // err%message
+      else
+         label = chk%label;  lam = chk%lyapunov;  sig = chk%lyapunov_error
+         dist = attractor_distance(pr, chk)
+         if (label /= pr%label) then
+            why = what // ' gives ' // label_text(label) // ' (lambda ' // num(lam) // ' +- ' &
+               // num(sig) // ' 1/s) where the run gives ' // label_text(pr%label) &
+               // ' (lambda ' // num(pr%lyapunov) // ' +- ' // num(pr%lyapunov_error) // ' 1/s)'
+         else if (kind == 'accuracy' .and. label >= 1 .and. dist > diag%orbit_tolerance) then
+            why = what // ' gives the same period but another orbit (distance ' // num(dist) &
+               // ' of its size, tolerance ' // num(diag%orbit_tolerance) // ')'
+         end if
+      end if
+      if (kind == 'accuracy') then
+         pr%accuracy_label = label;  pr%accuracy_lyapunov = lam
+         pr%accuracy_lyapunov_error = sig;  pr%accuracy_distance = dist
+      else
+         pr%perturbed_label = label;  pr%perturbed_lyapunov = lam
+         pr%perturbed_lyapunov_error = sig;  pr%perturbed_distance = dist
+      end if
+      if (len(reason) == 0 .and. len(why) > 0) reason = why
+   end subroutine record_check
+
+   !> Settings of the accuracy check (see the module header); `needed` is false when the run
+   !> itself was exact. `no_exact` asks for the tightened own method even where the exact
+   !> integrator would apply.
+   subroutine accuracy_settings(model, cfg, ratio, tight, what, needed, no_exact)
+      type(model_t), intent(in) :: model                 !! model (its stop laws)
+      type(solver_settings_t), intent(in) :: cfg         !! the run's settings
+      real(dp), intent(in) :: ratio                      !! tightening factor (> 1)
+      type(solver_settings_t), intent(out) :: tight      !! the check's settings
+      character(len=:), allocatable, intent(out) :: what !! the check in words
+      logical, intent(out) :: needed                     !! a check is possible
+      logical, intent(in), optional :: no_exact          !! never the exact integrator
+      type(solver_settings_t) :: eff
+      character(len=:), allocatable :: reason
+      logical :: exact_ok
+      call resolve_method(model, cfg, eff, reason)
+      tight = eff
+      needed = eff%method /= 'exact'
+      what = ''
+      if (.not. needed) return
+      exact_ok = all(model%c_law == law_bilinear)
+      if (present(no_exact)) exact_ok = exact_ok .and. .not. no_exact
+      if (exact_ok) then
+         tight%method = 'exact'
+         what = 'the exact integrator'
+         return
+      end if
+      tight%tolerance = eff%tolerance / ratio
+      tight%rk_rtol = eff%rk_rtol / ratio
+      tight%half_step_tolerance = eff%half_step_tolerance / ratio
+      tight%steps_per_period = nint(min(real(huge(1) / 2, dp), eff%steps_per_period * ratio))
+      what = trim(eff%method) // ' (' // trim(eff%step_control) // ' step control) ' &
+         // num(ratio) // ' x tighter'
+   end subroutine accuracy_settings
+
+   !> A number in 3 significant digits.
+   pure function num(x) result(t)
+      real(dp), intent(in) :: x          !! value
+      character(len=:), allocatable :: t
+      character(len=16) :: buf
+      if (x == 0.0_dp) then
+         t = '0'
+      else if (abs(x) >= 1.0e-2_dp .and. abs(x) < 1.0e4_dp) then
+         write(buf, '(g0.3)') x
+         t = trim(adjustl(buf))
+      else
+         write(buf, '(es9.2)') x
+         t = trim(adjustl(buf))
+      end if
+   end function num
+end module gapbeam_certify
