@@ -1339,6 +1339,12 @@ contains
       if (allocated(err)) return
       call require_positive('forcing', 'frequency_hz', frequency_hz, err)
       call require_nonnegative('forcing', 'amplitude_pp', amplitude_pp, err)
+      ! a base motion beyond sqrt(huge) m makes every point diverge (a sweep whose axes are
+      ! other variables would fail each point instead of refusing the deck); a sweep's own
+      ! amplitude axis values are checked per point (a failed point, marked)
+      if (.not. allocated(err) .and. amplitude_pp > sqrt(huge(1.0_dp))) call fatal_error(err, &
+         'group &forcing: amplitude_pp = ' // str(amplitude_pp) // ' m: must be at most ' &
+         // str(sqrt(huge(1.0_dp))) // ' m')
       call require_range('forcing', 'direction_deg', direction_deg, -360.0_dp, 360.0_dp, err)
       call require_range('forcing', 'phase_v_deg', phase_v_deg, -360.0_dp, 360.0_dp, err)
       if (allocated(err)) return
