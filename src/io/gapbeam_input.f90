@@ -1130,6 +1130,8 @@ contains
       call apply_group(srcs, 'stops', stop_vars, reader, err)
       call list_entries('stops', 'node', given, node, n, err)
       if (allocated(err)) return
+      call no_extra_entries(n, err)
+      if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
          ix = '(' // str(i) // ')'
@@ -1176,6 +1178,78 @@ contains
             tangential_stiffness=tangential_stiffness(i), wear_coefficient=wear_coefficient(i))
       end do
    contains
+      !> An entry of a per-stop list beyond the stops is refused: it would be ignored silently
+      !> ('gap = 2e-4, 2e-4, -1' with two nodes). Checked per source (the deck file, each
+      !> override): within one, against the node entries it gives, or the n stops of the whole
+      !> deck when it gives none (an override that shortens node leaves the file's longer lists
+      !> as they were: their extra entries are not an error). Read again over markers.
+      subroutine no_extra_entries(n, err)
+         integer, intent(in) :: n
+         type(error_t), allocatable, intent(inout) :: err
+         real(dp), parameter :: mark = -7.77e77_dp
+         character(len=*), parameter :: cmark = '#'
+         character(len=20) :: names(16)
+         integer :: j, k, lim, n1(nmax)
+         logical :: extra(16)
+         real(dp), dimension(nmax) :: s_gap, s_stiffness, s_damping, s_exponent, s_rf, s_rr, &
+            s_rh, s_ow, s_ov, s_fr, s_kt, s_wc
+         character(len=16) :: s_side(nmax), s_law(nmax), s_shape(nmax)
+         character(len=8) :: s_dof(nmax)
+         integer :: s_node(nmax)
+         s_gap = gap;  s_stiffness = stiffness;  s_damping = damping;  s_exponent = exponent
+         s_rf = rule_factor;  s_rr = rule_f1_ratio;  s_rh = rule_f1_hz;  s_ow = offset_w
+         s_ov = offset_v;  s_fr = friction;  s_kt = tangential_stiffness;  s_wc = wear_coefficient
+         s_side = side;  s_law = law;  s_shape = shape;  s_dof = dof;  s_node = node
+         names = [character(len=20) :: 'gap', 'stiffness', 'damping', 'exponent', &
+            'rule_factor', 'rule_f1_ratio', 'rule_f1_hz', 'offset_w', 'offset_v', 'friction', &
+            'tangential_stiffness', 'wear_coefficient', 'side', 'law', 'shape', 'dof']
+         do k = 1, size(srcs)
+            ! the node entries this source gives (two markers tell them)
+            node = -1
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            n1 = node;  node = -2
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            lim = n
+            do j = nmax, 1, -1
+               if (n1(j) /= -1 .or. node(j) /= -2) then
+                  lim = j
+                  exit
+               end if
+            end do
+            if (lim >= nmax) cycle
+            gap = mark;  stiffness = mark;  damping = mark;  exponent = mark;  rule_factor = mark
+            rule_f1_ratio = mark;  rule_f1_hz = mark;  offset_w = mark;  offset_v = mark
+            friction = mark;  tangential_stiffness = mark;  wear_coefficient = mark
+            side = cmark;  law = cmark;  shape = cmark;  dof = cmark
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            extra = [any(gap(lim + 1:) /= mark), any(stiffness(lim + 1:) /= mark), &
+               any(damping(lim + 1:) /= mark), any(exponent(lim + 1:) /= mark), &
+               any(rule_factor(lim + 1:) /= mark), any(rule_f1_ratio(lim + 1:) /= mark), &
+               any(rule_f1_hz(lim + 1:) /= mark), any(offset_w(lim + 1:) /= mark), &
+               any(offset_v(lim + 1:) /= mark), any(friction(lim + 1:) /= mark), &
+               any(tangential_stiffness(lim + 1:) /= mark), &
+               any(wear_coefficient(lim + 1:) /= mark), any(side(lim + 1:) /= cmark), &
+               any(law(lim + 1:) /= cmark), any(shape(lim + 1:) /= cmark), &
+               any(dof(lim + 1:) /= cmark)]
+            do j = 1, size(names)
+               if (extra(j)) then
+                  call fatal_error(err, 'group &stops: ' // trim(names(j)) // ' has an entry ' &
+                     // 'beyond the ' // str(lim) // ' stop(s) that node lists (one value per ' &
+                     // 'node entry)')
+                  exit
+               end if
+            end do
+            if (allocated(err)) exit
+         end do
+         gap = s_gap;  stiffness = s_stiffness;  damping = s_damping;  exponent = s_exponent
+         rule_factor = s_rf;  rule_f1_ratio = s_rr;  rule_f1_hz = s_rh;  offset_w = s_ow
+         offset_v = s_ov;  friction = s_fr;  tangential_stiffness = s_kt;  wear_coefficient = s_wc
+         side = s_side;  law = s_law;  shape = s_shape;  dof = s_dof;  node = s_node
+      end subroutine no_extra_entries
+
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
          integer, intent(out) :: ios
