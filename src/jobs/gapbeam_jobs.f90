@@ -282,18 +282,29 @@ contains
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
       integer :: k
-      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-         // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; largest ' &
-         // 'Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' // str(diag%lyapunov_error) &
-         // ' 1/s over ' // str(diag%lyapunov_periods) // ' periods)'
+      character(len=:), allocatable :: lambda
+      ! no exponent asked for (lyapunov_periods = 0; the default with ring supports): say so
+      if (diag%lyapunov_periods == 0) then
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; no ' &
+            // 'Lyapunov exponent: lyapunov_periods = 0)'
+         lambda = 'no exponent'
+      else
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) &
+            // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
+            // str(diag%lyapunov_error) // ' 1/s over ' // str(diag%lyapunov_periods) &
+            // ' periods)'
+         lambda = 'lambda ' // trim(merge('met its target     ', 'stopped at its most', &
+            diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+      end if
       write(output_unit, '(a)') 'evidence: periods 1..' // str(diag%period_max_tested) &
          // ' tried at tolerance ' // str(diag%period_tolerance) // ' (closest: period ' &
          // str(diag%closest_period) // ' at ' // str(diag%repeat_distance) // '); ' &
          // str(diag%settle_windows) // ' windows differ by ' // str(diag%window_difference) &
          // ' of the orbit size (' // trim(merge('settled    ', 'not settled', &
          diag%settled == 1)) // ') after ' // str(diag%transient_periods) // ' transient ' &
-         // 'periods; lambda ' // trim(merge('met its target     ', 'stopped at its most', &
-         diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+         // 'periods; ' // lambda
       write(output_unit, '(a)') 'certificate: ' // cert_reason(diag)
       if (allocated(diag%start_label)) then
          if (size(diag%start_label) > 1) then
