@@ -87,7 +87,8 @@ set tics front
 if (colour) {
    # A grid: small multiples, one panel per value of the other forcing variable (at most 16,
    # evenly chosen when there are more), all on the same axes.
-   set format x "%.15g"
+   # (%e, not %g: gnuplot 5.4 cannot read back '5e-05', a %g without a decimal point)
+   set format x "%.15e"
    set table $bifurcation_c
    plot datafile using (cval($1, $2)):(1) smooth frequency
    unset table

@@ -43,7 +43,7 @@ cval(f, a) = byfreq ? a*scale2 : f
 
 # Distinct values of c: a datablock of "value count" rows (smooth frequency sorts and merges
 # equal values), read into a word list. Fixed wide ranges: no autoscaling warnings.
-set format x "%.15g"
+set format x "%.15e"   # %e: gnuplot 5.4 cannot read back a %g such as 5e-05
 set xrange [-1.0e30 : 1.0e30]
 set yrange [-1.0e30 : 1.0e30]
 set table $lyapunov_c

@@ -17,6 +17,9 @@
 #                     PREFIX.shape.dat    -> PREFIX.animation.gif (scripts/animation.gp: the beam
 #                                            against its stop over the first 3 periods of history;
 #                                            only with &output state_history = .true.)
+#                     PREFIX.orbit.dat + PREFIX.supports.dat -> PREFIX.orbit.png (scripts/orbit.gp:
+#                                            v against w at each support with its clearance circle;
+#                                            two-plane runs, &beam planes = 2)
 # ANALYSIS=modes:     PREFIX.shapes.dat (+ PREFIX.modes.dat for the legend's frequencies,
 #                     PREFIX.shape_curves.dat for the shapes between the nodes)
 #                                         -> PREFIX.shapes.png   (scripts/mode_shapes.gp)
@@ -30,6 +33,10 @@
 #                                            frequency-amplitude plane; a strip for a line sweep)
 #                                         -> PREFIX.lyapunov.png (scripts/lyapunov.gp: largest
 #                                            Lyapunov exponent with error bars, same x as above)
+#                                         -> PREFIX.work_rate_map.png (scripts/work_rate_map.gp:
+#                                            normal work rate of all supports, log colour, with the
+#                                            regime of each point; grids whose work rate is not all
+#                                            zero, e.g. tube maps over the clearance)
 #                     (PREFIX may be a shard's, PREFIX.shard_I_of_N, or a merged file's prefix.)
 # ANALYSIS=work_precision: PREFIX.wp_<series>.dat (all of them) -> PREFIX.work_precision.png
 #                                           (scripts/work_precision.gp: relative final-state error
@@ -154,6 +161,13 @@ case ${analysis} in
          render "${script}" "${prefix}.${kind}.png" \
             "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")"
       done
+      # the orbits at the supports, two-plane runs
+      if has_data "${prefix}.orbit.dat" && has_data "${prefix}.supports.dat"; then
+         title=$(dat_title "${prefix}.orbit.dat")
+         title=${title%: orbits at the supports}
+         render orbit.gp "${prefix}.orbit.png" \
+            "orbitfile=$(gp_quote "${prefix}.orbit.dat"); supportsfile=$(gp_quote "${prefix}.supports.dat"); plottitle=$(gp_quote "${title}")"
+      fi
       # the beam in motion, when the run kept its state history
       if has_data "${prefix}.shape.dat"; then
          title=$(dat_title "${prefix}.shape.dat")
@@ -215,6 +229,12 @@ case ${analysis} in
       render chaos_map.gp "${prefix}.chaos_map.png" \
          "datafile=$(gp_quote "${points}"); ${axes}plottitle=$(gp_quote "${title}")"
       render lyapunov.gp "${prefix}.lyapunov.png" "datafile=$(gp_quote "${points}"); ${common}"
+      # the work-rate map, when some point's supports did work (column 18: normal work rate)
+      if [[ ${n_freq} -gt 1 ]] && awk '!/^[[:space:]]*(#|$)/ && $18 > 0 { found = 1 } END { exit !found }' \
+         "${points}"; then
+         render work_rate_map.gp "${prefix}.work_rate_map.png" \
+            "datafile=$(gp_quote "${points}"); plottitle=$(gp_quote "${title}")"
+      fi
       ;;
    work_precision)
       # One table per series, PREFIX.wp_<series>.dat, title line '<deck title>: <series>'; the

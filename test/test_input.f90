@@ -518,8 +518,8 @@ contains
          "rotary_inertia = 'full'", rotary_inertia_words])
       call expect_error("analysis = 'static'", "&job analysis = 'static' /" // nl // beam, &
          [character(len=60) :: '&job', "analysis = 'static'", analysis_words])
-      call expect_error("root condition = 'pinned'", base // "&root condition = 'pinned' /", &
-         [character(len=60) :: '&root', "condition = 'pinned'", "'clamped', 'spring'"])
+      call expect_error("root condition = 'hinged'", base // "&root condition = 'hinged' /", &
+         [character(len=60) :: '&root', "condition = 'hinged'", "'clamped', 'spring', 'pinned'"])
       call expect_error("springs dof = 'x'", base &
          // "&springs node = 3, dof = 'x', stiffness = 1.0 /", &
          [character(len=60) :: '&springs', "dof(1) = 'x'", "'w', 'theta'"])

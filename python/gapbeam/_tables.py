@@ -35,6 +35,13 @@ _IMPACT_COLUMNS = (
     "impulse_per_period",
     "work_rate",
 )
+# Order of the per-stop wear outputs (datasets of /sweep/wear, two-plane supports and friction).
+_WEAR_COLUMNS = (
+    "normal_work_rate",
+    "sliding_distance",
+    "friction_work_rate",
+    "wear_volume_rate",
+)
 
 
 class Table(dict):
@@ -201,7 +208,10 @@ def sweep_table(res):
       of attractors; docs/labels.md);
     - the impact statistics of every stop, flattened: ``count_1``, ``peak_force_1``,
       ``rms_force_1``, ``contact_fraction_1``, ``impulse_per_period_1``, ``work_rate_1``, then
-      the same for stop 2, ... (``<dataset of /sweep/impacts>_<stop number>``).
+      the same for stop 2, ... (``<dataset of /sweep/impacts>_<stop number>``);
+    - the wear outputs of every stop when the file has ``/sweep/wear``, flattened the same way:
+      ``normal_work_rate_1``, ``sliding_distance_1``, ``friction_work_rate_1``,
+      ``wear_volume_rate_1``, ...
 
     The Poincaré points and the running exponents (several values per point) are not columns:
     see :func:`poincare` and ``res['/sweep/lyapunov_running']``. Units are in ``table.units``.
@@ -255,27 +265,33 @@ def sweep_table(res):
         q = sweep[name]
         out.add(name, np.asarray(q.values), q.units, q.long_name)
 
-    impacts = sweep.get("impacts")
-    if isinstance(impacts, Group):
-        names = [n for n in _IMPACT_COLUMNS if isinstance(impacts.get(n), Quantity)]
-        names += [
-            n
-            for n, q in impacts.items()
-            if isinstance(q, Quantity) and n not in _IMPACT_COLUMNS and q.ndim in (1, 2)
-        ]
-        per_stop = {}
-        for name in names:
-            q = impacts[name]
-            try:
-                per_stop[name] = (_as_stops_by_points(q.values, m, _dims(q)), q)
-            except ValueError:
-                continue  # not one value per stop and point: not a column
-        n_stops = max((a.shape[0] for a, _ in per_stop.values()), default=0)
-        for k in range(n_stops):
-            for name, (a, q) in per_stop.items():
-                if k < a.shape[0]:
-                    out.add("{}_{}".format(name, k + 1), a[k], q.units, q.long_name)
+    for group, order in (("impacts", _IMPACT_COLUMNS), ("wear", _WEAR_COLUMNS)):
+        _add_per_stop(out, sweep.get(group), order, m)
     return out
+
+
+def _add_per_stop(out, grp, order, m):
+    """Add the (stops, points) datasets of group ``grp`` as ``<name>_<stop>`` columns."""
+    if not isinstance(grp, Group):
+        return
+    names = [n for n in order if isinstance(grp.get(n), Quantity)]
+    names += [
+        n
+        for n, q in grp.items()
+        if isinstance(q, Quantity) and n not in order and q.ndim in (1, 2)
+    ]
+    per_stop = {}
+    for name in names:
+        q = grp[name]
+        try:
+            per_stop[name] = (_as_stops_by_points(q.values, m, _dims(q)), q)
+        except ValueError:
+            continue  # not one value per stop and point: not a column
+    n_stops = max((a.shape[0] for a, _ in per_stop.values()), default=0)
+    for k in range(n_stops):
+        for name, (a, q) in per_stop.items():
+            if k < a.shape[0]:
+                out.add("{}_{}".format(name, k + 1), a[k], q.units, q.long_name)
 
 
 class PoincareSet:

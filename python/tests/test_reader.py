@@ -11,8 +11,8 @@ Usage:
 Runs GAPBEAM_EXE on small decks (the decks of inputs/ with short command-line overrides: a few
 forcing periods, a few sweep points, a second stop) in a temporary directory: modes, calibrate,
 transient, sweep (independent, continuation, two shards and their merge), work_precision,
-stability and model_size. Each output file is read with `gapbeam.load` and independently with raw
-h5py, and compared: the same datasets, equal values (dtype and shape too), the `units` and every
+stability, model_size and the tube deck (two planes, ring supports: /wear, /orbit, /energy).
+Each output file is read with `gapbeam.load` and independently with raw h5py, and compared: the same datasets, equal values (dtype and shape too), the `units` and every
 other attribute, the deck text, path and attribute access. The sweep files also check
 `gapbeam.sweep_table` (equal-length columns, the values of the datasets they come from, per-stop
 columns) and `gapbeam.poincare` (shapes and values per point); the transient file `poincare`.
@@ -66,6 +66,11 @@ SWEEP_GRID = ("&sweep n_frequency = 0, frequency_hz = 9.5, 10.5, n_amplitude = 0
 # The lists have defaults of 7 and 6 entries; given values replace the first ones and 0 ends
 # a list, so the trailing zeros shorten them to 2 meshes and 2 x 2 modal models.
 MODEL_SIZE = "&model_size elements = 2, 4, 5*0, modes = 1, 2, 4*0 /"
+# The tube deck (two planes, two baffles with circular clearances and friction) made small: 6
+# elements (baffles at nodes 3 and 5, the force at node 4), a loose tolerance, 2 periods.
+TUBE = ("&beam n_elem = 6 / &stops node = 3, 5 / &point_forces node = 4, 4 /",
+        "&solver tolerance = 1.0e-3, transient_periods = 0, record_periods = 2 /",
+        "&output history_periods = 2 /")
 RECORD_PERIODS = 10
 
 # name: (deck, [overrides], analysis, stops, extra command-line arguments)
@@ -99,6 +104,7 @@ CASES = {
                        ["&study levels = 2, periods = 2, repeats = 1 /"], "work_precision", 1, []),
     "stability": ("inputs/stability_4el.nml", ["&study n_omega_dt = 11 /"], "stability", 1, []),
     "model_size": ("inputs/model_size_10p5hz.nml", [MODEL_SIZE, *SHORT], "model_size", 1, []),
+    "tube": ("inputs/tube_multispan.nml", list(TUBE), "tube", 2, []),
     "transient_state": ("inputs/moon_shaw_9p8hz.nml",
                         [*SHORT, "&output history_periods = 2, samples_per_period = 16, "
                          "state_history = .true., shape_points = 4 /"], "transient", 1, []),
@@ -330,10 +336,16 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
             for s in range(n_stops):
                 if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[:, s], equal_nan=True):
                     bad.append("{}_{}".format(stat, s + 1))
+        for stat in ("normal_work_rate", "sliding_distance", "friction_work_rate",
+                     "wear_volume_rate"):
+            raw = data["/sweep/wear/" + stat][0]             # h5py: (m, n_stops), point first
+            for s in range(n_stops):
+                if not np.array_equal(t["{}_{}".format(stat, s + 1)], raw[:, s], equal_nan=True):
+                    bad.append("{}_{}".format(stat, s + 1))
         return (not bad, "differ: {}".format(bad))
 
     c.run("{}: sweep_table columns equal the h5py datasets (per stop: columns of "
-          "/sweep/impacts/*)".format(name), values)
+          "/sweep/impacts/* and /sweep/wear/*)".format(name), values)
 
     def stops():
         cols = sorted(k for k in t if k.startswith("peak_force_"))
@@ -446,6 +458,35 @@ def check_transient(c, gapbeam, res, n_stops):
             res.history.stop_force.shape[1] == n_stops
             and res.history.stop_force.attrs.get("dimensions") == "sample stop",
             str(res.history.stop_force.shape))
+
+
+def check_tube(c, res, n_stops):
+    """The wear, orbit and energy datasets of a two-plane run with ring supports."""
+    data, _, _ = raw_datasets(res.filename)
+
+    def wear():
+        bad = []
+        for stat in ("normal_work_rate", "sliding_distance", "friction_work",
+                     "friction_work_rate", "wear_volume_rate", "wear_coefficient",
+                     "stick_fraction"):
+            q = res["/wear/" + stat]
+            if not (q.shape == (n_stops,) and np.array_equal(np.asarray(q.values),
+                                                             data["/wear/" + stat][0])):
+                bad.append(stat)
+        return (not bad, "differ or not one per stop: {}".format(bad))
+
+    c.run("tube: /wear/* has one value per support, equal to h5py", wear)
+
+    def orbit():
+        n_hist = data["/history/time"][0].shape[0]
+        bad = [k for k in ("w", "v", "normal_force", "tangential_force")
+               if data["/orbit/" + k][0].shape != (n_hist, n_stops)]
+        return (not bad and res["/orbit/gap"].shape == (n_stops,), "shapes: {}".format(bad))
+
+    c.run("tube: /orbit/* holds (samples, supports) and the gaps", orbit)
+    c.check("tube: the wear outputs carry units", res["/wear/wear_volume_rate"].units == "m3 s-1"
+            and res["/wear/normal_work_rate"].units == "W")
+    c.check("tube: /energy is there with its imbalance", "/energy/imbalance" in data)
 
 
 def check_starts(c, gapbeam, name, res):
@@ -803,10 +844,14 @@ def run_all(c, exe):
         for name, path in files.items():
             case = CASES.get(name, CASES["sweep_independent"])
             analysis, n_stops = case[2], case[3]
-            res = check_file(c, gapbeam, name, path, analysis)
+            res = check_file(c, gapbeam, name, path,
+                             "transient" if analysis == "tube" else analysis)
             if res is None:
                 continue
-            check_conventions(c, name, path, analysis)
+            check_conventions(c, name, path, "transient" if analysis == "tube" else analysis)
+            if analysis == "tube":
+                check_tube(c, res, n_stops)
+                continue
             if name == "transient_state":
                 check_state(c, gapbeam, path)
             if analysis == "sweep":

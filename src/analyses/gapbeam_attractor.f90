@@ -300,6 +300,9 @@ contains
       pr%n_impacts = res%n_impacts;  pr%peak_force = res%peak_force
       pr%rms_force = res%rms_force;  pr%contact_fraction = res%contact_fraction
       pr%impulse_per_period = res%impulse_per_period;  pr%work_rate = res%work_rate
+      pr%normal_work_rate = res%normal_work_rate;  pr%sliding_distance = res%sliding_distance
+      pr%friction_work_rate = res%friction_work_rate
+      pr%wear_volume_rate = res%wear_volume_rate
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
    end subroutine copy_statistics
 

@@ -7,7 +7,8 @@ submodule (gapbeam_continuation) gapbeam_continuation_branches
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: model_t
+   use gapbeam_model, only: model_t, has_tube_physics
+   use gapbeam_integrator, only: tube_physics_text
    use gapbeam_deck_variable, only: parse_deck_variable, check_deck_variable, get_deck_value, &
       deck_variable_label
    use gapbeam_model_builder, only: build_model
@@ -100,6 +101,23 @@ contains
       pb%loc_tol = pb%cfg%locate_tolerance
       if (.not. (pb%loc_tol > 0.0_dp)) pb%loc_tol = 1.0e-7_dp * pb%scale(1)
       call build_model(deck, pb%base, u0, v0, err);  if (allocated(err)) return
+      ! the periodic orbit is a fixed point of the map of (u, v): a stick anchor, a second
+      ! plane or point forces are beyond the exact transition and saltation matrices
+      if (any(pb%var(1:pb%nvar)%name == 'friction') .or. &
+          any(pb%var(1:pb%nvar)%group == 'point_forces')) then
+         call fatal_error(err, 'continuation cannot vary friction or point forces (a ' &
+            // 'stick state and loads out of the base motion are beyond its exact map): map ' &
+            // 'them with a &sweep variable instead')
+         return
+      end if
+      if (has_tube_physics(pb%base)) then
+         call fatal_error(err, 'continuation cannot follow this model: ' &
+            // tube_physics_text(pb%base) // '; continuation handles planar models with ' &
+            // 'frictionless flat stops and base motion along w only (its periodic orbits are ' &
+            // 'fixed points of the map of (u, v), which friction''s stick state and the ' &
+            // 'second plane are not part of): map such models with a &sweep instead')
+         return
+      end if
       call setup_linear_parts(pb%base, pb%lp0, err);  if (allocated(err)) return
       pb%n = 2 * pb%lp0%nr
    end subroutine start_problem

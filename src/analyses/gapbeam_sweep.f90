@@ -3,7 +3,8 @@
 !> attractors, labelled, certified, in parallel with OpenMP.
 !>
 !> Points are numbered with x fastest: p = i_x + (i_y - 1) n_x. A point's model is the deck's
-!> with the axis variables set to the point's values (gapbeam_deck_parameter: the model is
+!> with the axis variables set to the point's values (an axis naming several variables sets
+!> each of them to its value) (gapbeam_deck_parameter: the model is
 !> rebuilt, so every rule of the deck applies again; a forcing variable only changes the
 !> forcing). Each point has n_s starts (gapbeam_starts: 'deck', 'rest', 'random', or 'up' /
 !> 'down' from the neighbour's final state along the lines of `axis`); the first start's
@@ -24,8 +25,8 @@ module gapbeam_sweep
    use gapbeam_model, only: model_t
    use gapbeam_settings, only: output_settings_t
    use gapbeam_results, only: transient_result_t, point_result_t, label_failed
-   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
-      deck_variable_label
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variables, check_deck_variable, &
+      deck_variables_label
    use gapbeam_deck_parameter, only: model_with_values
    use gapbeam_attractor, only: diagnose
    use gapbeam_certify, only: certify_point
@@ -39,7 +40,11 @@ module gapbeam_sweep
 
    !> What a sweep runs: its axes, its starts, its groups.
    type :: sweep_plan_t
-      type(deck_variable_t) :: var(2)                    !! the x and y variables
+      type(deck_variable_t) :: var(2)                    !! the x and y variables (the first
+                                                         !! of an axis of several)
+      type(deck_variable_t), allocatable :: set(:)       !! every variable a point sets
+      integer, allocatable :: set_axis(:)                !! its axis (1: x, 2: y)
+      character(len=160) :: label(2) = ''                !! the axes' names, as in the file
       real(dp), allocatable :: x(:), y(:)                !! axis values
       integer :: nx = 0, ny = 0, np = 0                  !! axis sizes, points
       character(len=8), allocatable :: kinds(:)          !! start kinds, in order
@@ -58,14 +63,22 @@ contains
       type(error_t), allocatable, intent(out) :: err    !! unknown or absent variable
       character(len=8) :: default
       integer :: j
-      call parse_deck_variable(deck%sweep%x_variable, plan%var(1), err)
-      if (.not. allocated(err)) call check_deck_variable(deck, plan%var(1), err)
-      if (.not. allocated(err)) call parse_deck_variable(deck%sweep%y_variable, plan%var(2), err)
-      if (.not. allocated(err)) call check_deck_variable(deck, plan%var(2), err)
+      type(deck_variable_t), allocatable :: xs(:), ys(:)
+      call parse_deck_variables(deck%sweep%x_variable, xs, err)
+      if (.not. allocated(err)) call parse_deck_variables(deck%sweep%y_variable, ys, err)
+      if (.not. allocated(err)) then
+         plan%set = [xs, ys]
+         plan%set_axis = [spread(1, 1, size(xs)), spread(2, 1, size(ys))]
+         do j = 1, size(plan%set)
+            if (.not. allocated(err)) call check_deck_variable(deck, plan%set(j), err)
+         end do
+      end if
       if (allocated(err)) then
          err%message = 'group &sweep: ' // err%message
          return
       end if
+      plan%var(1) = xs(1);  plan%var(2) = ys(1)
+      plan%label(1) = deck_variables_label(xs);  plan%label(2) = deck_variables_label(ys)
       plan%x = deck%sweep%x;  plan%y = deck%sweep%y
       plan%nx = size(plan%x);  plan%ny = size(plan%y);  plan%np = plan%nx * plan%ny
       default = 'deck'
@@ -183,7 +196,8 @@ contains
       p = mod(s - 1, plan%np) + 1
       k = (s - 1) / plan%np + 1
       call point_values(plan, p, sr%x, sr%y)
-      call model_with_values(deck, plan%var, [sr%x, sr%y], model, err, base)
+      call model_with_values(deck, plan%set, merge(sr%x, sr%y, plan%set_axis == 1), model, err, &
+                             base)
       if (.not. allocated(err)) then
          sr%f1_open_hz = model%f1_open_hz
          select case (plan%kinds(k))
@@ -209,8 +223,8 @@ contains
          call certify_point(model, deck%solver, o, deck%diagnostics, u, v, p, sr)
       if (allocated(err)) then
          sr%status = 1
-         sr%message = 'point ' // str(p) // ' (' // deck_variable_label(plan%var(1)) // ' = ' &
-            // str(sr%x) // ', ' // deck_variable_label(plan%var(2)) // ' = ' // str(sr%y) &
+         sr%message = 'point ' // str(p) // ' (' // trim(plan%label(1)) // ' = ' &
+            // str(sr%x) // ', ' // trim(plan%label(2)) // ' = ' // str(sr%y) &
             // '), start ' // str(k) // " ('" // trim(plan%kinds(k)) // "'): " // err%message
          call fill_failed(sr, base%n_stops, deck%solver%record_periods, u_prev, v_prev)
       end if
@@ -231,6 +245,8 @@ contains
       pr%peak_force = spread(nan, 1, ns);  pr%rms_force = pr%peak_force
       pr%contact_fraction = pr%peak_force;  pr%impulse_per_period = pr%peak_force
       pr%work_rate = pr%peak_force
+      pr%normal_work_rate = pr%peak_force;  pr%sliding_distance = pr%peak_force
+      pr%friction_work_rate = pr%peak_force;  pr%wear_volume_rate = pr%peak_force
       pr%p_strain = spread(nan, 1, nrec);  pr%p_strain_rate = pr%p_strain
       if (allocated(pr%lyapunov_running)) deallocate(pr%lyapunov_running)
       allocate(pr%lyapunov_running(0))

@@ -7,12 +7,13 @@
 module gapbeam_transient
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
-   use gapbeam_error, only: error_t
+   use gapbeam_error, only: error_t, fatal_error
    use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t, output_settings_t
    use gapbeam_results, only: transient_result_t
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
+   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method, &
+      tube_refusal
    use gapbeam_recorder, only: recorder_t
    use gapbeam_observer, only: piece_t
    use gapbeam_progress, only: monitor_t
@@ -59,11 +60,16 @@ contains
       class(monitor_t), intent(inout), optional, target :: monitor !! told the progress
       class(integrator_t), allocatable :: integ
       type(solver_settings_t) :: eff
-      character(len=:), allocatable :: reason
+      character(len=:), allocatable :: reason, why
       real(dp) :: cpu0, wall0
       cpu0 = thread_cpu_seconds();  wall0 = wall_seconds()
       if (present(integrator)) then
          call resolve_method(model, cfg, eff, reason)
+         why = tube_refusal(model, eff%method, eff%step_control, eff%stop_solution)
+         if (len(why) > 0) then
+            call fatal_error(err, 'gapbeam_integrator: ' // why)
+            return
+         end if
          call integrator%init(model, eff, err)
          if (allocated(err)) return
          integrator%reason = reason

@@ -9,10 +9,16 @@
 !>
 !> Variables (real scalars; list groups take an entry index, default 1):
 !>   &beam length youngs_modulus density width thickness area second_moment fibre_distance
+!>         added_mass
 !>   &root k_theta      &springs(i) stiffness      &masses(i) mass inertia
-!>   &stops(i) gap stiffness damping exponent rule_factor rule_f1_ratio rule_f1_hz
+!>   &stops(i) gap stiffness damping exponent rule_factor rule_f1_ratio rule_f1_hz friction
+!>         wear_coefficient
+!>   &point_forces(i) amplitude
 !>   &damping mass_coefficient stiffness_coefficient frequency1_hz ratio1 frequency2_hz ratio2
 !>   &forcing frequency_hz amplitude_pp
+!> A list of names separated by commas, '&stops gap(1), &stops gap(2)', names several variables
+!> set together to one value (a sweep axis that moves both baffles' clearance): they must have
+!> one unit, and a forcing variable stands alone (parse_deck_variables).
 !> Setting a damping ratio or frequency with model = 'ratios' recomputes the Rayleigh
 !> coefficients (as the deck reader does); setting a coefficient needs model = 'rayleigh'.
 module gapbeam_deck_variable
@@ -23,13 +29,15 @@ module gapbeam_deck_variable
    implicit none
    private
    public :: deck_variable_t, parse_deck_variable, check_deck_variable, get_deck_value, &
-      set_deck_value, deck_variable_words, deck_variable_label
+      set_deck_value, deck_variable_words, deck_variable_label, parse_deck_variables, &
+      deck_variables_label
 
    !> The variables, 'group:name' (documentation and messages).
    character(len=*), parameter :: deck_variable_words = '&beam length, youngs_modulus, ' &
-      // 'density, width, thickness, area, second_moment, fibre_distance; &root k_theta; ' &
-      // '&springs stiffness; &masses mass, inertia; &stops gap, stiffness, damping, exponent, ' &
-      // 'rule_factor, rule_f1_ratio, rule_f1_hz; &damping mass_coefficient, ' &
+      // 'density, width, thickness, area, second_moment, fibre_distance, added_mass; &root ' &
+      // 'k_theta; &springs stiffness; &masses mass, inertia; &stops gap, stiffness, damping, ' &
+      // 'exponent, rule_factor, rule_f1_ratio, rule_f1_hz, friction, wear_coefficient; ' &
+      // '&point_forces amplitude; &damping mass_coefficient, ' &
       // 'stiffness_coefficient, frequency1_hz, ratio1, frequency2_hz, ratio2; &forcing ' &
       // 'frequency_hz, amplitude_pp'
 
@@ -90,7 +98,7 @@ contains
          return
       end if
       select case (g)
-      case ('springs', 'masses', 'stops')
+      case ('springs', 'masses', 'stops', 'point_forces')
          var%index = max(idx, 1)
       case default
          if (idx > 0) then
@@ -100,6 +108,65 @@ contains
          end if
       end select
    end subroutine parse_deck_variable
+
+   !> Parse a list of names separated by commas (one name: parse_deck_variable). The names
+   !> must differ, share one unit, and a forcing variable must be the only one.
+   subroutine parse_deck_variables(text, vars, err)
+      character(len=*), intent(in) :: text                    !! the names as written
+      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! the variables, in order
+      type(error_t), allocatable, intent(out) :: err          !! unknown variable, bad list
+      type(deck_variable_t) :: var
+      integer :: a, b, j
+      allocate(vars(0))
+      a = 1
+      do
+         b = index(text(a:), ',')
+         if (b == 0) then
+            b = len(text) + 1
+         else
+            b = a + b - 1
+         end if
+         if (len_trim(text(a:b - 1)) == 0) then
+            call fatal_error(err, "variables '" // trim(text) // "': an empty name in the " &
+               // "list (names are separated by commas, e.g. '&stops gap(1), &stops gap(2)')")
+            return
+         end if
+         call parse_deck_variable(text(a:b - 1), var, err)
+         if (allocated(err)) return
+         do j = 1, size(vars)
+            if (deck_variable_label(vars(j)) == deck_variable_label(var)) then
+               call fatal_error(err, "variables '" // trim(text) // "': '" &
+                  // deck_variable_label(var) // "' is named twice")
+               return
+            end if
+            if (vars(j)%units /= var%units) then
+               call fatal_error(err, "variables '" // trim(text) // "': '" &
+                  // deck_variable_label(var) // "' [" // trim(var%units) // '] and ' // "'" &
+                  // deck_variable_label(vars(j)) // "' [" // trim(vars(j)%units) // '] ' &
+                  // 'differ in unit: variables set together need one unit')
+               return
+            end if
+         end do
+         vars = [vars, var]
+         if (b > len(text)) exit
+         a = b + 1
+      end do
+      if (size(vars) > 1 .and. any(vars%group == 'forcing')) call fatal_error(err, &
+         "variables '" // trim(text) // "': a &forcing variable cannot be set together with " &
+         // 'others (it must be the only name)')
+   end subroutine parse_deck_variables
+
+   !> The labels of a list of variables, separated by ', '.
+   pure function deck_variables_label(vars) result(s)
+      type(deck_variable_t), intent(in) :: vars(:)   !! variables
+      character(len=:), allocatable :: s
+      integer :: j
+      s = ''
+      do j = 1, size(vars)
+         if (j > 1) s = s // ', '
+         s = s // deck_variable_label(vars(j))
+      end do
+   end function deck_variables_label
 
    !> Unit and range of a known variable.
    subroutine describe(var, err)
@@ -116,6 +183,7 @@ contains
          case ('density');  var%units = 'kg/m^3'
          case ('area');  var%units = 'm^2'
          case ('second_moment');  var%units = 'm^4'
+         case ('added_mass');  var%units = 'kg/m';  var%strict = .false.
          case default;  ok = .false.
          end select
       case ('root')
@@ -133,8 +201,13 @@ contains
          case ('exponent');  var%units = '-';  var%lower = 1.0_dp;  var%strict = .false.
          case ('rule_factor', 'rule_f1_ratio');  var%units = '-'
          case ('rule_f1_hz');  var%units = 'Hz'
+         case ('friction');  var%units = '-';  var%strict = .false.
+         case ('wear_coefficient');  var%units = '1/Pa';  var%strict = .false.
          case default;  ok = .false.
          end select
+      case ('point_forces')
+         ok = var%name == 'amplitude';  var%units = 'N';  var%strict = .false.
+         var%lower = -huge(1.0_dp)
       case ('damping')
          var%strict = .false.
          select case (trim(var%name))
@@ -178,6 +251,9 @@ contains
       case ('stops')
          n = 0
          if (allocated(deck%stops)) n = size(deck%stops)
+      case ('point_forces')
+         n = 0
+         if (allocated(deck%forcing%forces)) n = size(deck%forcing%forces)
       case ('root')
          if (deck%structure%root%condition /= 'spring') call fatal_error(err, lab &
             // ": the root is clamped (needs &root condition = 'spring')")
@@ -240,6 +316,10 @@ contains
          case ('stops:rule_factor');  x = deck%stops(i)%rule_factor
          case ('stops:rule_f1_ratio');  x = deck%stops(i)%rule_f1_ratio
          case ('stops:rule_f1_hz');  x = deck%stops(i)%rule_f1_hz
+         case ('stops:friction');  x = deck%stops(i)%friction
+         case ('stops:wear_coefficient');  x = deck%stops(i)%wear_coefficient
+         case ('beam:added_mass');  x = b%added_mass
+         case ('point_forces:amplitude');  x = deck%forcing%forces(i)%amplitude
          case ('damping:mass_coefficient');  x = deck%damping%mass_coefficient
          case ('damping:stiffness_coefficient');  x = deck%damping%stiffness_coefficient
          case ('damping:frequency1_hz');  x = deck%damping%frequency1_hz
@@ -294,6 +374,10 @@ contains
          case ('stops:rule_factor');  deck%stops(i)%rule_factor = x
          case ('stops:rule_f1_ratio');  deck%stops(i)%rule_f1_ratio = x
          case ('stops:rule_f1_hz');  deck%stops(i)%rule_f1_hz = x
+         case ('stops:friction');  deck%stops(i)%friction = x
+         case ('stops:wear_coefficient');  deck%stops(i)%wear_coefficient = x
+         case ('beam:added_mass');  b%added_mass = x
+         case ('point_forces:amplitude');  deck%forcing%forces(i)%amplitude = x
          case ('damping:mass_coefficient');  deck%damping%mass_coefficient = x
          case ('damping:stiffness_coefficient');  deck%damping%stiffness_coefficient = x
          case ('damping:frequency1_hz', 'damping:ratio1', 'damping:frequency2_hz', &

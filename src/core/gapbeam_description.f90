@@ -8,24 +8,43 @@
 !>
 !> Stops: a one-sided contact acts at one dof with a direction s = +1 (met when the dof moves
 !> in +w, u >= gap) or s = -1 (u <= -gap); 'both' sides makes two one-sided contacts.
+!>
+!> Two planes of motion (`planes = 2`, see docs/tubes.md): every node also carries v (the
+!> transverse displacement in the second plane) and theta_v = dv/dx; the same element acts in
+!> each plane and the planes are coupled only by the supports. A support with a circular
+!> clearance ('circular') is met when the radial distance of (w, v) at its node from the hole
+!> centre (offset_w, offset_v) reaches the gap; its normal is radial. Any support may carry
+!> Coulomb friction (coefficient mu) with an elastic stick (tangential_stiffness), see
+!> src/model/gapbeam_ring_contact.f90.
 module gapbeam_description
    use gapbeam_kinds, only: dp, pi
    implicit none
    private
    public :: beam_t, root_t, spring_t, point_mass_t, structure_t, stop_t, damping_t, forcing_t
+   public :: point_force_t
    public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
+   public :: beam_mass_per_length, stop_is_ring
    public :: rayleigh_from_ratios, modal_damping_ratio
-   public :: dof_w, dof_theta, dof_code, dof_name, law_code, law_bilinear, law_hertz
-   public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words
+   public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_code, dof_name, law_code, law_bilinear, &
+      law_hertz
+   public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
+      stop_shape_words, end_condition_words, tip_condition_words
 
    integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
-   integer, parameter :: dof_theta = 2   !! local dof code of the rotation
+   integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
+   integer, parameter :: dof_v = 3       !! local dof code of v (second plane, planes = 2)
+   integer, parameter :: dof_theta_v = 4 !! local dof code of theta_v = dv/dx (planes = 2)
    integer, parameter :: law_bilinear = 1   !! code of the bilinear stop law
    integer, parameter :: law_hertz = 2      !! code of the Hertz stop law
 
    character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
    character(len=*), parameter :: stop_law_words = "'bilinear', 'hertz'"
    character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios'"
+   character(len=*), parameter :: stop_shape_words = "'flat', 'circular'"
+   !> support conditions of the root (node 1)
+   character(len=*), parameter :: end_condition_words = "'clamped', 'spring', 'pinned'"
+   !> support conditions of the tip (the last node)
+   character(len=*), parameter :: tip_condition_words = "'free', 'clamped', 'spring', 'pinned'"
    !> Rotary-inertia rules of the lumped mass matrix (see gapbeam_beam_element).
    character(len=*), parameter :: rotary_inertia_words = "'half_element', 'hrz', 'none'"
 
@@ -42,11 +61,18 @@ module gapbeam_description
       real(dp) :: fibre_distance = 0.0_dp  !! general section: strain fibre distance c [m]
       character(len=16) :: mass_matrix = 'lumped'           !! 'lumped' or 'consistent'
       character(len=16) :: rotary_inertia = 'half_element'  !! lumped rotary-inertia rule
+      integer  :: planes = 1               !! planes of motion: 1 (w, theta) or 2 (+ v, theta_v)
+      !> mass per unit length added to rho A in the mass matrix only (fluid added mass,
+      !> contents) [kg/m]
+      real(dp) :: added_mass = 0.0_dp
    end type beam_t
 
-   !> Root (node 1) support: the translation is always fixed.
+   !> End support: the root (node 1; its translation is always fixed) or the tip (last node).
+   !> 'clamped': translation and rotation fixed; 'pinned': translation fixed; 'spring':
+   !> translation fixed and a rotational spring k_theta; 'free' (tip only): nothing fixed.
+   !> With two planes the same condition holds in both.
    type :: root_t
-      character(len=16) :: condition = 'clamped'  !! 'clamped' or 'spring'
+      character(len=16) :: condition = 'clamped'  !! see end_condition_words
       real(dp) :: k_theta = 0.0_dp                !! rotational spring [N m/rad] when 'spring'
    end type root_t
 
@@ -68,6 +94,7 @@ module gapbeam_description
    type :: structure_t
       type(beam_t) :: beam                            !! the beam
       type(root_t) :: root                            !! root support
+      type(root_t) :: tip = root_t(condition='free')  !! tip support ('free' by default)
       type(spring_t), allocatable :: springs(:)       !! boundary springs
       type(point_mass_t), allocatable :: masses(:)    !! point masses
    end type structure_t
@@ -88,7 +115,21 @@ module gapbeam_description
       real(dp) :: rule_factor = 0.0_dp          !! > 0: k = factor * calibrated spring [-]
       real(dp) :: rule_f1_ratio = 0.0_dp        !! rule target: f1 / f1(open structure) [-]
       real(dp) :: rule_f1_hz = 0.0_dp           !! rule target: f1 [Hz] (if ratio not given)
+      character(len=16) :: shape = 'flat'       !! 'flat' (one dof) or 'circular' (radial gap)
+      real(dp) :: offset_w = 0.0_dp             !! circular: hole centre offset in w [m]
+      real(dp) :: offset_v = 0.0_dp             !! circular: hole centre offset in v [m]
+      real(dp) :: friction = 0.0_dp             !! Coulomb coefficient mu [-]
+      real(dp) :: tangential_stiffness = 0.0_dp !! stick stiffness k_t [N/m] (0: = stiffness)
+      real(dp) :: wear_coefficient = 0.0_dp     !! Archard: wear volume / normal work [1/Pa]
    end type stop_t
+
+   !> Harmonic point force F sin(Omega t + phase) at a node dof, at the forcing frequency.
+   type :: point_force_t
+      integer  :: node = 0                      !! node index [-]
+      integer  :: dof = dof_w                   !! dof code
+      real(dp) :: amplitude = 0.0_dp            !! F [N or N m]
+      real(dp) :: phase_deg = 0.0_dp            !! phase [deg]
+   end type point_force_t
 
    !> Rayleigh damping C = beta M + gamma K of the linear structure (never the stop springs);
    !> after the deck reader only the coefficients matter.
@@ -102,10 +143,16 @@ module gapbeam_description
       real(dp) :: ratio2 = 0.0_dp                  !! 'ratios': damping ratio at frequency2 [-]
    end type damping_t
 
-   !> Harmonic base excitation u_b(t) = (amplitude_pp / 2) sin(2 pi f t).
+   !> Harmonic base excitation u_b(t) = (amplitude_pp / 2) sin(2 pi f t) along w; with two
+   !> planes the motion is (A/2) (cos psi sin(Omega t) e_w + sin psi sin(Omega t + phi) e_v),
+   !> psi = direction_deg, phi = phase_v_deg (psi = 45, phi = 90: a circular whirling input),
+   !> plus any harmonic point forces at the same frequency.
    type :: forcing_t
       real(dp) :: frequency_hz = 10.0_dp    !! forcing frequency f [Hz]
       real(dp) :: amplitude_pp = 0.0_dp     !! base displacement, peak to peak [m]
+      real(dp) :: direction_deg = 0.0_dp    !! direction psi of the base motion from w to v [deg]
+      real(dp) :: phase_v_deg = 0.0_dp      !! phase phi of its v component [deg]
+      type(point_force_t), allocatable :: forces(:)   !! harmonic point forces
    end type forcing_t
 
 contains
@@ -131,6 +178,20 @@ contains
          rho_a = b%density * b%area
       end if
    end function beam_rho_a
+
+   !> Mass per unit length of the mass matrix: rho A plus the added mass [kg/m].
+   pure function beam_mass_per_length(b) result(m)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: m
+      m = beam_rho_a(b) + b%added_mass
+   end function beam_mass_per_length
+
+   !> Does a stop act through the two-dimensional support contact (a circular clearance, or
+   !> any stop with friction) rather than as one-sided contacts along one dof?
+   pure logical function stop_is_ring(s)
+      type(stop_t), intent(in) :: s   !! stop
+      stop_is_ring = s%shape == 'circular' .or. s%friction > 0.0_dp
+   end function stop_is_ring
 
    !> Distance of the strain fibre from the neutral axis [m] (h/2 for a rectangle).
    pure function beam_fibre_distance(b) result(c)
@@ -162,14 +223,18 @@ contains
       forcing_omega = 2.0_dp * pi * f%frequency_hz
    end function forcing_omega
 
-   !> Dof code of a word ('w' or 'theta'); 0 when unknown.
+   !> Dof code of a word ('w', 'theta', 'v', 'theta_v'); 0 when unknown.
    pure integer function dof_code(word)
-      character(len=*), intent(in) :: word   !! 'w' or 'theta'
+      character(len=*), intent(in) :: word   !! 'w', 'theta', 'v' or 'theta_v'
       select case (trim(word))
       case ('w')
          dof_code = dof_w
       case ('theta')
          dof_code = dof_theta
+      case ('v')
+         dof_code = dof_v
+      case ('theta_v')
+         dof_code = dof_theta_v
       case default
          dof_code = 0
       end select
@@ -177,13 +242,18 @@ contains
 
    !> Word of a dof code.
    pure function dof_name(code) result(word)
-      integer, intent(in) :: code   !! dof_w or dof_theta
+      integer, intent(in) :: code   !! dof code
       character(len=:), allocatable :: word
-      if (code == dof_theta) then
+      select case (code)
+      case (dof_theta)
          word = 'theta'
-      else
+      case (dof_v)
+         word = 'v'
+      case (dof_theta_v)
+         word = 'theta_v'
+      case default
          word = 'w'
-      end if
+      end select
    end function dof_name
 
    !> Law code of a word; 0 if unknown.

@@ -5,11 +5,15 @@
 !> Equations in coordinates relative to the base:
 !>    M a + C v + K u + sum_c (-s_c f_c) e_c = s(t) q,    q = M r,  s(t) = -u_b''(t)
 !> with C = beta M + gamma K and f_c >= 0 the magnitude of contact c (see gapbeam_contact_law).
+!> Two-plane models (planes = 2) and point forces add `extra` loads (add_extra_load), and the
+!> supports with a circular clearance or friction act as two-dimensional contacts (rings, see
+!> gapbeam_ring_contact): sum_r P_r on the (w, v) dofs of their node.
 module gapbeam_model
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd
+   public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd, add_extra_load, &
+      has_tube_physics
 
    integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices
 
@@ -18,15 +22,21 @@ module gapbeam_model
       integer :: n_dof = 0                         !! number of free dofs
       integer :: n_node = 0                        !! number of nodes
       integer :: kd = band_kd                      !! semi-bandwidth
-      integer, allocatable :: dof_of(:, :)         !! (2, n_node) index of (w, theta), 0: fixed
+      integer :: planes = 1                        !! planes of motion (1 or 2)
+      !> (2, n_node) index of (w, theta), or (4, n_node) of (w, theta, v, theta_v); 0: fixed.
+      !> With two planes all the (w, theta) dofs come first, then all the (v, theta_v) ones, so
+      !> that the band width stays kd = 3 (the planes are coupled only by the supports).
+      integer, allocatable :: dof_of(:, :)
       real(dp), allocatable :: k(:, :)             !! dense stiffness [N/m ...]
       real(dp), allocatable :: m(:, :)             !! dense mass [kg ...]
       real(dp), allocatable :: k_band(:, :)        !! upper band storage of k
       real(dp), allocatable :: m_band(:, :)        !! upper band storage of m
       logical :: m_diagonal = .false.              !! true for a lumped mass matrix
       real(dp), allocatable :: r(:)                !! rigid base-translation influence vector [-]
+      real(dp), allocatable :: r_v(:)              !! the same in v (zero with one plane) [-]
       real(dp), allocatable :: strain_row(:)       !! root strain = dot(strain_row, u) [-/m...]
       integer :: tip_dof = 0                       !! global index of the tip w
+      integer :: tip_dof_v = 0                     !! global index of the tip v (0: none)
       real(dp) :: fibre_distance = 0.0_dp          !! strain fibre distance c [m]
       real(dp) :: element_length = 0.0_dp          !! element length [m]
    end type system_t
@@ -56,6 +66,28 @@ module gapbeam_model
       integer :: n_slots = 0                     !! distinct contact dofs
       integer, allocatable :: slot_dof(:)        !! global dof of each slot
       real(dp), allocatable :: stop_stiffness(:) !! resolved stiffness of each deck stop
+      ! loads beyond the w-plane base motion (add_extra_load)
+      logical :: extra_load = .false.            !! q_v or point forces present
+      real(dp), allocatable :: q_v(:)            !! v-plane base load shape sin(psi) M r_v [kg]
+      real(dp) :: phase_v = 0.0_dp               !! phase of the v base motion [rad]
+      real(dp), allocatable :: p_sin(:), p_cos(:) !! point forces: sin, cos parts [N, N m]
+      ! two-dimensional support contacts (circular clearance or friction): rings
+      integer :: n_rings = 0                     !! number of ring contacts
+      integer, allocatable :: r_dof(:, :)        !! (2, n_rings) global dofs of w and v
+      integer, allocatable :: r_slot(:, :)       !! (2, n_rings) their slots
+      logical, allocatable :: r_circular(:)      !! circular clearance (else flat)
+      real(dp), allocatable :: r_normal(:, :)    !! (2, n_rings) flat: normal in (w, v)
+      real(dp), allocatable :: r_centre(:, :)    !! (2, n_rings) circular: hole centre [m]
+      real(dp), allocatable :: r_gap(:)          !! radial gap / gap [m]
+      integer, allocatable :: r_law(:)           !! law code
+      real(dp), allocatable :: r_k(:), r_c(:), r_p(:)   !! normal law: stiffness, damper, exponent
+      real(dp), allocatable :: r_mu(:)           !! Coulomb coefficient [-]
+      real(dp), allocatable :: r_kt(:)           !! stick stiffness [N/m]
+      integer, allocatable :: r_stop(:)          !! deck stop of each ring
+      ! per deck stop, for the wear outputs and orbits
+      real(dp), allocatable :: stop_wear(:)      !! Archard coefficient [1/Pa]
+      integer, allocatable :: stop_dofs(:, :)    !! (2, n_stops) w and v dof of the stop's node
+      integer, allocatable :: c_tdof(:)          !! tangent dof of each contact (0: none)
       real(dp) :: omega_max = 0.0_dp             !! highest natural frequency [rad/s]
       real(dp) :: f1_open_hz = 0.0_dp            !! first frequency, stops open [Hz]
    end type model_t
@@ -69,12 +101,33 @@ contains
       load_factor = model%half_amplitude * model%omega**2 * sin(model%omega * t)
    end function load_factor
 
+   !> Add the loads beyond the w-plane base motion at time t to p: the v-plane base motion
+   !> (A/2) Omega^2 sin(Omega t + phi) q_v and the point forces sin(Omega t) p_sin +
+   !> cos(Omega t) p_cos. Nothing for a planar model without point forces.
+   pure subroutine add_extra_load(model, t, p)
+      type(model_t), intent(in) :: model   !! model
+      real(dp), intent(in) :: t            !! time [s]
+      real(dp), intent(inout) :: p(:)      !! load vector [N, N m]
+      if (.not. model%extra_load) return
+      if (allocated(model%q_v)) p = p + model%half_amplitude * model%omega**2 &
+         * sin(model%omega * t + model%phase_v) * model%q_v
+      if (allocated(model%p_sin)) p = p + sin(model%omega * t) * model%p_sin &
+         + cos(model%omega * t) * model%p_cos
+   end subroutine add_extra_load
+
+   !> Does the model need what only some integrators handle: two planes, extra loads, ring
+   !> contacts (circular clearances, friction)?
+   pure logical function has_tube_physics(model)
+      type(model_t), intent(in) :: model   !! model
+      has_tube_physics = model%sys%planes > 1 .or. model%extra_load .or. model%n_rings > 0
+   end function has_tube_physics
+
    !> Global index of a node dof (0 when fixed); a node outside the mesh is a programming error.
    pure integer function global_dof(sys, node, dof)
       type(system_t), intent(in) :: sys   !! assembled system
       integer, intent(in) :: node         !! node index 1..n_node
-      integer, intent(in) :: dof          !! dof_w or dof_theta
-      if (node < 1 .or. node > sys%n_node .or. dof < 1 .or. dof > 2) &
+      integer, intent(in) :: dof          !! dof code (dof_w, dof_theta, dof_v, dof_theta_v)
+      if (node < 1 .or. node > sys%n_node .or. dof < 1 .or. dof > size(sys%dof_of, 1)) &
          error stop 'gapbeam_model:global_dof: node or dof outside the mesh'
       global_dof = sys%dof_of(dof, node)
    end function global_dof

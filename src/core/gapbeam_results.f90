@@ -65,6 +65,27 @@ module gapbeam_results
       real(dp), allocatable :: impulse_per_period(:)!! per stop [N s]
       real(dp), allocatable :: work_rate(:)         !! per stop: (1/T) int f |d'| dt [W]
       real(dp), allocatable :: first_contact_time(:) !! per stop: first onset, -1 if none [s]
+      ! wear, per stop, over the record (/wear)
+      !> normal work rate W_N = (1/T) int f_n |v_t| dt, v_t the tangential velocity [W]
+      real(dp), allocatable :: normal_work_rate(:)
+      !> sliding distance over the record: the friction slider's travel, or int |v_t| dt in
+      !> contact without friction [m]
+      real(dp), allocatable :: sliding_distance(:)
+      real(dp), allocatable :: friction_work(:)     !! friction dissipation over the record [J]
+      real(dp), allocatable :: friction_work_rate(:)  !! its mean rate [W]
+      real(dp), allocatable :: wear_volume_rate(:)  !! Archard: wear_coefficient W_N [m^3/s]
+      real(dp), allocatable :: stick_fraction(:)    !! time stuck / time in contact [-]
+      ! orbits at the stops' nodes at the history samples (two-plane models)
+      real(dp), allocatable :: orbit_w(:, :)        !! (samples, stops) w of the node [m]
+      real(dp), allocatable :: orbit_v(:, :)        !! (samples, stops) v of the node [m]
+      real(dp), allocatable :: tangential_force(:, :) !! (samples, stops) friction force [N]
+      ! energy balance over the record (&output energy_balance)
+      logical :: has_energy = .false.               !! the balance was computed
+      real(dp) :: input_work = 0.0_dp               !! work of the loads (relative frame) [J]
+      real(dp) :: rayleigh_dissipation = 0.0_dp     !! int v'Cv dt [J]
+      real(dp) :: contact_damping_dissipation = 0.0_dp  !! contact dampers [J]
+      real(dp) :: friction_dissipation = 0.0_dp     !! friction [J]
+      real(dp) :: stored_energy_change = 0.0_dp     !! kinetic + strain + contact springs [J]
       real(dp) :: strain_min = huge(1.0_dp)         !! root strain range over the record [-]
       real(dp) :: strain_max = -huge(1.0_dp)        !! (step ends) [-]
       real(dp) :: strain_rate_min = huge(1.0_dp)    !! root strain rate range [1/s]
@@ -100,6 +121,10 @@ module gapbeam_results
       real(dp), allocatable :: contact_fraction(:)   !! per stop [-]
       real(dp), allocatable :: impulse_per_period(:) !! per stop [N s]
       real(dp), allocatable :: work_rate(:)          !! per stop [W]
+      real(dp), allocatable :: normal_work_rate(:)   !! per stop [W]
+      real(dp), allocatable :: sliding_distance(:)   !! per stop, over the record [m]
+      real(dp), allocatable :: friction_work_rate(:) !! per stop [W]
+      real(dp), allocatable :: wear_volume_rate(:)   !! per stop [m^3/s]
       real(dp), allocatable :: p_strain(:)           !! Poincare root strain [-]
       real(dp), allocatable :: p_strain_rate(:)      !! Poincare root strain rate [1/s]
       real(dp), allocatable :: u_end(:), v_end(:)    !! final state at a period boundary
@@ -207,6 +232,11 @@ contains
       allocate(res%n_impacts(ns), source=0)
       allocate(res%first_contact_time(ns), source=-1.0_dp)
       allocate(res%peak_force(ns), source=0.0_dp)
+      allocate(res%normal_work_rate(ns), res%sliding_distance(ns), res%friction_work(ns), &
+               res%friction_work_rate(ns), res%wear_volume_rate(ns), res%stick_fraction(ns), &
+               source=0.0_dp)
+      allocate(res%orbit_w(n_hist, ns), res%orbit_v(n_hist, ns), &
+               res%tangential_force(n_hist, ns), source=0.0_dp)
    end subroutine allocate_result
 
    !> Text of a certificate code: 'certified', 'disputed', 'none'.

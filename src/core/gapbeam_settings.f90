@@ -90,6 +90,9 @@ module gapbeam_settings
       real(dp) :: filter_cutoff_hz = 0.0_dp     !! low-pass before Poincare sampling (0: off) [Hz]
       integer  :: filter_order = 4              !! Butterworth order of that filter [-]
       integer  :: filter_samples_per_period = 256  !! filter sampling rate / forcing frequency [-]
+      !> energy balance over the record (input work, Rayleigh, contact-damper and friction
+      !> dissipation, change of stored energy; Gauss quadrature on the dense output)
+      logical  :: energy_balance = .false.
       logical  :: state_history = .false.       !! keep every dof at the history samples
       integer  :: shape_points = 8              !! points per element of the deflected shape [-]
    end type output_settings_t
@@ -163,9 +166,10 @@ module gapbeam_settings
       real(dp), allocatable :: amplitude_pp(:)       !! amplitude axis, peak to peak [m] (or one)
       !> the two axes, numeric deck variables by name (gapbeam_deck_variable): x (fastest) is
       !> '&forcing frequency_hz' and y '&forcing amplitude_pp' unless x_variable / y_variable
-      !> name others
-      character(len=64) :: x_variable = '&forcing frequency_hz'
-      character(len=64) :: y_variable = '&forcing amplitude_pp'
+      !> name others; an axis may name several variables of one unit, separated by commas
+      !> ('&stops gap(1), &stops gap(2)'), all set to the axis value
+      character(len=160) :: x_variable = '&forcing frequency_hz'
+      character(len=160) :: y_variable = '&forcing amplitude_pp'
       real(dp), allocatable :: x(:)                  !! values of the x axis [its unit]
       real(dp), allocatable :: y(:)                  !! values of the y axis [its unit]
       logical :: progress = .true.                   !! progress on standard error

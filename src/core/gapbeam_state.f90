@@ -4,7 +4,8 @@
 !> dofs; f holds the force magnitude of each one-sided contact (f > 0: the contact is closed).
 !> The last components are the memory a stepping integrator carries from step to step (the
 !> step-size level and the previous step, for the paper's extrapolated fixed point), so that
-!> a stored state continues a run exactly; the exact integrator ignores them.
+!> a stored state continues a run exactly; the exact integrator ignores them. Ring contacts
+!> (two-dimensional supports) add their forces and their friction regime.
 module gapbeam_state
    use gapbeam_kinds, only: dp
    implicit none
@@ -25,5 +26,13 @@ module gapbeam_state
       real(dp) :: dt_prev = 0.0_dp               !! length of the last step [s] (0: none yet)
       integer :: level = 0                       !! step-size level of the step control [-]
       integer :: comfortable = 0                 !! comfortable steps at this level [-]
+      ! ring contacts (circular clearances, friction; none in a planar frictionless model)
+      real(dp), allocatable :: fn(:)             !! normal force of each ring [N]
+      real(dp), allocatable :: ft(:)             !! tangential force along t (signed) [N]
+      !> friction regime over the next step: ring_open, ring_stick or ring_slip
+      !> (gapbeam_ring_contact)
+      integer, allocatable :: mode(:)
+      real(dp), allocatable :: sigma(:)          !! slip: sliding direction along t (+1, -1)
+      real(dp), allocatable :: anchor(:)         !! stick: tangential coordinate of the anchor [m]
    end type state_t
 end module gapbeam_state

@@ -20,7 +20,7 @@ module gapbeam_alpha
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs, dpbtrf, dpbtrs
-   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_model, only: model_t, load_factor, add_extra_load
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_integrator, only: stepper_t
@@ -231,6 +231,7 @@ contains
       self%rhs = self%rhs + self%t2
       call matvec(self, model, model%sys%k, model%sys%k_band, s0%u, self%t2)
       self%rhs = self%rhs - af * self%t2 + ((1.0_dp - af) * p1 + af * p0) * model%q
+      call add_weighted_extra(model, s0%t, h, af, self%t1, self%rhs)
       s1%u = self%rhs
       call kbar_solve(self, model, s1%u)
       s1%v = ga / (be * h) * (s1%u - s0%u) + (1.0_dp - ga / be) * s0%v &
@@ -259,11 +260,28 @@ contains
       self%t1 = am * s0%a + model%beta * ((1.0_dp - af) * s1%v + af * s0%v)
       call matvec(self, model, model%sys%m, model%sys%m_band, self%t1, self%t2)
       self%t2 = ((1.0_dp - af) * p1 + af * p0) * model%q - self%rhs - self%t2
+      call add_weighted_extra(model, s0%t, h, af, self%t1, self%t2)
       call kbar_solve(self, model, self%t2)
       self%t2 = self%t2 / bh2
       s1%u = s1%u + bh2 * self%t2
       s1%v = s1%v + ga * h * self%t2
    end subroutine accel_predictor
+
+   !> rhs = rhs + (1 - af) P_x(t0 + h) + af P_x(t0), P_x the loads beyond the w-plane base
+   !> motion (two planes, point forces; nothing otherwise).
+   pure subroutine add_weighted_extra(model, t0, h, af, work, rhs)
+      type(model_t), intent(in) :: model              !! model
+      real(dp), intent(in) :: t0, h, af               !! step start, size, alpha_f
+      real(dp), intent(inout) :: work(:)              !! workspace (n)
+      real(dp), intent(inout) :: rhs(:)               !! right-hand side
+      if (.not. model%extra_load) return
+      work = 0.0_dp
+      call add_extra_load(model, t0 + h, work)
+      rhs = rhs + (1.0_dp - af) * work
+      work = 0.0_dp
+      call add_extra_load(model, t0, work)
+      rhs = rhs + af * work
+   end subroutine add_weighted_extra
 
    !> Local error estimate of the last step (see stepper_t%local_error): displacement
    !> c h^2 (a1 - a0) with c = beta - 1/6 + (1/2 - gamma)/2 (the Newmark estimate of Zienkiewicz

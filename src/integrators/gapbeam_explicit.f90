@@ -10,7 +10,7 @@ module gapbeam_explicit
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs
-   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_model, only: model_t, load_factor, add_extra_load
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_integrator, only: stepper_t
@@ -137,6 +137,7 @@ contains
       call dense_matvec(n, model%sys%k, s1%u, s1%a)
       call dense_matvec(n, model%c, self%w, self%r)
       self%r = p1 * model%q - s1%a - self%r
+      call add_extra_load(model, s0%t + h, self%r)
       call contact_forces(model, s1%u, self%w, open_contact, s1%f, self%r)
       call dense_matvec(n, self%fac, self%r, s1%a)
       s1%v = self%w + 0.5_dp * h * s1%a
@@ -172,6 +173,7 @@ contains
       call dense_matvec(n, model%sys%k, u, acc)
       call dense_matvec(n, model%c, v, self%r)
       self%r = load_factor(model, t) * model%q - acc - self%r
+      call add_extra_load(model, t, self%r)
       call contact_forces(model, u, v, hold, f, self%r)
       call dense_matvec(n, self%mfac, self%r, acc)
       self%evaluations = self%evaluations + 1

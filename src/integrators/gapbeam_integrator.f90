@@ -17,18 +17,19 @@ module gapbeam_integrator
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
-   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
    use gapbeam_description, only: dof_name, law_bilinear
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_contact_law, only: contact_force
+   use gapbeam_ring_contact, only: ring_open, ring_geometry, ring_forces_at, update_ring_modes
    use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
    private
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
-      dof_label, resolve_method
+      dof_label, resolve_method, tube_refusal, tube_physics_text, ring_load
 
    !> the tolerance below which 'auto' considers rk45 for a Hertz stop: Newmark's error
    !> levels off near 1e-8 .. 1e-7 in double precision (work-precision study)
@@ -151,6 +152,10 @@ contains
             reason = "method 'auto': the deck asks for stepping options (step_control = '" &
                // trim(cfg%step_control) // "', stop_solution = '" // trim(cfg%stop_solution) &
                // "'), so Newmark"
+         else if (has_tube_physics(model)) then
+            eff%method = 'newmark'
+            reason = "method 'auto': " // tube_physics_text(model) // ', so Newmark with ' &
+               // 'error control at the tolerance'
          else if (all(model%c_law == law_bilinear)) then
             eff%method = 'exact'
             reason = "method 'auto': every stop is piecewise linear, so the exact " &
@@ -178,6 +183,71 @@ contains
          eff%step_control = 'error'
       end select
    end subroutine resolve_method
+
+   !> Why `method` (with the resolved step_control and stop_solution) cannot integrate the
+   !> model, or '' when it can. The exact integrator (and continuation, which uses it) handles
+   !> planar models with frictionless flat stops and base motion along w only; the ring
+   !> contacts (circular clearances, friction) need Newmark under error control, whose steps end
+   !> at every contact and stick-slip switch; two-plane models and point forces run with every
+   !> stepping method except the paper's fixed point.
+   function tube_refusal(model, method, step_control, stop_solution) result(why)
+      type(model_t), intent(in) :: model             !! model
+      character(len=*), intent(in) :: method         !! resolved method word
+      character(len=*), intent(in) :: step_control   !! resolved step control ('auto' allowed)
+      character(len=*), intent(in) :: stop_solution  !! 'condensed' or 'fixed_point'
+      character(len=:), allocatable :: why
+      why = ''
+      if (.not. has_tube_physics(model)) return
+      select case (method)
+      case ('exact')
+         why = "method 'exact' cannot integrate this model: " // tube_physics_text(model) &
+            // "; the exact event-driven integrator (and continuation, which uses it) handles " &
+            // "planar models with frictionless flat stops and base motion along w only: use " &
+            // "method = 'newmark' (or 'auto', which chooses it)"
+      case ('newmark')
+         if (stop_solution == 'fixed_point') then
+            why = "stop_solution = 'fixed_point' cannot integrate this model: " &
+               // tube_physics_text(model) // ": use stop_solution = 'condensed'"
+         else if (model%n_rings > 0 .and. step_control /= 'error' .and. &
+                  step_control /= 'auto') then
+            why = "method 'newmark' with step_control = '" // trim(step_control) // "' cannot " &
+               // 'integrate this model: ' // tube_physics_text(model) // ": use step_control " &
+               // "= 'error' (or 'auto'), whose steps end at every contact and stick-slip switch"
+         end if
+      case default
+         if (model%n_rings > 0) why = "method '" // trim(method) // "' cannot integrate this " &
+            // 'model: ' // tube_physics_text(model) // ": use method = 'newmark' (or 'auto') " &
+            // "with step_control = 'error' (or 'auto')"
+      end select
+   end function tube_refusal
+
+   !> What a model has beyond a planar beam with flat frictionless stops, in words.
+   function tube_physics_text(model) result(t)
+      type(model_t), intent(in) :: model            !! model
+      character(len=:), allocatable :: t
+      character(len=48) :: items(4)
+      integer :: n, k
+      n = 0
+      if (model%n_rings > 0) then
+         if (any(model%r_circular)) then
+            n = n + 1;  items(n) = 'a circular clearance'
+         end if
+         if (any(model%r_mu > 0.0_dp)) then
+            n = n + 1;  items(n) = 'friction'
+         end if
+      end if
+      if (model%sys%planes > 1) then
+         n = n + 1;  items(n) = 'two planes of motion'
+      end if
+      if (model%extra_load) then
+         n = n + 1;  items(n) = 'loads out of the w plane or point forces'
+      end if
+      t = 'it has'
+      do k = 1, n
+         if (k > 1) t = t // ','
+         t = t // ' ' // trim(items(k))
+      end do
+   end function tube_physics_text
 
    !> Whether rk45 is expected to cost less than Newmark at `tol` on this model: flops per
    !> forcing period from the step counts measured on the reference beam (Newmark about
@@ -244,12 +314,28 @@ contains
       real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: u(:), v(:)        !! displacement, velocity
       type(state_t), intent(out) :: state       !! the state
+      real(dp), allocatable :: pr(:)
+      real(dp) :: d, n(2), tg(2), tau, gt
+      integer :: r
       state%t = t
       state%u = u;  state%v = v
       call massless_equilibrium(model, state%u, state%v)
       allocate(state%a(model%n), state%f(model%n_contacts))
       call contact_forces_at(model, state%u, state%v, state%f)
-      call equilibrium_acceleration(model, t, state%u, state%v, state%f, state%a)
+      ! rings: open with the anchor at the node, then the regime the state calls for (a ring
+      ! in contact sticks at its contact point)
+      allocate(state%fn(model%n_rings), state%ft(model%n_rings), state%sigma(model%n_rings), &
+               state%anchor(model%n_rings), source=0.0_dp)
+      allocate(state%mode(model%n_rings), source=ring_open)
+      state%sigma = 1.0_dp
+      do r = 1, model%n_rings
+         call ring_geometry(model, r, state%u(model%r_dof(:, r)), d, n, tg, tau, gt)
+         state%anchor(r) = tau
+      end do
+      call update_ring_modes(model, state%u, state%v, spread(0.0_dp, 1, model%n), state%mode, &
+                             state%sigma, state%anchor, 0)
+      pr = ring_load(model, state)
+      call equilibrium_acceleration(model, t, state%u, state%v, state%f, state%a, pr)
       state%f_prev = state%f
       state%dt_prev = 0.0_dp
       state%level = 0;  state%comfortable = 0
@@ -293,18 +379,33 @@ contains
       u(s) = b(:, 1);  v(s) = b(:, 2)
    end subroutine massless_equilibrium
 
+   !> The force of the rings on the structure at a state (their forces from the laws in the
+   !> state's regimes; fn and ft of the state are set), as a load vector (size n).
+   function ring_load(model, state) result(pr)
+      type(model_t), intent(in) :: model        !! model
+      type(state_t), intent(inout) :: state     !! state (fn, ft set)
+      real(dp), allocatable :: pr(:)
+      allocate(pr(model%n), source=0.0_dp)
+      if (model%n_rings == 0) return
+      call ring_forces_at(model, state%u, state%v, state%mode, state%sigma, state%anchor, &
+                          state%fn, state%ft, pr)
+   end function ring_load
+
    !> Acceleration in equilibrium with (t, u, v) and given contact forces f:
-   !> M a = s(t) q - C v - K u - F_c. Massless dofs get a = 0.
-   subroutine equilibrium_acceleration(model, t, u, v, f, a)
+   !> M a = s(t) q + (extra loads) - C v - K u - F_c + P_rings. Massless dofs get a = 0.
+   subroutine equilibrium_acceleration(model, t, u, v, f, a, pr)
       type(model_t), intent(in) :: model        !! model
       real(dp), intent(in) :: t                 !! time [s]
       real(dp), intent(in) :: u(:), v(:)        !! state
       real(dp), intent(in) :: f(:)              !! contact force magnitudes [N]
       real(dp), intent(out) :: a(:)             !! acceleration
+      real(dp), intent(in), optional :: pr(:)   !! force of the rings on the structure [N]
       real(dp), allocatable :: rhs(:), msub(:, :), b(:)
       integer, allocatable :: idx(:)
       integer :: c, i, info, nm
       rhs = load_factor(model, t) * model%q - matmul(model%c, v) - matmul(model%sys%k, u)
+      call add_extra_load(model, t, rhs)
+      if (present(pr)) rhs = rhs + pr
       do c = 1, model%n_contacts
          i = model%c_dof(c)
          rhs(i) = rhs(i) - model%c_sign(c) * f(c)
@@ -331,7 +432,7 @@ contains
       s = 'dof ' // str(i)
       if (.not. allocated(model%sys%dof_of)) return
       do node = 1, model%sys%n_node
-         do d = 1, 2
+         do d = 1, size(model%sys%dof_of, 1)
             if (model%sys%dof_of(d, node) == i) s = 'dof ' // str(i) // ' (node ' // str(node) &
                // ' ' // dof_name(d) // ')'
          end do

@@ -23,6 +23,16 @@ contains
       type(solver_settings_t) :: eff
       character(len=:), allocatable :: reason
       call resolve_method(model, cfg, eff, reason)
+      ! what the exact integrator (and continuation through it) and the stepping methods do
+      ! not handle is refused here, where the method is resolved, with the method to use
+      reason_refused: block
+         character(len=:), allocatable :: why
+         why = tube_refusal(model, eff%method, eff%step_control, eff%stop_solution)
+         if (len(why) > 0) then
+            call fatal_error(err, 'gapbeam_integrator: ' // why)
+            return
+         end if
+      end block reason_refused
       select case (eff%method)
       case ('exact')
          allocate(exact_integrator_t :: integ)

@@ -13,9 +13,10 @@ module gapbeam_newmark
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs, dpbtrf, dpbtrs
    use gapbeam_linalg, only: dense_matvec, band_matvec, band_solve, dense_to_band
-   use gapbeam_model, only: model_t, load_factor
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
    use gapbeam_state, only: state_t
    use gapbeam_contact_law, only: contact_force, solve_scalar_contact, solve_contacts
+   use gapbeam_ring_contact, only: solve_mixed_contacts
    use gapbeam_integrator, only: stepper_t
    use gapbeam_settings, only: solver_settings_t
    implicit none
@@ -79,7 +80,9 @@ contains
       self%fixed_point = cfg%stop_solution == 'fixed_point'
       self%fp_tolerance = cfg%fp_tolerance
       self%fp_max_iterations = cfg%fp_max_iterations
-      self%acceleration_form = cfg%step_control == 'error'
+      ! models with extra loads or ring contacts always take the acceleration form (the same
+      ! scheme; its step carries them)
+      self%acceleration_form = cfg%step_control == 'error' .or. has_tube_physics(model)
       self%delta = cfg%newmark_delta;  self%alpha = cfg%newmark_alpha
       if (.not. allocated(self%hm)) allocate(self%hm(model%n), self%hc(model%n), &
                                              self%rhs(model%n), self%y(model%n))
@@ -148,7 +151,8 @@ contains
       real(dp), intent(inout) :: ut(:), vt(:), r(:), w(:)   !! workspaces (n)
       integer, intent(in) :: hold              !! contact held open (0: none)
       real(dp) :: h, bh2, dstar(model%n_contacts), vstar(model%n_contacts), dstep
-      integer :: n, c, i
+      real(dp) :: ys(model%n_slots), vs(model%n_slots), pslot(model%n_slots)
+      integer :: n, c, i, j
       n = model%n;  h = op%dt;  bh2 = alpha * h**2
       ut = s0%u + h * s0%v + (0.5_dp - alpha) * h**2 * s0%a
       vt = s0%v + (1.0_dp - delta) * h * s0%a
@@ -157,12 +161,24 @@ contains
       call sym_matvec(op%dense, model%sys%kd, model%sys%k, model%sys%k_band, w, r)
       call sym_matvec(op%dense, model%sys%kd, model%sys%m, model%sys%m_band, vt, w)
       r = load * model%q - r - model%beta * w
+      call add_extra_load(model, s1%t, r)
       call kbar_solve(model, op, r)
       r = r / bh2                                   ! a1 with no contact force
       s1%u = ut + bh2 * r
       s1%v = vt + delta * h * r
       s1%f = 0.0_dp
-      if (model%n_contacts > 0) then
+      if (model%n_rings > 0) then
+         ! ring contacts (and any scalar ones): the mixed exact solve in the slots, the regimes
+         ! of the step's start held over the step
+         ys = s1%u(model%slot_dof);  vs = s1%v(model%slot_dof)
+         s1%f = s0%f
+         call solve_mixed_contacts(model, op%h, op%c%a1, ys, vs, s0%mode, s0%sigma, s0%anchor, &
+                                   hold, s1%f, s1%fn, s1%ft, pslot)
+         s1%mode = s0%mode;  s1%sigma = s0%sigma;  s1%anchor = s0%anchor
+         do j = 1, model%n_slots
+            if (pslot(j) /= 0.0_dp) r = r + op%g(:, j) * (pslot(j) / bh2)
+         end do
+      else if (model%n_contacts > 0) then
          do c = 1, model%n_contacts
             i = model%c_dof(c)
             dstar(c) = model%c_sign(c) * s1%u(i) - model%c_gap(c)
@@ -617,6 +633,7 @@ contains
          s = load_factor(model, t0 + h)
          ! am now holds P - F_NL (force on the structure from the stops is -s f e)
          am = s * model%q
+         call add_extra_load(model, t0 + h, am)
          do c = 1, model%n_contacts
             i = model%c_dof(c)
             d = model%c_sign(c) * um(i) - model%c_gap(c)

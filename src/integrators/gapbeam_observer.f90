@@ -32,6 +32,13 @@ module gapbeam_observer
       real(dp), allocatable :: int_work(:)         !! integral of f |d'| [J]
       real(dp), allocatable :: t_contact(:)        !! time in contact [s]
       real(dp), allocatable :: peak(:)             !! largest force of the contact's stop [N]
+      ! ring contacts (circular clearances, friction): the regime over the piece
+      integer, allocatable :: r_mode(:)            !! ring_open, ring_stick or ring_slip
+      real(dp), allocatable :: r_sigma(:)          !! slip direction
+      real(dp), allocatable :: r_anchor(:)         !! stick anchor [m]
+      real(dp), allocatable :: fn_a(:), fn_b(:)    !! normal forces at ta (right limit), tb [N]
+      logical, allocatable :: r_onset(:)           !! the ring closes in (ta, tb]
+      real(dp), allocatable :: r_onset_time(:)     !! when [s]
       real(dp) :: strain_min = 0.0_dp, strain_max = 0.0_dp   !! root strain range so far [-]
       real(dp) :: rate_min = 0.0_dp, rate_max = 0.0_dp       !! root strain rate range [1/s]
    contains

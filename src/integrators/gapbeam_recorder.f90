@@ -25,6 +25,7 @@ module gapbeam_recorder
    use gapbeam_results, only: transient_result_t, allocate_result
    use gapbeam_filter, only: lowpass_t, design_lowpass
    use gapbeam_observer, only: observer_t, piece_t
+   use gapbeam_wear, only: wear_meter_t
    use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private
@@ -34,6 +35,8 @@ module gapbeam_recorder
    type, extends(observer_t) :: recorder_t
       type(transient_result_t) :: res                !! results being filled
       integer, allocatable :: c_stop(:)               !! deck stop of each contact
+      integer, allocatable :: r_stop(:)               !! deck stop of each ring contact
+      type(wear_meter_t) :: wear                      !! wear outputs, orbits, energy balance
       real(dp) :: period = 0.0_dp                     !! forcing period [s]
       real(dp) :: t_rec = 0.0_dp                      !! start of the record [s]
       real(dp) :: t_rec_len = 0.0_dp                  !! length of the record [s]
@@ -77,6 +80,9 @@ contains
       integer :: ns
       ns = model%n_stops
       self%c_stop = model%c_stop
+      allocate(self%r_stop(model%n_rings))
+      if (model%n_rings > 0) self%r_stop = model%r_stop
+      call self%wear%init(model, ns, out%energy_balance)
       self%period = 2.0_dp * pi / model%omega
       self%transient_periods = transient_periods
       self%record_periods = record_periods
@@ -148,6 +154,11 @@ contains
          if (self%res%first_contact_time(ks) >= 0.0_dp) cycle
          if (piece%onset(c)) self%res%first_contact_time(ks) = piece%onset_time(c)
       end do
+      do c = 1, size(self%r_stop)
+         ks = self%r_stop(c)
+         if (self%res%first_contact_time(ks) >= 0.0_dp) cycle
+         if (piece%r_onset(c)) self%res%first_contact_time(ks) = piece%r_onset_time(c)
+      end do
       self%all_found = all(self%res%first_contact_time >= 0.0_dp)
       if (recording) call self%accumulate(piece)
    end subroutine recorder_observe
@@ -174,6 +185,7 @@ contains
                ks = self%c_stop(c)
                r%stop_force(self%ih, ks) = r%stop_force(self%ih, ks) + self%force(c)
             end do
+            call self%wear%sample(piece, t, self%ih, r)
             self%ih = self%ih + 1
          end do
          do while (self%ip <= self%n_poinc)
@@ -244,6 +256,8 @@ contains
       real(dp) :: h, fa, fb
       integer :: c, k
       h = piece%tb - piece%ta
+      call self%wear%piece(piece, self%acc_f, self%acc_f2, self%acc_work, self%acc_contact, &
+                           self%res%n_impacts, self%res%peak_force)
       do c = 1, size(self%c_stop)
          k = self%c_stop(c)
          if (piece%exact_statistics) then
@@ -286,12 +300,16 @@ contains
             r%rms_force = self%acc_f2;  r%contact_fraction = self%acc_contact
             r%impulse_per_period = self%acc_f;  r%work_rate = self%acc_work
          end if
+         call self%wear%finish(self%t_rec_len, r)
          ih = self%ih
          if (ih <= self%n_hist) then
             r%time = r%time(1:ih - 1);  r%strain = r%strain(1:ih - 1)
             r%strain_rate = r%strain_rate(1:ih - 1)
             r%tip_displacement = r%tip_displacement(1:ih - 1)
             r%stop_force = r%stop_force(1:ih - 1, :)
+            r%orbit_w = r%orbit_w(1:ih - 1, :);  r%orbit_v = r%orbit_v(1:ih - 1, :)
+            r%tangential_force = r%tangential_force(1:ih - 1, :)
+
             if (allocated(r%history_u)) r%history_u = r%history_u(:, 1:ih - 1)
          end if
       end associate

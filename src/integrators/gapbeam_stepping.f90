@@ -18,16 +18,18 @@ module gapbeam_stepping
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: model_t
+   use gapbeam_model, only: model_t, has_tube_physics
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: law_bilinear
    use gapbeam_contact_law, only: contact_force
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, &
-      make_stepper, dof_label
+      make_stepper, dof_label, ring_load
+   use gapbeam_ring_contact, only: ring_open, ring_stick, ring_indicators, ring_geometry, &
+      update_ring_modes, ring_force, onset_regime
    use gapbeam_newmark, only: half_step_ratio, use_dense
-   use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_lapack, only: dpotrf, dpotrs, dgesv
    implicit none
    private
    public :: stepping_integrator_t, hermite_piece_t, hermite_weights
@@ -73,8 +75,10 @@ module gapbeam_stepping
       real(dp) :: energy_ref = 0.0_dp                 !! divergence check: reference energy
       real(dp) :: t_begin = 0.0_dp                    !! start of the current advance [s]
       integer :: n_since = 0                          !! steps since the last energy check
-      integer :: ev_contact = 0                       !! contact of the located event
+      !> contact of the located event (n_contacts + r: ring r)
+      integer :: ev_contact = 0
       logical :: ev_onset = .false.                   !! the event closes it (else opens it)
+      logical :: ev_friction = .false.                !! a stick-slip switch of a ring
       ! error control (step_control = 'error')
       logical :: controlled = .false.                 !! local error against the tolerance
       real(dp) :: tolerance = 0.0_dp                  !! relative accuracy asked [-]
@@ -92,12 +96,15 @@ module gapbeam_stepping
       integer :: order = 2                            !! order of the method
       real(dp) :: block_start = 0.0_dp                !! current block of the controller [s]
       real(dp) :: block_sum = 0.0_dp                  !! local errors accepted in it [-]
+      !> the root strain rate is watched (not with ring contacts, see init_control)
+      logical :: watch_rate = .true.
    contains
       procedure :: init => stepping_init
       procedure :: advance => stepping_advance
       procedure, private :: attempt_step, control_ratio, check_divergence, emit_pieces, &
          first_event, restart_after_event, one_step, advance_controlled, controlled_step, &
-         error_ratio, output_ratio, richardson, track_outputs, init_control
+         error_ratio, output_ratio, richardson, track_outputs, init_control, ring_switches, &
+         first_ring_event
    end type stepping_integrator_t
 
 contains
@@ -140,17 +147,29 @@ contains
          allocate(self%sub(k)%u(model%n), self%sub(k)%v(model%n), self%sub(k)%a(model%n), &
                   self%sub(k)%f(model%n_contacts), self%sub(k)%f_prev(model%n_contacts), &
                   source=0.0_dp)
+         allocate(self%sub(k)%fn(model%n_rings), self%sub(k)%ft(model%n_rings), &
+                  self%sub(k)%sigma(model%n_rings), self%sub(k)%anchor(model%n_rings), &
+                  source=0.0_dp)
+         allocate(self%sub(k)%mode(model%n_rings), source=ring_open)
       end do
       do k = 1, 2
          allocate(self%rich(k)%u(model%n), self%rich(k)%v(model%n), self%rich(k)%a(model%n), &
                   self%rich(k)%f(model%n_contacts), self%rich(k)%f_prev(model%n_contacts), &
                   source=0.0_dp)
+         allocate(self%rich(k)%fn(model%n_rings), self%rich(k)%ft(model%n_rings), &
+                  self%rich(k)%sigma(model%n_rings), self%rich(k)%anchor(model%n_rings), &
+                  source=0.0_dp)
+         allocate(self%rich(k)%mode(model%n_rings), source=ring_open)
       end do
       allocate(self%work6(model%n, 6))
-      associate (p => self%piece, nc => model%n_contacts)
+      associate (p => self%piece, nc => model%n_contacts, nr => model%n_rings)
          allocate(p%f_a(nc), p%f_b(nc), p%vabs_a(nc), p%vabs_b(nc), p%onset_time(nc), &
                   source=0.0_dp)
          allocate(p%onset(nc), source=.false.)
+         allocate(p%fn_a(nr), p%fn_b(nr), p%r_sigma(nr), p%r_anchor(nr), p%r_onset_time(nr), &
+                  source=0.0_dp)
+         allocate(p%r_mode(nr), source=ring_open)
+         allocate(p%r_onset(nr), source=.false.)
       end associate
    end subroutine stepping_init
 
@@ -441,10 +460,35 @@ contains
                end do
             end associate
             p%strain_b = st;  p%rate_b = sv
+            if (m%n_rings > 0) call ring_piece(m, self%sub(ja), self%sub(jb), p)
             call obs%observe(p)
          end do
       end associate
    end subroutine emit_pieces
+
+   !> The ring data of a piece from its end states: the regime (of the start), the normal
+   !> forces at the ends, onsets (the normal force appears; the instant by linear interpolation
+   !> of the penetration).
+   subroutine ring_piece(model, sa, sb, p)
+      type(model_t), intent(in) :: model          !! model
+      type(state_t), intent(in) :: sa, sb         !! the piece's end states
+      class(piece_t), intent(inout) :: p          !! the piece
+      integer :: r
+      real(dp) :: da, db, n(2), t(2), tau, gt
+      p%r_mode = sa%mode;  p%r_sigma = sa%sigma;  p%r_anchor = sa%anchor
+      p%fn_a = sa%fn;  p%fn_b = sb%fn
+      do r = 1, model%n_rings
+         p%r_onset(r) = sb%fn(r) > 0.0_dp .and. .not. sa%fn(r) > 0.0_dp
+         if (.not. p%r_onset(r)) cycle
+         call ring_geometry(model, r, sa%u(model%r_dof(:, r)), da, n, t, tau, gt)
+         call ring_geometry(model, r, sb%u(model%r_dof(:, r)), db, n, t, tau, gt)
+         if (da <= 0.0_dp .and. db > da) then
+            p%r_onset_time(r) = p%ta + (p%tb - p%ta) * (-da) / (db - da)
+         else
+            p%r_onset_time(r) = p%ta
+         end if
+      end do
+   end subroutine ring_piece
 
    !> First instant (fraction of the sub-step k -> k+1 of length h) where a contact opens or
    !> closes; 2 if none. Sets ev_contact and ev_onset.
@@ -493,13 +537,141 @@ contains
                   end do
                   if (hi < th) then
                      th = hi;  self%ev_contact = cc;  self%ev_onset = .not. closed0
+                     self%ev_friction = .false.
                   end if
                   exit
                end if
             end do
          end do
       end associate
+      if (self%model%n_rings > 0) call self%first_ring_event(k, h, th)
    end function first_event
+
+   !> The first switch of a ring in the sub-step k -> k+1 of length h before fraction th:
+   !> contact onset or release, or (in contact) the end of its friction regime (stick: |f_t|
+   !> reaches mu f_n; slip: the tangential velocity reverses), on the cubic Hermite
+   !> interpolant of the node's (w, v) in the regime of the sub-step's start. The indicators
+   !> are sampled at 8 points and the first change is bisected; th, ev_contact (n_contacts +
+   !> ring), ev_onset and ev_friction are set when one is found earlier.
+   subroutine first_ring_event(self, k, h, th)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(in) :: k                              !! sub-step start
+      real(dp), intent(in) :: h                             !! its length [s]
+      real(dp), intent(inout) :: th                         !! earliest event so far [-]
+      integer, parameter :: n_sample = 8
+      integer :: r, m, it
+      real(dp) :: lo, hi, mid
+      logical :: act0, val0, act
+      associate (md => self%model, s0 => self%sub(self%ix(k)), s1 => self%sub(self%ix(k + 1)))
+         do r = 1, md%n_rings
+            call ring_state_at(md, s0, s1, r, h, 0.0_dp, act0, val0)
+            do m = 1, n_sample
+               hi = real(m, dp) / n_sample
+               if (hi >= th) exit
+               if (ring_switched(md, s0, s1, r, h, hi, act0)) then
+                  lo = real(m - 1, dp) / n_sample
+                  do it = 1, 60
+                     mid = 0.5_dp * (lo + hi)
+                     if (ring_switched(md, s0, s1, r, h, mid, act0)) then
+                        hi = mid
+                     else
+                        lo = mid
+                     end if
+                  end do
+                  if (hi < th) then
+                     th = hi;  self%ev_contact = md%n_contacts + r
+                     call ring_state_at(md, s0, s1, r, h, hi, act, val0)
+                     self%ev_onset = act .and. .not. act0
+                     self%ev_friction = act .eqv. act0
+                  end if
+                  exit
+               end if
+            end do
+         end do
+      end associate
+   end subroutine first_ring_event
+
+   !> Indicators of ring r at fraction x of the sub-step s0 -> s1 of length h: the cubic
+   !> Hermite interpolant of its node's (w, v) in the regime of s0.
+   subroutine ring_state_at(model, s0, s1, r, h, x, active, valid)
+      type(model_t), intent(in) :: model        !! model
+      type(state_t), intent(in) :: s0, s1       !! the sub-step's ends
+      integer, intent(in) :: r                  !! ring
+      real(dp), intent(in) :: h, x              !! length [s], fraction [-]
+      logical, intent(out) :: active, valid     !! in contact; regime holds
+      real(dp) :: h00, h10, h01, h11, g00, g10, g01, g11, xx(2), xd(2), xdd(2)
+      integer :: j, i
+      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      do j = 1, 2
+         i = model%r_dof(j, r)
+         xx(j) = h00 * s0%u(i) + h10 * h * s0%v(i) + h01 * s1%u(i) + h11 * h * s1%v(i)
+         xd(j) = (g00 * s0%u(i) + g10 * h * s0%v(i) + g01 * s1%u(i) + g11 * h * s1%v(i)) / h
+         ! second derivative of the cubic
+         xdd(j) = ((12.0_dp * x - 6.0_dp) * (s0%u(i) - s1%u(i)) + h * ((6.0_dp * x - 4.0_dp) &
+                  * s0%v(i) + (6.0_dp * x - 2.0_dp) * s1%v(i))) / h**2
+      end do
+      call ring_indicators(model, r, s0%mode(r), s0%sigma(r), s0%anchor(r), xx, xd, xdd, &
+                           active, valid)
+   end subroutine ring_state_at
+
+   !> Has ring r switched by fraction x: its activity differs from `act0`, or its friction
+   !> regime no longer holds?
+   logical function ring_switched(model, s0, s1, r, h, x, act0) result(sw)
+      type(model_t), intent(in) :: model        !! model
+      type(state_t), intent(in) :: s0, s1       !! the sub-step's ends
+      integer, intent(in) :: r                  !! ring
+      real(dp), intent(in) :: h, x              !! length [s], fraction [-]
+      logical, intent(in) :: act0               !! activity at the start
+      logical :: a, v
+      call ring_state_at(model, s0, s1, r, h, x, a, v)
+      sw = (a .neqv. act0) .or. (a .and. .not. v)
+   end function ring_switched
+
+   !> After an accepted sub-step k: the regimes of the rings at its end (a located friction
+   !> switch forced, a located onset anchored at the contact point), the force jump of a
+   !> damper at a located onset or release (the next sub-step starts from the right limit),
+   !> and the ring forces of the new regimes (continuous at friction switches).
+   subroutine ring_switches(self, k, event)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(in) :: k                              !! sub-state at the end
+      logical, intent(in) :: event                          !! the step ended at an event
+      integer :: forced, r, c, onset_mode
+      real(dp) :: d, n(2), t(2), tau, gt, onset_sigma
+      real(dp), allocatable :: pr(:)
+      logical :: jump
+      associate (md => self%model, s => self%sub(self%ix(k)))
+         forced = 0;  jump = .false.;  r = 0;  c = 0
+         if (event) then
+            self%events = self%events + 1
+            if (self%ev_contact > md%n_contacts) then
+               r = self%ev_contact - md%n_contacts
+               if (self%ev_friction) forced = r
+               if (self%ev_onset) then
+                  ! closes here: stick at the contact point or slip at once
+                  call onset_regime(md, r, s%u(md%r_dof(:, r)), s%v(md%r_dof(:, r)), &
+                                    s%mode(r), s%sigma(r), s%anchor(r))
+                  onset_mode = s%mode(r);  onset_sigma = s%sigma(r)
+               end if
+               jump = .not. self%ev_friction .and. md%r_c(r) > 0.0_dp
+            else
+               c = self%ev_contact
+               jump = md%c_c(c) > 0.0_dp
+            end if
+         end if
+         call update_ring_modes(md, s%u, s%v, s%a, s%mode, s%sigma, s%anchor, forced)
+         if (r > 0 .and. self%ev_onset) then
+            ! round-off may put the onset a hair outside: it touches
+            s%mode(r) = onset_mode;  s%sigma(r) = onset_sigma
+            call ring_geometry(md, r, s%u(md%r_dof(:, r)), d, n, t, tau, gt)
+            s%anchor(r) = tau
+         end if
+         if (jump) then
+            call self%restart_after_event(k)
+         else
+            pr = ring_load(md, s)
+         end if
+      end associate
+   end subroutine ring_switches
 
    !> At a located event the contact force may jump (a damper's force c d' at impact): the
    !> next sub-step starts from the right limit, forces of the new contact state and the
@@ -526,9 +698,33 @@ contains
                s%f(c) = contact_force(md%c_law(c), md%c_k(c), md%c_c(c), md%c_p(c), d, dd)
             end if
          end do
-         call equilibrium_acceleration(md, s%t, s%u, s%v, s%f, s%a)
+         if (md%n_rings > 0) then
+            call restart_rings(md, self%ev_contact - md%n_contacts, self%ev_onset, s)
+         else
+            call equilibrium_acceleration(md, s%t, s%u, s%v, s%f, s%a)
+         end if
       end associate
    end subroutine restart_after_event
+
+   !> The ring forces at a located switch of ring `re` (0: a scalar contact's), right limit:
+   !> a ring that closes there (onset) is taken as touching even if round-off puts it a hair
+   !> outside; then the acceleration in equilibrium with every force.
+   subroutine restart_rings(model, re, onset, s)
+      type(model_t), intent(in) :: model        !! model
+      integer, intent(in) :: re                 !! ring of the event (<= 0: none)
+      logical, intent(in) :: onset              !! the event closes it
+      type(state_t), intent(inout) :: s         !! state at the event
+      real(dp) :: pr(model%n), pp(2)
+      integer :: r
+      pr = 0.0_dp
+      do r = 1, model%n_rings
+         call ring_force(model, r, s%mode(r), s%sigma(r), s%anchor(r), s%u(model%r_dof(:, r)), &
+                         s%v(model%r_dof(:, r)), pp, s%fn(r), s%ft(r), &
+                         touching=(r == re .and. onset))
+         pr(model%r_dof(:, r)) = pr(model%r_dof(:, r)) + pp
+      end do
+      call equilibrium_acceleration(model, s%t, s%u, s%v, s%f, s%a, pr)
+   end subroutine restart_rings
 
    !> Is contact c active at fraction x of a sub-step of length h (cubic Hermite interpolant
    !> of its dof from (u0, v0) to (u1, v1))? Penetration > 0, and for a bilinear law with a
@@ -566,6 +762,9 @@ contains
          deallocate(b%cu, b%cv)
       end if
       b%dt_prev = a%dt_prev;  b%level = a%level;  b%comfortable = a%comfortable
+      if (allocated(a%mode)) then
+         b%fn = a%fn;  b%ft = a%ft;  b%mode = a%mode;  b%sigma = a%sigma;  b%anchor = a%anchor
+      end if
    end subroutine copy_state
 
    !> Error control: the step-size ladder h_max 2^(-L/2) (a factorisation per size, cached),
@@ -580,6 +779,11 @@ contains
       integer :: info, c, n_out
       self%tolerance = cfg%tolerance
       self%order = merge(4, 2, cfg%method == 'rk45')
+      ! with ring contacts the watched outputs are the supports' (w, v) and their velocities,
+      ! the tip and the root strain: the root strain rate carries the high modes every
+      ! impact excites, and resolving them to the tolerance of its range cost twice the steps
+      ! of the supports' orbits (docs/tubes.md)
+      self%watch_rate = model%n_rings == 0
       self%h_max = self%period / 16.0_dp
       self%n_levels = 2 * cfg%max_halvings + 9
       if (allocated(self%h_lev)) deallocate(self%h_lev)
@@ -591,6 +795,7 @@ contains
                source=0.0_dp)
       self%out_dof = [integer ::]
       if (model%sys%tip_dof > 0) self%out_dof = [model%sys%tip_dof]
+      if (model%sys%tip_dof_v > 0) self%out_dof = [self%out_dof, model%sys%tip_dof_v]
       do c = 1, model%n_slots
          if (.not. any(self%out_dof == model%slot_dof(c))) &
             self%out_dof = [self%out_dof, model%slot_dof(c)]
@@ -609,12 +814,86 @@ contains
       self%out_floor(1) = abs(dot_product(self%sw, uqs(self%si)))
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
+      if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out)
       if (cfg%method == 'rk45') then
          ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
          self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
          self%out_floor(n_out + 2:) = max(self%out_floor(n_out + 2:), cfg%rk_atol / cfg%tolerance)
       end if
    end subroutine init_control
+
+   !> Floors of the watched outputs of a model with two planes or extra loads: the largest
+   !> response to any one load vector of the open structure: the quasi-static K^-1 L for the w
+   !> and v base motions (as for a planar model, whose floors a planar deck run with two planes
+   !> keeps), and for the sin and cos parts of the point forces the smaller of that and the
+   !> harmonic (K - Omega^2 M + i Omega C)^-1 L (a force above a resonance moves the structure
+   !> far less than its static response); with two planes the same floor for an
+   !> output and its mirror in the other plane (an orbit can turn from one plane into the other;
+   !> a plane at rest must not get a zero floor).
+   subroutine tube_floors(self, model, kf, n_out)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      real(dp), intent(in) :: kf(:, :)                      !! Cholesky factor of K
+      integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      real(dp), allocatable :: loads(:, :), zs(:, :), zd(:, :), a(:, :)
+      integer, allocatable :: ipiv(:)
+      real(dp) :: fl(n_out), ys, yd
+      integer :: j, info, nh, q, i, nl, n, im
+      logical :: point_force(4), harmonic
+      n = model%n
+      nl = 1
+      point_force = [.false., .false., .true., .true.]
+      allocate(loads(n, 4), source=0.0_dp)
+      loads(:, 1) = model%half_amplitude * model%omega**2 * model%q
+      if (allocated(model%q_v)) then
+         nl = nl + 1;  loads(:, nl) = model%half_amplitude * model%omega**2 * model%q_v
+      end if
+      if (allocated(model%p_sin)) then
+         loads(:, nl + 1) = model%p_sin;  loads(:, nl + 2) = model%p_cos
+         point_force(nl + 1:nl + 2) = .true.
+         nl = nl + 2
+      end if
+      point_force(1:nl - merge(2, 0, allocated(model%p_sin))) = .false.
+      zs = loads(:, 1:nl)
+      call dpotrs('U', n, nl, kf, n, zs, n, info)
+      ! harmonic response: [K - W^2 M, -W C; W C, K - W^2 M] [x; y] = [L; 0], |z| = hypot
+      info = 0
+      if (n <= 1000 .and. any(point_force(1:nl))) then
+         allocate(a(2 * n, 2 * n), ipiv(2 * n))
+         a(1:n, 1:n) = model%sys%k - model%omega**2 * model%sys%m
+         a(n + 1:, n + 1:) = a(1:n, 1:n)
+         a(1:n, n + 1:) = -model%omega * model%c
+         a(n + 1:, 1:n) = model%omega * model%c
+         allocate(zd(2 * n, nl), source=0.0_dp)
+         zd(1:n, :) = loads(:, 1:nl)
+         call dgesv(2 * n, nl, a, 2 * n, ipiv, zd, 2 * n, info)
+         if (info /= 0) zd = 0.0_dp
+      end if
+      nh = n / 2
+      fl = 0.0_dp
+      do j = 1, nl
+         do q = 0, size(self%out_dof)
+            do im = 0, min(1, model%sys%planes - 1)      ! the output, then its mirror
+               harmonic = allocated(a) .and. info == 0 .and. point_force(j)
+               yd = huge(1.0_dp)
+               if (q == 0) then
+                  ys = abs(dot_product(self%sw, zs(self%si + im * nh, j)))
+                  if (harmonic) yd = hypot(dot_product(self%sw, zd(self%si + im * nh, j)), &
+                                           dot_product(self%sw, zd(n + self%si + im * nh, j)))
+               else
+                  i = self%out_dof(q)
+                  ! the same dof in the other plane (the planes are numbered alike)
+                  if (im == 1) i = merge(i + nh, i - nh, i <= nh)
+                  ys = abs(zs(i, j))
+                  if (harmonic) yd = hypot(zd(i, j), zd(n + i, j))
+               end if
+               fl(1 + q) = max(fl(1 + q), min(ys, yd))
+            end do
+         end do
+      end do
+      self%out_floor(1:n_out) = fl
+      self%out_floor(n_out + 1:) = model%omega * fl
+   end subroutine tube_floors
 
    !> Carry `state` to t_target with error control: steps from the ladder, each accepted when
    !> the estimate of its local error in every watched output is within tolerance * (the
@@ -675,8 +954,9 @@ contains
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
       real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp
       logical :: ok, event, clipped
-      integer :: worst, dl
+      integer :: worst, dl, switches
       t0 = self%sub(self%ix(0))%t
+      switches = 0
       do
          r = 0.0_dp
          h = self%h_lev(level)
@@ -698,8 +978,18 @@ contains
          call next_time(t0, h, self%t_comp, clipped, t1, comp)
          self%sub(self%ix(1))%t = t1
          event = .false.
-         if (ok .and. self%cfg%locate_events .and. self%model%n_contacts > 0) then
+         if (ok .and. self%cfg%locate_events .and. self%model%n_contacts &
+             + self%model%n_rings > 0) then
             theta = self%first_event(0, h)
+            if (theta <= min_split .and. self%ev_friction .and. switches < 4) then
+               ! a stick-slip switch at the very start: the regime changes there
+               switches = switches + 1
+               associate (s0 => self%sub(self%ix(0)))
+                  call update_ring_modes(self%model, s0%u, s0%v, s0%a, s0%mode, s0%sigma, &
+                                         s0%anchor, self%ev_contact - self%model%n_contacts)
+               end associate
+               cycle
+            end if
             if (theta * h > min_split * h .and. (1.0_dp - theta) * h > min_split * h) then
                ! end the step at the event: one factorisation for its size
                call self%scratch%prepare(self%model, self%cfg, theta * h, err)
@@ -803,7 +1093,9 @@ contains
       type(error_t), allocatable, intent(out) :: err        !! divergence
       call self%check_divergence(t0, t0 + h, 1, err)
       if (allocated(err)) return
-      if (event) then
+      if (self%model%n_rings > 0) then
+         call self%ring_switches(1, event)
+      else if (event) then
          self%events = self%events + 1
          if (self%model%c_c(self%ev_contact) > 0.0_dp) call self%restart_after_event(1)
       end if
@@ -873,6 +1165,7 @@ contains
       no = 1 + size(self%out_dof)
       ratio = 0.0_dp;  worst = 1
       do i = 1, 2 * no
+         if (i == no + 1 .and. .not. self%watch_rate) cycle
          if (i == 1 .or. i == no + 1) then
             es = 0.0_dp
             do q = 1, size(self%si)

@@ -4,7 +4,7 @@
 !>
 !> A record holds one slot of the sweep (a point's start, gapbeam_sweep), indexed by slot.
 !>
-!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-3', the deck
+!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-4', the deck
 !> hash (int64: CRC-32 of the signature), the signature length (int64) and the signature (the
 !> effective deck text and the shard), then records: begin mark (int32), point index (int32),
 !> payload length m (int32), m reals (pack_point), checksum (int64: CRC-32 of the bytes of
@@ -26,9 +26,10 @@ module gapbeam_checkpoint
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
       unpack_point, crc32
 
-   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-3'
+   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-4'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused
    character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'   ! no evidence: refused
+   character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'   ! no wear: refused
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
 
@@ -103,6 +104,11 @@ contains
       if (head == magic_2) then
          call refuse(ck, 'was written by an older gapbeam, without the evidence and ' &
             // 'certificates of the labels: remove it (its points are then computed again)', err)
+         return
+      end if
+      if (head == magic_3) then
+         call refuse(ck, 'was written by an older gapbeam, without the wear outputs of the ' &
+            // 'supports: remove it (its points are then computed again)', err)
          return
       end if
       if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
@@ -322,8 +328,21 @@ contains
            real(pr%perturbed_label, dp), pr%perturbed_lyapunov, pr%perturbed_lyapunov_error, &
            pr%perturbed_distance, pr%seconds_certify, pr%x, pr%y, pr%f1_open_hz, &
            text_reals(pr%method), text_reals(pr%certificate_reason), &
-           text_reals(pr%accuracy_method)]
+           text_reals(pr%accuracy_method), &
+           real(size(wear(pr%normal_work_rate)), dp), wear(pr%normal_work_rate), &
+           wear(pr%sliding_distance), wear(pr%friction_work_rate), wear(pr%wear_volume_rate)]
    end function pack_point
+
+   !> A wear array of a point, empty when the point has none.
+   pure function wear(x) result(y)
+      real(dp), allocatable, intent(in) :: x(:)   !! per stop
+      real(dp), allocatable :: y(:)
+      if (allocated(x)) then
+         y = x
+      else
+         allocate(y(0))
+      end if
+   end function wear
 
    !> A text (possibly unallocated: '') as its length and character codes.
    pure function text_reals(t) result(x)
@@ -385,7 +404,16 @@ contains
       call take_text(x, k, pr%method, ok);  if (.not. ok) return
       call take_text(x, k, pr%certificate_reason, ok);  if (.not. ok) return
       call take_text(x, k, pr%accuracy_method, ok);  if (.not. ok) return
-      ok = k == size(x)
+      ! the wear block: its size, then four per-stop arrays
+      ok = .false.
+      if (k + 1 > size(x)) return
+      k = k + 1
+      ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns /= size(x)) return
+      pr%normal_work_rate = x(k + 1:k + ns);  k = k + ns
+      pr%sliding_distance = x(k + 1:k + ns);  k = k + ns
+      pr%friction_work_rate = x(k + 1:k + ns);  k = k + ns
+      pr%wear_volume_rate = x(k + 1:k + ns)
+      ok = .true.
    end subroutine unpack_point
 
    !> The text stored after x(k) (see text_reals); k moves past it.

@@ -16,7 +16,8 @@ module gapbeam_input
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
       stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
       stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
-      beam_rho_a
+      beam_rho_a, dof_v, dof_theta_v, point_force_t, stop_shape_words, end_condition_words, &
+      tip_condition_words, law_hertz, stop_is_ring
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
@@ -25,7 +26,8 @@ module gapbeam_input
       start_words
    use gapbeam_deck, only: deck_t
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
-      get_deck_value, set_deck_value, deck_variable_label
+      get_deck_value, set_deck_value, deck_variable_label, parse_deck_variables, &
+      deck_variables_label
    implicit none
    private
    public :: read_deck, known_groups
@@ -35,10 +37,11 @@ module gapbeam_input
    ! --- end of the continuation hook
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
+   character(len=*), parameter :: dof_words = "'w', 'theta', 'v', 'theta_v'"
 
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
       'calibrate stops damping forcing solver initial output diagnostics sweep reduction ' // &
-      'study model_size continuation'
+      'study model_size continuation tip point_forces'
    integer, parameter :: naxis = 4096   !! most values of a sweep axis list
    integer, parameter :: max_axis = 1000000     !! most values of a sweep axis range (n_frequency)
    integer, parameter :: max_points = 1000000   !! most points of a sweep
@@ -144,8 +147,16 @@ contains
       call read_job(srcs, deck%job, err);              if (failed(err, path)) return
       call read_beam(srcs, deck%structure%beam, err);  if (failed(err, path)) return
       call read_root(srcs, deck%structure%root, err);  if (failed(err, path)) return
-      call read_springs(srcs, deck%structure%beam%n_elem, deck%structure%root, &
-                        deck%structure%springs, err);  if (failed(err, path)) return
+      call read_tip(srcs, deck%structure, err);  if (failed(err, path)) return
+      call read_springs(srcs, deck%structure, deck%structure%springs, err)
+      if (failed(err, path)) return
+      if (deck%structure%root%condition == 'pinned' .and. deck%structure%tip%condition == &
+          'free' .and. size(deck%structure%springs) == 0) then
+         call fatal_error(err, path // ": group &root: condition = 'pinned' with a free tip " &
+            // 'and no &springs is a mechanism (rigid rotation about the root): support the ' &
+            // "tip (&tip condition = 'pinned', ...) or add springs")
+         return
+      end if
       call read_masses(srcs, deck%structure%beam%n_elem, deck%structure%masses, err)
       if (failed(err, path)) return
       call check_root_spring(deck%structure, err);  if (failed(err, path)) return
@@ -153,10 +164,14 @@ contains
       call read_calibrate(srcs, deck%structure, deck%calibrate, err);  if (failed(err, path)) return
       call read_stops(srcs, deck%structure, deck%stops, err);  if (failed(err, path)) return
       call read_damping(srcs, deck%damping, err);  if (failed(err, path)) return
-      call read_forcing(srcs, deck%forcing, err);  if (failed(err, path)) return
+      call read_forcing(srcs, deck%structure, deck%forcing, err);  if (failed(err, path)) return
+      call read_point_forces(srcs, deck%structure, deck%forcing%forces, err)
+      if (failed(err, path)) return
       call read_solver(srcs, deck%solver, err);  if (failed(err, path)) return
       call read_initial(srcs, deck%structure, deck%initial, err);  if (failed(err, path)) return
       call read_output(srcs, deck%output, err);  if (failed(err, path)) return
+      ! no Lyapunov exponent by default with ring supports (refused when asked for: below)
+      if (any_ring(deck%stops)) deck%diagnostics%lyapunov_periods = 0
       call read_diagnostics(srcs, deck%diagnostics, err);  if (failed(err, path)) return
       sweep = deck%sweep
       call read_sweep(srcs, deck, sweep, err);  if (failed(err, path)) return
@@ -168,6 +183,18 @@ contains
       if (failed(err, path)) return
       call check_sizes(deck, err);  if (failed(err, path)) return
       call check_starts(deck, err);  if (failed(err, path)) return
+      if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
+          (deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep')) then
+         ! the two trajectories restart from (u, v) every period: a stick anchor is not part
+         ! of it, and the fixed steps they take cannot end at every stick-slip switch
+         call fatal_error(err, path // ': group &diagnostics: lyapunov_periods = ' &
+            // str(deck%diagnostics%lyapunov_periods) // ': the Lyapunov exponent is not ' &
+            // 'available with ring supports (circular clearance or friction: their stick ' &
+            // 'state is not part of the state (u, v) the exponent perturbs); set ' &
+            // 'lyapunov_periods = 0, the default with ring supports (the label then comes from the ' &
+            // 'period detection alone)')
+         return
+      end if
       if (len_trim(deck%job%output) == 0) deck%job%output = 'results/' // basename_stem(path)
       if (deck%job%analysis == 'calibrate' .and. deck%calibrate%target_f1_hz <= 0.0_dp) then
          call fatal_error(err, path // ": group &calibrate: target_f1_hz = " &
@@ -189,6 +216,17 @@ contains
          return
       end if
    end subroutine read_deck
+
+   !> Whether any stop is a ring support (circular clearance or friction).
+   pure logical function any_ring(stops)
+      type(stop_t), intent(in), allocatable :: stops(:)
+      integer :: k
+      any_ring = .false.
+      if (.not. allocated(stops)) return
+      do k = 1, size(stops)
+         if (stop_is_ring(stops(k))) any_ring = .true.
+      end do
+   end function any_ring
 
    !> True when `err` is set; its message then starts with the deck path.
    logical function failed(err, path)
@@ -243,7 +281,8 @@ contains
       lyap = deck%diagnostics%lyapunov_max_periods
       if (lyap == 0) lyap = 20_int64 * deck%diagnostics%lyapunov_periods
       per_point = 2_int64 * deck%solver%record_periods + lyap &
-                  + 4_int64 * (deck%structure%beam%n_elem + 1) + 8_int64 * size(deck%stops)
+                  + 4_int64 * deck%structure%beam%planes * (deck%structure%beam%n_elem + 1) &
+                  + 16_int64 * size(deck%stops)
       points = int(size(deck%sweep%x), int64) * size(deck%sweep%y) * n_starts(deck%diagnostics)
       if (points * per_point > max_values) then
          call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' runs (points x ' &
@@ -687,25 +726,53 @@ contains
       end do
    end subroutine check_gaps
 
-   subroutine require_node(group, var, i, node, dof, n_elem, root, err)
+   !> The node exists and its dof is free: not fixed by the root or tip condition, and a
+   !> second-plane dof ('v', 'theta_v') only with &beam planes = 2.
+   subroutine require_node(group, var, i, node, dof, st, err)
       character(len=*), intent(in) :: group, var
-      integer, intent(in) :: i, node, dof, n_elem
-      type(root_t), intent(in) :: root
+      integer, intent(in) :: i, node, dof
+      type(structure_t), intent(in) :: st
       type(error_t), allocatable, intent(inout) :: err
       character(len=:), allocatable :: v
+      integer :: n_elem
+      logical :: rot
       if (allocated(err)) return
+      n_elem = st%beam%n_elem
       v = var // '(' // str(i) // ')'
       call require_int(group, v, node, 1, n_elem + 1, err, 'the mesh has ' // str(n_elem) &
          // ' elements, nodes 1..' // str(n_elem + 1) // ' from the root')
       if (allocated(err)) return
-      if (node == 1 .and. dof == dof_w) then
-         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'w': the " &
-            // 'root translation is fixed')
-      else if (node == 1 .and. dof == dof_theta .and. root%condition == 'clamped') then
-         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof 'theta': " &
-            // "the root is clamped (use &root condition='spring')")
+      rot = dof == dof_theta .or. dof == dof_theta_v
+      if ((dof == dof_v .or. dof == dof_theta_v) .and. st%beam%planes < 2) then
+         call fatal_error(err, 'group &' // group // ': ' // v // " with dof '" &
+            // trim(dof_word(dof)) // "': the second plane needs &beam planes = 2")
+      else if (node == 1 .and. .not. rot) then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof '" &
+            // trim(dof_word(dof)) // "': the root translation is fixed")
+      else if (node == 1 .and. rot .and. st%root%condition == 'clamped') then
+         call fatal_error(err, 'group &' // group // ': ' // v // " = 1 with dof '" &
+            // trim(dof_word(dof)) // "': the root is clamped (use &root condition='spring')")
+      else if (node == n_elem + 1 .and. .not. rot .and. st%tip%condition /= 'free') then
+         call fatal_error(err, 'group &' // group // ': ' // v // ' = ' // str(node) &
+            // " with dof '" // trim(dof_word(dof)) // "': the tip translation is fixed " &
+            // "(&tip condition = '" // trim(st%tip%condition) // "')")
+      else if (node == n_elem + 1 .and. rot .and. st%tip%condition == 'clamped') then
+         call fatal_error(err, 'group &' // group // ': ' // v // ' = ' // str(node) &
+            // " with dof '" // trim(dof_word(dof)) // "': the tip is clamped")
       end if
    end subroutine require_node
+
+   !> The deck word of a dof code.
+   pure function dof_word(code) result(w)
+      integer, intent(in) :: code
+      character(len=8) :: w
+      select case (code)
+      case (dof_theta);    w = 'theta'
+      case (dof_v);        w = 'v'
+      case (dof_theta_v);  w = 'theta_v'
+      case default;        w = 'w'
+      end select
+   end function dof_word
 
    ! ---------------------------------------------------------------- group readers
 
@@ -737,17 +804,20 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(dp) :: length, youngs_modulus, density, width, thickness, area, second_moment, &
          fibre_distance
-      integer :: n_elem
+      integer :: n_elem, planes
+      real(dp) :: added_mass
       character(len=16) :: mass_matrix, rotary_inertia
       type(beam_t) :: trial
       namelist /beam/ length, n_elem, youngs_modulus, density, width, thickness, area, &
-         second_moment, fibre_distance, mass_matrix, rotary_inertia
+         second_moment, fibre_distance, mass_matrix, rotary_inertia, planes, added_mass
+      planes = cfg%planes;  added_mass = cfg%added_mass
       length = cfg%length;  n_elem = cfg%n_elem;  youngs_modulus = cfg%youngs_modulus
       density = cfg%density;  width = cfg%width;  thickness = cfg%thickness
       area = cfg%area;  second_moment = cfg%second_moment;  fibre_distance = cfg%fibre_distance
       mass_matrix = cfg%mass_matrix;  rotary_inertia = cfg%rotary_inertia
       call apply_group(srcs, 'beam', 'length n_elem youngs_modulus density width thickness ' &
-         // 'area second_moment fibre_distance mass_matrix:16 rotary_inertia:16', reader, err)
+         // 'area second_moment fibre_distance mass_matrix:16 rotary_inertia:16 planes ' &
+         // 'added_mass', reader, err)
       if (allocated(err)) return
       call require_positive('beam', 'length', length, err)
       call require_int('beam', 'n_elem', n_elem, 1, 10000, err)
@@ -766,11 +836,14 @@ contains
       end if
       call require_word('beam', 'mass_matrix', mass_matrix, "'lumped', 'consistent'", err)
       call require_word('beam', 'rotary_inertia', rotary_inertia, rotary_inertia_words, err)
+      call require_int('beam', 'planes', planes, 1, 2, err, '1: (w, theta) per node; 2: also ' &
+         // '(v, theta_v)')
+      call require_nonnegative('beam', 'added_mass', added_mass, err)
       if (allocated(err)) return
       trial = beam_t(length=length, n_elem=n_elem, youngs_modulus=youngs_modulus, &
          density=density, width=width, thickness=thickness, area=area, &
          second_moment=second_moment, fibre_distance=fibre_distance, mass_matrix=mass_matrix, &
-         rotary_inertia=rotary_inertia)
+         rotary_inertia=rotary_inertia, planes=planes, added_mass=added_mass)
       call check_beam_scales(trial, err)
       if (allocated(err)) return
       cfg = trial
@@ -799,6 +872,22 @@ contains
       le = b%length / real(b%n_elem, dp)
       k_el = ei / le / le / le
       w2_el = ei / rho_a / le / le / le / le
+      ! the strain fibre (general section) and the added mass enter the strain row and the
+      ! mass: their scales too (a huge fibre distance gave an infinite root strain at the first
+      ! step, an error of the step control far from the deck variable)
+      if (b%width <= 0.0_dp .and. .not. usable(b%fibre_distance / le / le)) then
+         call fatal_error(err, 'group &beam: fibre_distance = ' // str(b%fibre_distance) &
+            // ' with element length ' // str(le) // ' m gives a strain per unit rotation ' &
+            // 'gradient c/le^2 = ' // str(b%fibre_distance / le / le) // ' 1/m: must be ' &
+            // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
+         return
+      end if
+      if (b%added_mass > 0.0_dp .and. .not. usable((rho_a + b%added_mass) * b%length)) then
+         call fatal_error(err, 'group &beam: added_mass = ' // str(b%added_mass) &
+            // ' kg/m gives a beam mass of ' // str((rho_a + b%added_mass) * b%length) &
+            // ' kg: must be at most ' // str(sqrt(huge(1.0_dp))))
+         return
+      end if
       if (usable(ei) .and. usable(rho_a) .and. usable(rho_a * b%length) .and. usable(k_el) &
           .and. usable(w2_el)) return
       if (b%width > 0.0_dp) then
@@ -830,7 +919,7 @@ contains
       condition = cfg%condition;  k_theta = cfg%k_theta
       call apply_group(srcs, 'root', 'condition:16 k_theta', reader, err)
       if (allocated(err)) return
-      call require_word('root', 'condition', condition, "'clamped', 'spring'", err)
+      call require_word('root', 'condition', condition, end_condition_words, err)
       if (condition == 'spring') call require_positive('root', 'k_theta', k_theta, err)
       ! the beam's scale rule (check_beam_scales): a larger spring overflows the stiffness's
       ! norms and eigen-solves later, far from the deck variable
@@ -850,10 +939,39 @@ contains
       end subroutine reader
    end subroutine read_root
 
-   subroutine read_springs(srcs, n_elem, root, list, err)
+   !> &tip: the support of the last node ('free' unless the deck says otherwise).
+   subroutine read_tip(srcs, st, err)
       type(source_t), intent(in) :: srcs(:)
-      integer, intent(in) :: n_elem
-      type(root_t), intent(in) :: root
+      type(structure_t), intent(inout) :: st
+      type(error_t), allocatable, intent(out) :: err
+      character(len=16) :: condition
+      real(dp) :: k_theta
+      namelist / tip / condition, k_theta
+      condition = st%tip%condition;  k_theta = st%tip%k_theta
+      call apply_group(srcs, 'tip', 'condition:16 k_theta', reader, err)
+      if (allocated(err)) return
+      call require_word('tip', 'condition', condition, tip_condition_words, err)
+      if (condition == 'spring') call require_positive('tip', 'k_theta', k_theta, err)
+      if (allocated(err)) return
+      if (condition == 'clamped' .and. st%beam%n_elem < 2 .and. st%root%condition == &
+          'clamped') then
+         call fatal_error(err, "group &tip: condition = 'clamped' with a clamped root and " &
+            // 'n_elem = 1 leaves no free dof')
+         return
+      end if
+      st%tip = root_t(condition=condition, k_theta=k_theta)
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=tip, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_tip
+
+   subroutine read_springs(srcs, st, list, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
       type(spring_t), allocatable, intent(out) :: list(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: node(nmax), given(nmax), n, i, code
@@ -870,9 +988,9 @@ contains
       if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
-         call require_word('springs', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         call require_word('springs', 'dof(' // str(i) // ')', dof(i), dof_words, err)
          code = dof_code(dof(i))
-         call require_node('springs', 'node', i, node(i), code, n_elem, root, err)
+         call require_node('springs', 'node', i, node(i), code, st, err)
          call require_positive('springs', 'stiffness(' // str(i) // ')', stiffness(i), err)
          if (allocated(err)) return
          list(i) = spring_t(node=node(i), dof=code, stiffness=stiffness(i))
@@ -988,13 +1106,20 @@ contains
       character(len=8) :: dof(nmax)
       character(len=16) :: side(nmax), law(nmax)
       real(dp), dimension(nmax) :: gap, stiffness, damping, exponent, rule_factor, &
-         rule_f1_ratio, rule_f1_hz
+         rule_f1_ratio, rule_f1_hz, offset_w, offset_v, friction, tangential_stiffness, &
+         wear_coefficient
+      character(len=16) :: shape(nmax)
       character(len=:), allocatable :: ix
       type(stop_t) :: d
       character(len=*), parameter :: stop_vars = 'node() dof():8 side():16 law():16 gap() ' &
-         // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz()'
+         // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz() ' &
+         // 'shape():16 offset_w() offset_v() friction() tangential_stiffness() ' &
+         // 'wear_coefficient()'
       namelist /stops/ node, dof, side, law, gap, stiffness, damping, exponent, rule_factor, &
-         rule_f1_ratio, rule_f1_hz
+         rule_f1_ratio, rule_f1_hz, shape, offset_w, offset_v, friction, tangential_stiffness, &
+         wear_coefficient
+      shape = d%shape;  offset_w = d%offset_w;  offset_v = d%offset_v;  friction = d%friction
+      tangential_stiffness = d%tangential_stiffness;  wear_coefficient = d%wear_coefficient
       node = -1;  dof = 'w';  side = d%side;  law = d%law;  gap = d%gap
       stiffness = d%stiffness;  damping = d%damping;  exponent = d%exponent
       rule_factor = d%rule_factor;  rule_f1_ratio = d%rule_f1_ratio;  rule_f1_hz = d%rule_f1_hz
@@ -1005,12 +1130,18 @@ contains
       call apply_group(srcs, 'stops', stop_vars, reader, err)
       call list_entries('stops', 'node', given, node, n, err)
       if (allocated(err)) return
+      call no_extra_entries(n, err)
+      if (allocated(err)) return
       allocate(list(n))
       do i = 1, n
          ix = '(' // str(i) // ')'
-         call require_word('stops', 'dof' // ix, dof(i), "'w', 'theta'", err)
+         call require_word('stops', 'dof' // ix, dof(i), dof_words, err)
          code = dof_code(dof(i))
-         call require_node('stops', 'node', i, node(i), code, st%beam%n_elem, st%root, err)
+         call require_node('stops', 'node', i, node(i), code, st, err)
+         call require_word('stops', 'shape' // ix, shape(i), stop_shape_words, err)
+         call check_support(st, i, node(i), code, side(i), shape(i), gap(i), offset_w(i), &
+            offset_v(i), friction(i), tangential_stiffness(i), wear_coefficient(i), &
+            rule_factor(i), law(i), err)
          call require_word('stops', 'side' // ix, side(i), stop_side_words, err)
          call require_word('stops', 'law' // ix, law(i), stop_law_words, err)
          call require_nonnegative('stops', 'gap' // ix, gap(i), err)
@@ -1042,9 +1173,83 @@ contains
          if (allocated(err)) return
          list(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
             stiffness=stiffness(i), damping=damping(i), exponent=exponent(i), &
-            rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i))
+            rule_factor=rule_factor(i), rule_f1_ratio=rule_f1_ratio(i), rule_f1_hz=rule_f1_hz(i), &
+            shape=shape(i), offset_w=offset_w(i), offset_v=offset_v(i), friction=friction(i), &
+            tangential_stiffness=tangential_stiffness(i), wear_coefficient=wear_coefficient(i))
       end do
    contains
+      !> An entry of a per-stop list beyond the stops is refused: it would be ignored silently
+      !> ('gap = 2e-4, 2e-4, -1' with two nodes). Checked per source (the deck file, each
+      !> override): within one, against the node entries it gives, or the n stops of the whole
+      !> deck when it gives none (an override that shortens node leaves the file's longer lists
+      !> as they were: their extra entries are not an error). Read again over markers.
+      subroutine no_extra_entries(n, err)
+         integer, intent(in) :: n
+         type(error_t), allocatable, intent(inout) :: err
+         real(dp), parameter :: mark = -7.77e77_dp
+         character(len=*), parameter :: cmark = '#'
+         character(len=20) :: names(16)
+         integer :: j, k, lim, n1(nmax)
+         logical :: extra(16)
+         real(dp), dimension(nmax) :: s_gap, s_stiffness, s_damping, s_exponent, s_rf, s_rr, &
+            s_rh, s_ow, s_ov, s_fr, s_kt, s_wc
+         character(len=16) :: s_side(nmax), s_law(nmax), s_shape(nmax)
+         character(len=8) :: s_dof(nmax)
+         integer :: s_node(nmax)
+         s_gap = gap;  s_stiffness = stiffness;  s_damping = damping;  s_exponent = exponent
+         s_rf = rule_factor;  s_rr = rule_f1_ratio;  s_rh = rule_f1_hz;  s_ow = offset_w
+         s_ov = offset_v;  s_fr = friction;  s_kt = tangential_stiffness;  s_wc = wear_coefficient
+         s_side = side;  s_law = law;  s_shape = shape;  s_dof = dof;  s_node = node
+         names = [character(len=20) :: 'gap', 'stiffness', 'damping', 'exponent', &
+            'rule_factor', 'rule_f1_ratio', 'rule_f1_hz', 'offset_w', 'offset_v', 'friction', &
+            'tangential_stiffness', 'wear_coefficient', 'side', 'law', 'shape', 'dof']
+         do k = 1, size(srcs)
+            ! the node entries this source gives (two markers tell them)
+            node = -1
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            n1 = node;  node = -2
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            lim = n
+            do j = nmax, 1, -1
+               if (n1(j) /= -1 .or. node(j) /= -2) then
+                  lim = j
+                  exit
+               end if
+            end do
+            if (lim >= nmax) cycle
+            gap = mark;  stiffness = mark;  damping = mark;  exponent = mark;  rule_factor = mark
+            rule_f1_ratio = mark;  rule_f1_hz = mark;  offset_w = mark;  offset_v = mark
+            friction = mark;  tangential_stiffness = mark;  wear_coefficient = mark
+            side = cmark;  law = cmark;  shape = cmark;  dof = cmark
+            call apply_group(srcs(k:k), 'stops', stop_vars, reader, err)
+            if (allocated(err)) exit
+            extra = [any(gap(lim + 1:) /= mark), any(stiffness(lim + 1:) /= mark), &
+               any(damping(lim + 1:) /= mark), any(exponent(lim + 1:) /= mark), &
+               any(rule_factor(lim + 1:) /= mark), any(rule_f1_ratio(lim + 1:) /= mark), &
+               any(rule_f1_hz(lim + 1:) /= mark), any(offset_w(lim + 1:) /= mark), &
+               any(offset_v(lim + 1:) /= mark), any(friction(lim + 1:) /= mark), &
+               any(tangential_stiffness(lim + 1:) /= mark), &
+               any(wear_coefficient(lim + 1:) /= mark), any(side(lim + 1:) /= cmark), &
+               any(law(lim + 1:) /= cmark), any(shape(lim + 1:) /= cmark), &
+               any(dof(lim + 1:) /= cmark)]
+            do j = 1, size(names)
+               if (extra(j)) then
+                  call fatal_error(err, 'group &stops: ' // trim(names(j)) // ' has an entry ' &
+                     // 'beyond the ' // str(lim) // ' stop(s) that node lists (one value per ' &
+                     // 'node entry)')
+                  exit
+               end if
+            end do
+            if (allocated(err)) exit
+         end do
+         gap = s_gap;  stiffness = s_stiffness;  damping = s_damping;  exponent = s_exponent
+         rule_factor = s_rf;  rule_f1_ratio = s_rr;  rule_f1_hz = s_rh;  offset_w = s_ow
+         offset_v = s_ov;  friction = s_fr;  tangential_stiffness = s_kt;  wear_coefficient = s_wc
+         side = s_side;  law = s_law;  shape = s_shape;  dof = s_dof;  node = s_node
+      end subroutine no_extra_entries
+
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
          integer, intent(out) :: ios
@@ -1052,6 +1257,82 @@ contains
          read(lines, nml=stops, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_stops
+
+   !> The support variables of stop `ix` ('(i)'): a circular clearance needs two planes, a
+   !> positive gap, a translational node (both planes free there), no side or dof choice and
+   !> no stiffness rule; friction needs two planes (the sliding direction) and a translational
+   !> dof; the hole offset belongs to a circular clearance only.
+   subroutine check_support(st, i, node, code, side, shape, gap, offset_w, offset_v, &
+                            friction, k_t, wear, rule_factor, law, err)
+      type(structure_t), intent(in) :: st
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: side, shape, law
+      integer, intent(in) :: node, code
+      real(dp), intent(in) :: gap, offset_w, offset_v, friction, k_t, wear, rule_factor
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: ix
+      if (allocated(err)) return
+      ix = '(' // str(i) // ')'
+      call require_range('stops', 'friction' // ix, friction, 0.0_dp, 10.0_dp, err)
+      ! at most sqrt(huge): the stick spring's energy and the wear volume square or multiply them
+      call require_range('stops', 'tangential_stiffness' // ix, k_t, 0.0_dp, &
+                         sqrt(huge(1.0_dp)), err)
+      call require_range('stops', 'wear_coefficient' // ix, wear, 0.0_dp, sqrt(huge(1.0_dp)), &
+                         err)
+      call require_range('stops', 'offset_w' // ix, offset_w, -1.0e3_dp, 1.0e3_dp, err)
+      call require_range('stops', 'offset_v' // ix, offset_v, -1.0e3_dp, 1.0e3_dp, err)
+      if (allocated(err)) return
+      if (shape == 'circular') then
+         if (st%beam%planes < 2) then
+            call fatal_error(err, 'group &stops: shape' // ix // " = 'circular' needs &beam " &
+               // 'planes = 2 (a circular clearance acts in both transverse planes)')
+         else if (.not. (gap > 0.0_dp)) then
+            call fatal_error(err, 'group &stops: gap' // ix // ' = ' // str(gap) // ": a " &
+               // "circular clearance (shape = 'circular') needs a radial gap > 0")
+         else if (code /= dof_w) then
+            call fatal_error(err, 'group &stops: dof' // ix // " = '" // trim(dof_word(code)) &
+               // "': a circular clearance acts on the node's w and v; leave dof out")
+         else if (side /= 'positive') then
+            call fatal_error(err, 'group &stops: side' // ix // " = '" // trim(side) // "': " &
+               // 'a circular clearance has no side; leave side out')
+         else if (rule_factor > 0.0_dp) then
+            call fatal_error(err, 'group &stops: rule_factor' // ix // ' = ' // str(rule_factor) &
+               // ': the stiffness rule is for flat stops; give stiffness for a circular ' &
+               // 'clearance')
+         else
+            call require_node('stops', 'node', i, node, dof_v, st, err)
+            if (allocated(err)) err%message = err%message // ' (stop' // ix // ' is circular)'
+         end if
+      else if (offset_w /= 0.0_dp .or. offset_v /= 0.0_dp) then
+         call fatal_error(err, 'group &stops: offset_w' // ix // ' = ' // str(offset_w) &
+            // ', offset_v' // ix // ' = ' // str(offset_v) // ": the hole centre offset " &
+            // "belongs to a circular clearance (shape = 'circular')")
+      end if
+      if (allocated(err)) return
+      if (friction > 0.0_dp) then
+         if (st%beam%planes < 2) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // ': friction needs &beam planes = 2 (a planar model has no sliding direction)')
+         else if (code == dof_theta .or. code == dof_theta_v) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // " on a rotation dof: friction acts on the translations ('w' or 'v')")
+         else if (law_code(law) == law_hertz .and. .not. (k_t > 0.0_dp)) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // " with law = 'hertz' needs tangential_stiffness" // ix // ' > 0 [N/m] (the ' &
+               // 'stick stiffness; with the bilinear law it defaults to the normal stiffness)')
+         else if (rule_factor > 0.0_dp) then
+            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
+               // ' with rule_factor' // ix // ': give stiffness (and tangential_stiffness) ' &
+               // 'for a stop with friction')
+         else
+            ! the sliding direction: the node's other translation
+            if (code == dof_w) call require_node('stops', 'node', i, node, dof_v, st, err)
+            if (code == dof_v) call require_node('stops', 'node', i, node, dof_w, st, err)
+            if (allocated(err)) err%message = err%message // ' (stop' // ix &
+               // ' has friction: it slides along the other plane)'
+         end if
+      end if
+   end subroutine check_support
 
    subroutine read_damping(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
@@ -1118,19 +1399,37 @@ contains
       end subroutine reader
    end subroutine read_damping
 
-   subroutine read_forcing(srcs, cfg, err)
+   subroutine read_forcing(srcs, st, cfg, err)
       type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
       type(forcing_t), intent(inout) :: cfg
       type(error_t), allocatable, intent(out) :: err
-      real(dp) :: frequency_hz, amplitude_pp
-      namelist /forcing/ frequency_hz, amplitude_pp
+      real(dp) :: frequency_hz, amplitude_pp, direction_deg, phase_v_deg
+      namelist /forcing/ frequency_hz, amplitude_pp, direction_deg, phase_v_deg
       frequency_hz = cfg%frequency_hz;  amplitude_pp = cfg%amplitude_pp
-      call apply_group(srcs, 'forcing', 'frequency_hz amplitude_pp', reader, err)
+      direction_deg = cfg%direction_deg;  phase_v_deg = cfg%phase_v_deg
+      call apply_group(srcs, 'forcing', 'frequency_hz amplitude_pp direction_deg phase_v_deg', &
+         reader, err)
       if (allocated(err)) return
       call require_positive('forcing', 'frequency_hz', frequency_hz, err)
       call require_nonnegative('forcing', 'amplitude_pp', amplitude_pp, err)
+      ! a base motion beyond sqrt(huge) m makes every point diverge (a sweep whose axes are
+      ! other variables would fail each point instead of refusing the deck); a sweep's own
+      ! amplitude axis values are checked per point (a failed point, marked)
+      if (.not. allocated(err) .and. amplitude_pp > sqrt(huge(1.0_dp))) call fatal_error(err, &
+         'group &forcing: amplitude_pp = ' // str(amplitude_pp) // ' m: must be at most ' &
+         // str(sqrt(huge(1.0_dp))) // ' m')
+      call require_range('forcing', 'direction_deg', direction_deg, -360.0_dp, 360.0_dp, err)
+      call require_range('forcing', 'phase_v_deg', phase_v_deg, -360.0_dp, 360.0_dp, err)
       if (allocated(err)) return
-      cfg = forcing_t(frequency_hz=frequency_hz, amplitude_pp=amplitude_pp)
+      if ((direction_deg /= 0.0_dp .or. phase_v_deg /= 0.0_dp) .and. st%beam%planes < 2) then
+         call fatal_error(err, 'group &forcing: direction_deg = ' // str(direction_deg) &
+            // ', phase_v_deg = ' // str(phase_v_deg) // ': a base motion out of the w plane ' &
+            // 'needs &beam planes = 2')
+         return
+      end if
+      cfg = forcing_t(frequency_hz=frequency_hz, amplitude_pp=amplitude_pp, &
+         direction_deg=direction_deg, phase_v_deg=phase_v_deg)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -1139,6 +1438,48 @@ contains
          read(lines, nml=forcing, iostat=ios, iomsg=msg)
       end subroutine reader
    end subroutine read_forcing
+
+   !> &point_forces: harmonic forces F sin(Omega t + phase) at node dofs, at the forcing
+   !> frequency.
+   subroutine read_point_forces(srcs, st, list, err)
+      type(source_t), intent(in) :: srcs(:)
+      type(structure_t), intent(in) :: st
+      type(point_force_t), allocatable, intent(out) :: list(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: node(nmax), given(nmax), n, i, code
+      character(len=8) :: dof(nmax)
+      real(dp) :: amplitude(nmax), phase_deg(nmax)
+      character(len=*), parameter :: vars = 'node() dof():8 amplitude() phase_deg()'
+      namelist /point_forces/ node, dof, amplitude, phase_deg
+      node = -1;  dof = 'w';  amplitude = 0.0_dp;  phase_deg = 0.0_dp
+      call apply_group(srcs, 'point_forces', vars, reader, err)
+      if (allocated(err)) return
+      given = node
+      node = -2
+      call apply_group(srcs, 'point_forces', vars, reader, err)
+      call list_entries('point_forces', 'node', given, node, n, err)
+      if (allocated(err)) return
+      allocate(list(n))
+      do i = 1, n
+         call require_word('point_forces', 'dof(' // str(i) // ')', dof(i), dof_words, err)
+         code = dof_code(dof(i))
+         call require_node('point_forces', 'node', i, node(i), code, st, err)
+         call require_range('point_forces', 'amplitude(' // str(i) // ')', amplitude(i), &
+            -1.0e12_dp, 1.0e12_dp, err)
+         call require_range('point_forces', 'phase_deg(' // str(i) // ')', phase_deg(i), &
+            -360.0_dp, 360.0_dp, err)
+         if (allocated(err)) return
+         list(i) = point_force_t(node=node(i), dof=code, amplitude=amplitude(i), &
+                                 phase_deg=phase_deg(i))
+      end do
+   contains
+      subroutine reader(lines, ios, msg)
+         character(len=*), intent(in) :: lines(:)
+         integer, intent(out) :: ios
+         character(len=*), intent(inout) :: msg
+         read(lines, nml=point_forces, iostat=ios, iomsg=msg)
+      end subroutine reader
+   end subroutine read_point_forces
 
    subroutine read_solver(srcs, cfg, err)
       type(source_t), intent(in) :: srcs(:)
@@ -1279,9 +1620,9 @@ contains
       call require_word('initial', 'kind', kind, initial_state_words, err)
       code = 0
       do i = 1, n
-         call require_word('initial', 'dof(' // str(i) // ')', dof(i), "'w', 'theta'", err)
+         call require_word('initial', 'dof(' // str(i) // ')', dof(i), dof_words, err)
          code(i) = dof_code(dof(i))
-         call require_node('initial', 'node', i, node(i), code(i), st%beam%n_elem, st%root, err)
+         call require_node('initial', 'node', i, node(i), code(i), st, err)
       end do
       if (kind == 'given' .and. n == 0 .and. .not. allocated(err)) call fatal_error(err, &
          "group &initial: kind = 'given' needs node, dof, displacement and velocity lists")
@@ -1305,9 +1646,11 @@ contains
       real(dp) :: poincare_phase_deg, filter_cutoff_hz
       integer :: samples_per_period, history_periods, filter_order, filter_samples_per_period, &
          shape_points
-      logical :: write_text, state_history
+      logical :: write_text, state_history, energy_balance
       namelist /output/ poincare_phase_deg, samples_per_period, history_periods, write_text, &
-         filter_cutoff_hz, filter_order, filter_samples_per_period, state_history, shape_points
+         filter_cutoff_hz, filter_order, filter_samples_per_period, state_history, shape_points, &
+         energy_balance
+      energy_balance = cfg%energy_balance
       poincare_phase_deg = cfg%poincare_phase_deg;  samples_per_period = cfg%samples_per_period
       history_periods = cfg%history_periods;  write_text = cfg%write_text
       filter_cutoff_hz = cfg%filter_cutoff_hz;  filter_order = cfg%filter_order
@@ -1315,7 +1658,7 @@ contains
       state_history = cfg%state_history;  shape_points = cfg%shape_points
       call apply_group(srcs, 'output', 'poincare_phase_deg samples_per_period history_periods ' &
          // 'write_text filter_cutoff_hz filter_order filter_samples_per_period state_history ' &
-         // 'shape_points', reader, err)
+         // 'shape_points energy_balance', reader, err)
       if (allocated(err)) return
       call require_range('output', 'poincare_phase_deg', poincare_phase_deg, 0.0_dp, &
          360.0_dp, err)
@@ -1341,7 +1684,7 @@ contains
          samples_per_period=samples_per_period, history_periods=history_periods, &
          write_text=write_text, filter_cutoff_hz=filter_cutoff_hz, filter_order=filter_order, &
          filter_samples_per_period=filter_samples_per_period, state_history=state_history, &
-         shape_points=shape_points)
+         shape_points=shape_points, energy_balance=energy_balance)
    contains
       subroutine reader(lines, ios, msg)
          character(len=*), intent(in) :: lines(:)
@@ -1466,10 +1809,10 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=*), parameter :: vars = 'mode:16 direction:16 axis:16 frequency_hz() ' &
          // 'amplitude_pp() frequency_start_hz frequency_end_hz n_frequency amplitude_start_pp ' &
-         // 'amplitude_end_pp n_amplitude progress chunk checkpoint x_variable:64 ' &
-         // 'y_variable:64 x_values() y_values() x_start x_end n_x y_start y_end n_y'
+         // 'amplitude_end_pp n_amplitude progress chunk checkpoint x_variable:160 ' &
+         // 'y_variable:160 x_values() y_values() x_start x_end n_x y_start y_end n_y'
       character(len=16) :: mode, direction, axis
-      character(len=64) :: x_variable, y_variable
+      character(len=160) :: x_variable, y_variable
       real(dp), allocatable :: frequency_hz(:), amplitude_pp(:), f_given(:), a_given(:), &
          x_values(:), y_values(:), x_given(:), y_given(:), fa(:), aa(:)
       real(dp) :: frequency_start_hz, frequency_end_hz, amplitude_start_pp, amplitude_end_pp, &
@@ -1477,6 +1820,7 @@ contains
       integer :: n_frequency, n_amplitude, chunk, nf, na, n_x, n_y, nx, ny
       logical :: progress, checkpoint
       type(deck_variable_t) :: var(2)
+      type(deck_variable_t), allocatable :: xvars(:), yvars(:)
       namelist /sweep/ mode, direction, axis, frequency_hz, amplitude_pp, frequency_start_hz, &
          frequency_end_hz, n_frequency, amplitude_start_pp, amplitude_end_pp, n_amplitude, &
          progress, chunk, checkpoint, x_variable, y_variable, x_values, y_values, x_start, &
@@ -1508,14 +1852,23 @@ contains
       call require_int('sweep', 'n_x', n_x, 0, max_axis, err)
       call require_int('sweep', 'n_y', n_y, 0, max_axis, err)
       if (allocated(err)) return
-      call sweep_variable('x_variable', x_variable, deck, var(1), err)
-      call sweep_variable('y_variable', y_variable, deck, var(2), err)
+      call sweep_variable('x_variable', x_variable, deck, xvars, err)
+      call sweep_variable('y_variable', y_variable, deck, yvars, err)
       if (allocated(err)) return
-      if (deck_variable_label(var(1)) == deck_variable_label(var(2))) then
-         call fatal_error(err, "group &sweep: x_variable and y_variable both name '" &
-            // deck_variable_label(var(1)) // "': the two axes need two variables")
-         return
-      end if
+      ! an axis of several variables is led by its first (forcing variables stand alone)
+      var(1) = xvars(1);  var(2) = yvars(1)
+      block
+         integer :: i, j
+         do i = 1, size(xvars)
+            do j = 1, size(yvars)
+               if (deck_variable_label(xvars(i)) == deck_variable_label(yvars(j))) then
+                  call fatal_error(err, "group &sweep: x_variable and y_variable both name '" &
+                     // deck_variable_label(xvars(i)) // "': the two axes need two variables")
+                  return
+               end if
+            end do
+         end do
+      end block
       call make_axis('frequency_hz', 'frequency_start_hz', 'frequency_end_hz', 'n_frequency', &
          frequency_hz(1:nf), frequency_start_hz, frequency_end_hz, n_frequency, &
          deck%forcing%frequency_hz, .true., fa, err)
@@ -1534,9 +1887,9 @@ contains
          'group &sweep: amplitude_pp (or n_amplitude) is given but ' &
          // "neither x_variable nor y_variable is '&forcing amplitude_pp'")
       if (allocated(err)) return
-      call variable_axis(1, var(1), x_values(1:nx), x_start, x_end, n_x, fa, aa, deck, cfg%x, err)
+      call variable_axis(1, xvars, x_values(1:nx), x_start, x_end, n_x, fa, aa, deck, cfg%x, err)
       if (allocated(err)) return
-      call variable_axis(2, var(2), y_values(1:ny), y_start, y_end, n_y, fa, aa, deck, cfg%y, err)
+      call variable_axis(2, yvars, y_values(1:ny), y_start, y_end, n_y, fa, aa, deck, cfg%y, err)
       if (allocated(err)) return
       if (int(size(cfg%x), int64) * size(cfg%y) > max_points) then
          call fatal_error(err, 'group &sweep: ' // str(size(cfg%x)) // ' values of x (' &
@@ -1555,7 +1908,7 @@ contains
          [deck%forcing%frequency_hz]
       if (all(label_of(var) /= '&forcing amplitude_pp')) cfg%amplitude_pp = &
          [deck%forcing%amplitude_pp]
-      cfg%x_variable = deck_variable_label(var(1));  cfg%y_variable = deck_variable_label(var(2))
+      cfg%x_variable = deck_variables_label(xvars);  cfg%y_variable = deck_variables_label(yvars)
       cfg%mode = mode;  cfg%direction = direction;  cfg%axis = axis
       cfg%progress = progress;  cfg%chunk = chunk;  cfg%checkpoint = checkpoint
    contains
@@ -1592,24 +1945,27 @@ contains
    end function label_of
 
    !> Parse and check one axis variable of &sweep.
-   subroutine sweep_variable(name, text, deck, var, err)
+   subroutine sweep_variable(name, text, deck, vars, err)
       character(len=*), intent(in) :: name               !! 'x_variable' or 'y_variable'
-      character(len=*), intent(in) :: text               !! its value
+      character(len=*), intent(in) :: text               !! its value: names, comma separated
       type(deck_t), intent(in) :: deck                   !! deck read so far
-      type(deck_variable_t), intent(out) :: var          !! parsed
+      type(deck_variable_t), allocatable, intent(out) :: vars(:)   !! parsed
       type(error_t), allocatable, intent(inout) :: err   !! unknown or absent variable
+      integer :: j
       if (allocated(err)) return
-      call parse_deck_variable(text, var, err)
-      if (.not. allocated(err)) call check_deck_variable(deck, var, err)
+      call parse_deck_variables(text, vars, err)
+      do j = 1, size(vars)
+         if (.not. allocated(err)) call check_deck_variable(deck, vars(j), err)
+      end do
       if (allocated(err)) err%message = "group &sweep: " // name // " = '" // trim(text) &
          // "': " // err%message
    end subroutine sweep_variable
 
    !> Values of axis j: the forcing axes from their own lists, another variable from
    !> values / start-end-count or the deck's value; each value checked on a deck copy.
-   subroutine variable_axis(j, var, list, x0, x1, n, fa, aa, deck, axis_out, err)
+   subroutine variable_axis(j, vars, list, x0, x1, n, fa, aa, deck, axis_out, err)
       integer, intent(in) :: j                           !! 1: x, 2: y
-      type(deck_variable_t), intent(in) :: var           !! the axis variable
+      type(deck_variable_t), intent(in) :: vars(:)       !! the axis variables (one or more)
       real(dp), intent(in) :: list(:)                    !! x_values / y_values given
       real(dp), intent(in) :: x0, x1                     !! range ends
       integer, intent(in) :: n                           !! range count (0: none)
@@ -1619,9 +1975,11 @@ contains
       type(error_t), allocatable, intent(inout) :: err   !! bad value
       character(len=1) :: c
       type(deck_t) :: d
-      integer :: k
+      type(deck_variable_t) :: var
+      integer :: k, i
       if (allocated(err)) return
       c = merge('x', 'y', j == 1)
+      var = vars(1)
       if (deck_variable_label(var) == '&forcing frequency_hz' .or. &
           deck_variable_label(var) == '&forcing amplitude_pp') then
          if (size(list) > 0 .or. n > 0) then
@@ -1660,12 +2018,14 @@ contains
       end if
       do k = 1, size(axis_out)
          d = deck
-         call set_deck_value(d, var, axis_out(k), err)
-         if (allocated(err)) then
-            err%message = 'group &sweep: ' // c // " axis ('" // deck_variable_label(var) &
-               // "') value " // str(k) // ': ' // err%message
-            return
-         end if
+         do i = 1, size(vars)
+            call set_deck_value(d, vars(i), axis_out(k), err)
+            if (allocated(err)) then
+               err%message = 'group &sweep: ' // c // " axis ('" // deck_variable_label(vars(i)) &
+                  // "') value " // str(k) // ': ' // err%message
+               return
+            end if
+         end do
       end do
    end subroutine variable_axis
 

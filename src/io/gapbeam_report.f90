@@ -245,6 +245,8 @@ contains
       suffixes = [character(len=14) :: '.h5']
       if (deck%output%write_text) suffixes = [character(len=14) :: suffixes, '.history.dat', &
                                               '.poincare.dat']
+      if (deck%output%write_text .and. model%sys%planes > 1) suffixes = &
+         [character(len=14) :: suffixes, '.orbit.dat', '.supports.dat']
       if (with_state) suffixes = [character(len=14) :: suffixes, '.xdmf']
       if (with_state .and. deck%output%write_text) suffixes = [character(len=14) :: suffixes, &
                                                                '.shape.dat']
@@ -253,6 +255,8 @@ contains
       call write_transient_h5(set, deck, model, res, diag, err)
       if (.not. allocated(err) .and. deck%output%write_text) &
          call write_transient_tables(set, deck, model, res, err)
+      if (.not. allocated(err) .and. deck%output%write_text .and. model%sys%planes > 1) &
+         call write_orbit_tables(set, deck, model, res, err)
       if (.not. allocated(err) .and. with_state) &
          call write_text_file(set%temp(set%size() - merge(1, 0, deck%output%write_text)), &
             xdmf_text(base_name(deck%job%output) // '.h5', trim(deck%job%title), res%time, &
@@ -295,6 +299,7 @@ contains
       call write_run(h5, res, err);  if (write_failed(h5, err)) return
       call write_model(h5, model, err);  if (write_failed(h5, err)) return
       call write_impacts(h5, res, err);  if (write_failed(h5, err)) return
+      call write_wear_h5(h5, deck, model, res, err);  if (write_failed(h5, err)) return
       call h5%write('/diagnostics/period', diag%period, '1', err, 'detected period in ' &
          // 'forcing periods; 0: none up to period_max');  if (write_failed(h5, err)) return
       call h5%write('/diagnostics/label', diag%label, '1', err, 'label code: ' // label_codes)
@@ -541,6 +546,130 @@ contains
       call h5%write('/impacts/first_contact_time', res%first_contact_time, 's', err, 'first ' &
          // 'contact onset of each stop from t = 0; -1: never')
    end subroutine write_impacts
+
+   !> /wear (per stop, beside /impacts), /orbit and /model/ring_* (two-plane models), /energy
+   !> (when the balance was asked).
+   subroutine write_wear_h5(h5, deck, model, res, err)
+      type(h5_writer_t), intent(inout) :: h5           !! open writer
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      real(dp), allocatable :: coef(:), orbit(:, :)
+      integer, allocatable :: idof(:)
+      integer :: k
+      coef = [(deck%stops(k)%wear_coefficient, k = 1, size(deck%stops))]
+      call h5%write('/wear/normal_work_rate', res%normal_work_rate, 'W', err, 'normal work ' &
+         // 'rate of each support, (1/T) integral of F_N |v_t| dt over the record')
+      if (allocated(err)) return
+      call h5%write('/wear/sliding_distance', res%sliding_distance, 'm', err, 'distance each ' &
+         // 'support slid (the slider''s travel) over the record');  if (allocated(err)) return
+      call h5%write('/wear/friction_work', res%friction_work, 'J', err, 'work of the friction ' &
+         // 'force of each support over the record');  if (allocated(err)) return
+      call h5%write('/wear/friction_work_rate', res%friction_work_rate, 'W', err, 'mean ' &
+         // 'friction power of each support');  if (allocated(err)) return
+      call h5%write('/wear/wear_volume_rate', res%wear_volume_rate, 'm3 s-1', err, 'Archard ' &
+         // 'wear volume rate of each support, wear_coefficient times normal_work_rate')
+      if (allocated(err)) return
+      call h5%write('/wear/wear_coefficient', coef, 'Pa-1', err, 'Archard wear coefficient ' &
+         // 'of each support (m3 per N m of normal work)');  if (allocated(err)) return
+      call h5%write('/wear/stick_fraction', res%stick_fraction, '1', err, 'fraction of the ' &
+         // 'contact time each support sticks');  if (allocated(err)) return
+      if (model%sys%planes > 1) then
+         orbit = transpose(res%orbit_w)
+         call h5%write('/orbit/w', orbit, 'm', err, 'displacement w of each support''s node ' &
+            // 'at the history samples', 'sample stop');  if (allocated(err)) return
+         orbit = transpose(res%orbit_v)
+         call h5%write('/orbit/v', orbit, 'm', err, 'displacement v of each support''s node ' &
+            // 'at the history samples', 'sample stop');  if (allocated(err)) return
+         orbit = transpose(res%stop_force)
+         call h5%write('/orbit/normal_force', orbit, 'N', err, 'normal (radial) contact force ' &
+            // 'of each support at the history samples', 'sample stop')
+         if (allocated(err)) return
+         orbit = transpose(res%tangential_force)
+         call h5%write('/orbit/tangential_force', orbit, 'N', err, 'tangential (friction) ' &
+            // 'force of each support at the history samples', 'sample stop')
+         if (allocated(err)) return
+         call h5%write('/orbit/gap', [(deck%stops(k)%gap, k = 1, size(deck%stops))], 'm', err, &
+                       'radial clearance (or gap) of each support');  if (allocated(err)) return
+         call h5%write('/orbit/offset_w', [(deck%stops(k)%offset_w, k = 1, size(deck%stops))], &
+                       'm', err, 'w of the centre of each hole');  if (allocated(err)) return
+         call h5%write('/orbit/offset_v', [(deck%stops(k)%offset_v, k = 1, size(deck%stops))], &
+                       'm', err, 'v of the centre of each hole');  if (allocated(err)) return
+      end if
+      if (model%n_rings > 0) then
+         idof = model%r_dof(1, :)
+         call h5%write('/model/ring_dof_w', idof, '1', err, 'w dof (1-based index) of each ' &
+            // 'ring contact');  if (allocated(err)) return
+         idof = model%r_dof(2, :)
+         call h5%write('/model/ring_dof_v', idof, '1', err, 'v dof (1-based index) of each ' &
+            // 'ring contact');  if (allocated(err)) return
+         call h5%write('/model/ring_gap', model%r_gap, 'm', err, 'radial clearance of each ' &
+            // 'ring contact');  if (allocated(err)) return
+         call h5%write('/model/ring_stiffness', model%r_k, 'N m-1', err, 'normal stiffness of ' &
+            // 'each ring contact');  if (allocated(err)) return
+         call h5%write('/model/ring_friction', model%r_mu, '1', err, 'Coulomb friction ' &
+            // 'coefficient of each ring contact');  if (allocated(err)) return
+         call h5%write('/model/ring_tangential_stiffness', model%r_kt, 'N m-1', err, 'stick ' &
+            // '(tangential) stiffness of each ring contact');  if (allocated(err)) return
+      end if
+      if (res%has_energy) then
+         call h5%write('/energy/input_work', res%input_work, 'J', err, 'work of the base ' &
+            // 'motion and point forces over the record');  if (allocated(err)) return
+         call h5%write('/energy/rayleigh_dissipation', res%rayleigh_dissipation, 'J', err, &
+                       'energy dissipated by the Rayleigh damping');  if (allocated(err)) return
+         call h5%write('/energy/contact_damping_dissipation', res%contact_damping_dissipation, &
+                       'J', err, 'energy dissipated by the contact dampers')
+         if (allocated(err)) return
+         call h5%write('/energy/friction_dissipation', res%friction_dissipation, 'J', err, &
+                       'energy dissipated by friction');  if (allocated(err)) return
+         call h5%write('/energy/stored_energy_change', res%stored_energy_change, 'J', err, &
+                       'change of kinetic, strain and contact-spring energy over the record')
+         if (allocated(err)) return
+         call h5%write('/energy/imbalance', res%input_work - res%rayleigh_dissipation &
+            - res%contact_damping_dissipation - res%friction_dissipation &
+            - res%stored_energy_change, 'J', err, 'input work less dissipation and stored ' &
+            // 'energy change')
+      end if
+   end subroutine write_wear_h5
+
+   !> PREFIX.orbit.dat (time, then per stop w, v, normal and tangential force) and
+   !> PREFIX.supports.dat (per stop: node, x, gap, hole offset, circular), two-plane models.
+   subroutine write_orbit_tables(set, deck, model, res, err)
+      type(output_set_t), intent(in) :: set            !! the set; files 4 and 5
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      real(dp), allocatable :: cols(:, :)
+      character(len=24), allocatable :: names(:), units(:)
+      integer :: j, ns
+      ns = model%n_stops
+      allocate(cols(size(res%time), 1 + 4 * ns), names(1 + 4 * ns), units(1 + 4 * ns))
+      cols(:, 1) = res%time;  names(1) = 'time';  units(1) = 's'
+      do j = 1, ns
+         cols(:, 4 * j - 2) = res%orbit_w(:, j);  names(4 * j - 2) = 'w_' // str(j)
+         cols(:, 4 * j - 1) = res%orbit_v(:, j);  names(4 * j - 1) = 'v_' // str(j)
+         cols(:, 4 * j) = res%stop_force(:, j);  names(4 * j) = 'normal_force_' // str(j)
+         cols(:, 4 * j + 1) = res%tangential_force(:, j)
+         names(4 * j + 1) = 'tangential_force_' // str(j)
+         units(4 * j - 2:4 * j + 1) = [character(len=24) :: 'm', 'm', 'N', 'N']
+      end do
+      call write_table(set%temp(4), trim(deck%job%title) // ': orbits at the supports', names, &
+                       units, cols, err, in_place=.true.)
+      if (allocated(err)) return
+      deallocate(cols)
+      allocate(cols(ns, 7))
+      do j = 1, ns
+         cols(j, :) = [real(j, dp), real(deck%stops(j)%node, dp), &
+            real(deck%stops(j)%node - 1, dp) * model%sys%element_length, deck%stops(j)%gap, &
+            deck%stops(j)%offset_w, deck%stops(j)%offset_v, &
+            merge(1.0_dp, 0.0_dp, deck%stops(j)%shape == 'circular')]
+      end do
+      call write_table(set%temp(5), trim(deck%job%title) // ': supports', &
+         [character(len=16) :: 'stop', 'node', 'x', 'gap', 'offset_w', 'offset_v', 'circular'], &
+         [character(len=16) :: '-', '-', 'm', 'm', 'm', 'm', '-'], cols, err, in_place=.true.)
+   end subroutine write_orbit_tables
 
    !> PREFIX.history.dat and PREFIX.poincare.dat, under the set's temporary names.
    subroutine write_transient_tables(set, deck, model, res, err)

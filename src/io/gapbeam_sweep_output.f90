@@ -182,7 +182,10 @@ contains
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: which                       !! 1 peak, 2 rms, 3 contact fraction,
-                                                         !! 4 impulse per period, 5 work rate
+                                                         !! 4 impulse per period, 5 work rate,
+                                                         !! 6 normal work rate, 7 sliding
+                                                         !! distance, 8 friction work rate,
+                                                         !! 9 wear volume rate
       integer, intent(in) :: ns                          !! stops
       real(dp) :: v(ns, size(points))
       integer :: j, p
@@ -193,6 +196,10 @@ contains
          case (2);  v(:, j) = padded(results(p)%rms_force, ns)
          case (3);  v(:, j) = padded(results(p)%contact_fraction, ns)
          case (4);  v(:, j) = padded(results(p)%impulse_per_period, ns)
+         case (6);  v(:, j) = padded(results(p)%normal_work_rate, ns)
+         case (7);  v(:, j) = padded(results(p)%sliding_distance, ns)
+         case (8);  v(:, j) = padded(results(p)%friction_work_rate, ns)
+         case (9);  v(:, j) = padded(results(p)%wear_volume_rate, ns)
          case default;  v(:, j) = padded(results(p)%work_rate, ns)
          end select
       end do
@@ -420,6 +427,15 @@ contains
          'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
       character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '1', &
          'N s', 'W']
+      character(len=*), parameter :: wear_names(4) = [character(len=18) :: 'normal_work_rate', &
+         'sliding_distance', 'friction_work_rate', 'wear_volume_rate']
+      character(len=*), parameter :: wear_units(4) = [character(len=6) :: 'W', 'm', 'W', &
+         'm3 s-1']
+      character(len=*), parameter :: wear_long(4) = [character(len=72) :: &
+         'normal work rate of each support, (1/T) integral of F_N |v_t| dt', &
+         'distance each support slid over the record', &
+         'mean friction power of each support', &
+         'Archard wear volume rate of each support']
       character(len=*), parameter :: stat_long(5) = [character(len=60) :: &
          'largest force of each stop in the record', &
          'root mean square force of each stop over the record', &
@@ -521,6 +537,12 @@ contains
                        trim(stat_long(j)), 'point stop')
          if (write_failed(h5, err)) return
       end do
+      do j = 1, size(wear_names)
+         call h5%write('/sweep/wear/' // trim(wear_names(j)), &
+                       impact_stat(results, sf%points, 5 + j, ns), trim(wear_units(j)), err, &
+                       trim(wear_long(j)), 'point stop')
+         if (write_failed(h5, err)) return
+      end do
       allocate(r2(nr, m))
       do j = 1, m
          r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
@@ -579,7 +601,7 @@ contains
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       type(error_t), allocatable, intent(out) :: err     !! I/O failure
-      integer, parameter :: nc = 17
+      integer, parameter :: nc = 21
       integer :: m, ns, nr, nl, j, p
       real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
       character(len=24) :: names(nc), units(nc), xn, yn, xu, yu
@@ -606,6 +628,10 @@ contains
             row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
             row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
             row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
+            cols(j, 18) = sum(padded(results(p)%normal_work_rate, ns))
+            cols(j, 19) = sum(padded(results(p)%wear_volume_rate, ns))
+            cols(j, 20) = maxval(padded(results(p)%contact_fraction, ns))
+            cols(j, 21) = sum(counts(:, 1))
          end if
          cols(j, 11) = results(p)%status;  cols(j, 12) = results(p)%certificate
          cols(j, 13) = results(p)%n_attractors;  cols(j, 14) = results(p)%lyapunov_periods
@@ -615,9 +641,12 @@ contains
       names = [character(len=24) :: xn, yn, &
          'period', 'label', 'lyapunov', 'lyapunov_error', 'impacts_stop1', 'peak_force_stop1', &
          'rms_force_stop1', 'work_rate_stop1', 'status', 'certificate', 'n_attractors', &
-         'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp']
+         'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp', &
+         'normal_work_rate_total', 'wear_volume_rate_total', 'contact_fraction_max', &
+         'impacts_total']
       units = [character(len=24) :: xu, yu, 'periods', 'p|0|-1|-2|-3', '1/s', &
-         '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm']
+         '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm', 'W', &
+         'm3/s', '-', '-']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
@@ -653,21 +682,53 @@ contains
    end function unit_string
 
    !> Column name of an axis: 'frequency' and 'amplitude_pp' for the forcing (as before),
-   !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2').
+   !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2'); an axis of several
+   !> variables joins them: 'gap_1_2' (one name, its entries), else 'gap_1__friction_1'.
    pure function axis_name(variable) result(t)
-      character(len=*), intent(in) :: variable           !! '&group name' or '&group name(i)'
-      character(len=:), allocatable :: t
-      integer :: k
+      character(len=*), intent(in) :: variable           !! '&group name(i)', comma separated
+      character(len=:), allocatable :: t, part, base, first_base, joined, entries
+      logical :: same
+      integer :: a, b, k, n
       if (variable == '&forcing frequency_hz') then
          t = 'frequency'
+         return
       else if (variable == '&forcing amplitude_pp') then
          t = 'amplitude_pp'
-      else
-         k = index(variable, ' ')
-         t = trim(variable(k + 1:))
-         k = index(t, '(')
-         if (k > 0) t = t(1:k - 1) // '_' // t(k + 1:len(t) - 1)
+         return
       end if
+      joined = '';  entries = '';  first_base = '';  same = .true.;  n = 0
+      a = 1
+      do
+         b = index(variable(a:), ',')
+         if (b == 0) then
+            b = len(variable) + 1
+         else
+            b = a + b - 1
+         end if
+         part = trim(adjustl(variable(a:b - 1)))
+         k = index(part, ' ')
+         part = trim(part(k + 1:))
+         base = part
+         k = index(part, '(')
+         if (k > 0) then
+            base = part(1:k - 1)
+            entries = entries // '_' // part(k + 1:len(part) - 1)
+            part = base // '_' // part(k + 1:len(part) - 1)
+         else
+            same = .false.
+         end if
+         n = n + 1
+         if (n == 1) then
+            joined = part;  first_base = base
+         else
+            same = same .and. base == first_base
+            joined = joined // '__' // part
+         end if
+         if (b > len(variable)) exit
+         a = b + 1
+      end do
+      t = joined
+      if (n > 1 .and. same) t = first_base // entries
    end function axis_name
 
    !> Read a sweep file back: its description and its points into `results` (sized to all
@@ -682,7 +743,7 @@ contains
       integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :)
       real(dp), allocatable :: rv(:, :), cnt(:, :), pk(:, :), rms(:, :), cf(:, :), imp(:, :), &
          wr(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), s_lyap(:, :), a_frac(:, :), &
-         a_lyap(:, :), one(:)
+         a_lyap(:, :), one(:), wn(:, :), sd(:, :), fw(:, :), wv(:, :)
       integer, allocatable :: ione(:)
       type(text_list_t) :: tv(size(text_names))
       character(len=:), allocatable :: kinds(:), axis_order
@@ -738,6 +799,15 @@ contains
       call h5%read('/sweep/poincare/strain', ps, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/poincare/strain_rate', pr, err);  if (allocated(err)) goto 9
       call h5%read('/sweep/lyapunov_running', lr, err);  if (allocated(err)) goto 9
+      if (h5%exists('/sweep/wear/normal_work_rate')) then
+         call h5%read('/sweep/wear/normal_work_rate', wn, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/sliding_distance', sd, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/friction_work_rate', fw, err);  if (allocated(err)) goto 9
+         call h5%read('/sweep/wear/wear_volume_rate', wv, err);  if (allocated(err)) goto 9
+      else
+         allocate(wn, sd, fw, wv, mold=wr)
+         wn = 0.0_dp;  sd = 0.0_dp;  fw = 0.0_dp;  wv = 0.0_dp
+      end if
       call h5%read('/sweep/starts/kind', kinds, err);  if (allocated(err)) goto 9
       sf%start_kind = kinds
       call h5%read('/sweep/starts/label', s_label, err);  if (allocated(err)) goto 9
@@ -783,6 +853,8 @@ contains
          results(p)%attractor_label = a_label(1:k, j)
          results(p)%attractor_fraction = a_frac(1:k, j)
          results(p)%attractor_lyapunov = a_lyap(1:k, j)
+         results(p)%normal_work_rate = wn(:, j);  results(p)%sliding_distance = sd(:, j)
+         results(p)%friction_work_rate = fw(:, j);  results(p)%wear_volume_rate = wv(:, j)
       end do
       goto 9
 8     call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ': a per-point ' &

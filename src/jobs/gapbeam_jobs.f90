@@ -47,8 +47,18 @@ contains
             // ' N m/rad (kappa = k_theta L / EI = ' &
             // str(st%root%k_theta * st%beam%length / beam_ei(st%beam)) // ')'
       else
-         write(output_unit, '(a)') 'root: clamped'
+         write(output_unit, '(a)') 'root: ' // trim(st%root%condition)
       end if
+      if (st%tip%condition == 'spring') then
+         write(output_unit, '(a)') 'tip: pinned, rotational spring k_theta = ' &
+            // str(st%tip%k_theta) // ' N m/rad'
+      else if (st%tip%condition /= 'free') then
+         write(output_unit, '(a)') 'tip: ' // trim(st%tip%condition)
+      end if
+      if (st%beam%planes > 1 .or. st%beam%added_mass > 0.0_dp) write(output_unit, '(a)') &
+         'planes of motion: ' // str(st%beam%planes) // '; added mass ' &
+         // str(st%beam%added_mass) // ' kg/m (mass per length ' &
+         // str(beam_rho_a(st%beam) + st%beam%added_mass) // ' kg/m)'
    end subroutine describe_structure
 
    function rotary_text(st) result(t)
@@ -272,18 +282,29 @@ contains
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
       integer :: k
-      write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-         // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; largest ' &
-         // 'Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' // str(diag%lyapunov_error) &
-         // ' 1/s over ' // str(diag%lyapunov_periods) // ' periods)'
+      character(len=:), allocatable :: lambda
+      ! no exponent asked for (lyapunov_periods = 0; the default with ring supports): say so
+      if (diag%lyapunov_periods == 0) then
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; no ' &
+            // 'Lyapunov exponent: lyapunov_periods = 0)'
+         lambda = 'no exponent'
+      else
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
+            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) &
+            // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
+            // str(diag%lyapunov_error) // ' 1/s over ' // str(diag%lyapunov_periods) &
+            // ' periods)'
+         lambda = 'lambda ' // trim(merge('met its target     ', 'stopped at its most', &
+            diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+      end if
       write(output_unit, '(a)') 'evidence: periods 1..' // str(diag%period_max_tested) &
          // ' tried at tolerance ' // str(diag%period_tolerance) // ' (closest: period ' &
          // str(diag%closest_period) // ' at ' // str(diag%repeat_distance) // '); ' &
          // str(diag%settle_windows) // ' windows differ by ' // str(diag%window_difference) &
          // ' of the orbit size (' // trim(merge('settled    ', 'not settled', &
          diag%settled == 1)) // ') after ' // str(diag%transient_periods) // ' transient ' &
-         // 'periods; lambda ' // trim(merge('met its target     ', 'stopped at its most', &
-         diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+         // 'periods; ' // lambda
       write(output_unit, '(a)') 'certificate: ' // cert_reason(diag)
       if (allocated(diag%start_label)) then
          if (size(diag%start_label) > 1) then
@@ -418,7 +439,20 @@ contains
             // str(res%peak_force(j)) // ' N, rms ' // str(res%rms_force(j)) // ' N, contact ' &
             // str(100.0_dp * res%contact_fraction(j)) // ' % of the time, impulse/period ' &
             // str(res%impulse_per_period(j)) // ' N s, work rate ' // str(res%work_rate(j)) // ' W'
+         if (model%sys%planes > 1) write(output_unit, '(a)') '        wear: normal work rate ' &
+            // str(res%normal_work_rate(j)) // ' W, sliding ' // str(res%sliding_distance(j)) &
+            // ' m in ' // str(dk%solver%record_periods) // ' periods, friction work rate ' &
+            // str(res%friction_work_rate(j)) // ' W, stick ' &
+            // str(100.0_dp * res%stick_fraction(j)) // ' % of the contact time, wear volume ' &
+            // 'rate ' // str(res%wear_volume_rate(j)) // ' m^3/s'
       end do
+      if (res%has_energy) write(output_unit, '(a)') 'energy over the record: input ' &
+         // str(res%input_work) // ' J = Rayleigh ' // str(res%rayleigh_dissipation) &
+         // ' J + contact dampers ' // str(res%contact_damping_dissipation) // ' J + friction ' &
+         // str(res%friction_dissipation) // ' J + stored ' // str(res%stored_energy_change) &
+         // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
+         - res%contact_damping_dissipation - res%friction_dissipation &
+         - res%stored_energy_change) // ' J'
       quiet = dk%output
       quiet%history_periods = 0
       if (dk%diagnostics%certify) &
@@ -432,6 +466,8 @@ contains
          character(len=:), allocatable :: files
          files = trim(dk%job%output) // '.h5'
          if (dk%output%write_text) files = files // ', .history.dat, .poincare.dat'
+         if (dk%output%write_text .and. model%sys%planes > 1) files = files // ', .orbit.dat, ' &
+            // '.supports.dat'
          if (dk%output%state_history) files = files // ', .xdmf'
          if (dk%output%state_history .and. dk%output%write_text) files = files // ', .shape.dat'
          write(output_unit, '(a)') 'files: ' // files

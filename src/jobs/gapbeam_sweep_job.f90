@@ -19,7 +19,6 @@ module gapbeam_sweep_job
    use gapbeam_model_builder, only: build_model
    use gapbeam_sweep, only: sweep_plan_t, make_plan, n_points, n_items, item_slots, run_items, &
       group_of_item, group_points, slot_index, combine_point
-   use gapbeam_deck_variable, only: deck_variable_label
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
@@ -119,8 +118,8 @@ contains
       if (.not. deck%sweep%checkpoint .and. .not. deck%sweep%progress .and. &
           deck%sweep%chunk == 0) chunk = max(1, size(todo))
       write(output_unit, '(a)') 'sweep: ' // str(np) // ' points (' // str(plan%nx) // ' x ' &
-         // str(plan%ny) // ': ' // deck_variable_label(plan%var(1)) // ' x ' &
-         // deck_variable_label(plan%var(2)) // '), ' // str(plan%ns) // ' start(s) per ' &
+         // str(plan%ny) // ': ' // trim(plan%label(1)) // ' x ' &
+         // trim(plan%label(2)) // '), ' // str(plan%ns) // ' start(s) per ' &
          // 'point (' // start_names(plan) // '), certification ' &
          // trim(merge('on ', 'off', deck%diagnostics%certify)) // ', shard ' &
          // str(batch%shard_index) // ' of ' // str(batch%shard_count) // ': ' &
@@ -185,8 +184,8 @@ contains
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
-      sf%x_variable = deck_variable_label(plan%var(1))
-      sf%y_variable = deck_variable_label(plan%var(2))
+      sf%x_variable = trim(plan%label(1))
+      sf%y_variable = trim(plan%label(2))
       sf%x_units = trim(plan%var(1)%units)
       sf%y_units = trim(plan%var(2)%units)
       sf%grid_x = plan%x

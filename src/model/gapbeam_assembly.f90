@@ -1,12 +1,13 @@
 !> Dof numbering and assembly of the linear structure: stiffness K, mass M, influence vector r.
 !>
 !> Global dofs are numbered node by node from the root, (w, theta) per node, skipping the
-!> constrained ones (root w always; root theta when the root is clamped). K and M are kept
+!> constrained ones (root w always; root theta when the root is clamped; the tip's by its
+!> condition). With two planes the (v, theta_v) dofs follow, numbered the same way. K and M are kept
 !> both dense and in LAPACK upper band storage, ab(kd+1+i-j, j) = A(i, j), with kd = 3.
 module gapbeam_assembly
    use gapbeam_kinds, only: dp
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_fibre_distance, &
-      n_nodes, dof_w, dof_theta
+      n_nodes, dof_w, dof_theta, dof_v, beam_mass_per_length
    use gapbeam_model, only: system_t
    use gapbeam_linalg, only: band_to_dense
    use gapbeam_beam_element, only: beam_stiffness, beam_consistent_mass, beam_lumped_mass, &
@@ -24,26 +25,23 @@ contains
       type(structure_t), intent(in) :: st    !! validated structure
       type(system_t), intent(out) :: sys     !! assembled system
       logical, intent(in), optional :: dense !! fill sys%k and sys%m too (default: yes)
-      integer :: nn, i, e, n, idx(4), a, b, kd
+      integer :: nn, i, e, n, idx(4), a, b, kd, pl, np, d0
       real(dp) :: le, ei, rho_a, ke(4, 4), me(4, 4), md(4)
       logical :: lumped
 
       nn = n_nodes(st%beam)
+      np = max(1, st%beam%planes)
       sys%n_node = nn
-      allocate(sys%dof_of(2, nn))
+      sys%planes = np
+      allocate(sys%dof_of(2 * np, nn))
+      ! plane by plane (all the (w, theta) dofs, then all the (v, theta_v) ones): the planes
+      ! are uncoupled in K and M, so the band width stays kd = 3
       n = 0
-      do i = 1, nn
-         if (i == 1) then
-            sys%dof_of(dof_w, i) = 0
-            if (st%root%condition == 'spring') then
-               n = n + 1;  sys%dof_of(dof_theta, i) = n
-            else
-               sys%dof_of(dof_theta, i) = 0
-            end if
-         else
-            n = n + 1;  sys%dof_of(dof_w, i) = n
-            n = n + 1;  sys%dof_of(dof_theta, i) = n
-         end if
+      do pl = 1, np
+         d0 = 2 * (pl - 1)
+         do i = 1, nn
+            call number_node(i, nn, st, n, sys%dof_of(d0 + dof_w, i), sys%dof_of(d0 + dof_theta, i))
+         end do
       end do
       sys%n_dof = n
       kd = sys%kd
@@ -52,6 +50,7 @@ contains
       le = st%beam%length / real(st%beam%n_elem, dp)
       ei = beam_ei(st%beam)
       rho_a = beam_rho_a(st%beam)
+      if (st%beam%added_mass > 0.0_dp) rho_a = beam_mass_per_length(st%beam)
       lumped = st%beam%mass_matrix == 'lumped'
       sys%m_diagonal = lumped
       ke = beam_stiffness(ei, le)
@@ -64,22 +63,29 @@ contains
       else
          me = beam_consistent_mass(rho_a, le)
       end if
-      do e = 1, st%beam%n_elem
-         idx = [sys%dof_of(:, e), sys%dof_of(:, e + 1)]
-         do b = 1, 4
-            if (idx(b) == 0) cycle
-            do a = 1, 4
-               if (idx(a) == 0 .or. idx(a) > idx(b)) cycle
-               i = kd + 1 + idx(a) - idx(b)
-               sys%k_band(i, idx(b)) = sys%k_band(i, idx(b)) + ke(a, b)
-               sys%m_band(i, idx(b)) = sys%m_band(i, idx(b)) + me(a, b)
+      do pl = 1, np
+         d0 = 2 * (pl - 1)
+         do e = 1, st%beam%n_elem
+            idx = [sys%dof_of(d0 + 1:d0 + 2, e), sys%dof_of(d0 + 1:d0 + 2, e + 1)]
+            do b = 1, 4
+               if (idx(b) == 0) cycle
+               do a = 1, 4
+                  if (idx(a) == 0 .or. idx(a) > idx(b)) cycle
+                  i = kd + 1 + idx(a) - idx(b)
+                  sys%k_band(i, idx(b)) = sys%k_band(i, idx(b)) + ke(a, b)
+                  sys%m_band(i, idx(b)) = sys%m_band(i, idx(b)) + me(a, b)
+               end do
             end do
          end do
+         if (st%root%condition == 'spring') then
+            i = sys%dof_of(d0 + dof_theta, 1)
+            sys%k_band(kd + 1, i) = sys%k_band(kd + 1, i) + st%root%k_theta
+         end if
+         if (st%tip%condition == 'spring') then
+            i = sys%dof_of(d0 + dof_theta, nn)
+            sys%k_band(kd + 1, i) = sys%k_band(kd + 1, i) + st%tip%k_theta
+         end if
       end do
-      if (st%root%condition == 'spring') then
-         i = sys%dof_of(dof_theta, 1)
-         sys%k_band(kd + 1, i) = sys%k_band(kd + 1, i) + st%root%k_theta
-      end if
       if (allocated(st%springs)) then
          do e = 1, size(st%springs)
             i = sys%dof_of(st%springs(e)%dof, st%springs(e)%node)
@@ -88,10 +94,13 @@ contains
       end if
       if (allocated(st%masses)) then
          do e = 1, size(st%masses)
-            i = sys%dof_of(dof_w, st%masses(e)%node)
-            if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%mass
-            i = sys%dof_of(dof_theta, st%masses(e)%node)
-            if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%inertia
+            do pl = 1, np
+               d0 = 2 * (pl - 1)
+               i = sys%dof_of(d0 + dof_w, st%masses(e)%node)
+               if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%mass
+               i = sys%dof_of(d0 + dof_theta, st%masses(e)%node)
+               if (i > 0) sys%m_band(kd + 1, i) = sys%m_band(kd + 1, i) + st%masses(e)%inertia
+            end do
          end do
       end if
       if (present(dense)) then
@@ -102,21 +111,50 @@ contains
          call band_to_dense(sys%m_band, sys%m)
       end if
 
-      allocate(sys%r(n), source=0.0_dp)
-      do i = 2, nn
-         sys%r(sys%dof_of(dof_w, i)) = 1.0_dp
+      allocate(sys%r(n), sys%r_v(n), source=0.0_dp)
+      do i = 1, nn
+         if (sys%dof_of(dof_w, i) > 0) sys%r(sys%dof_of(dof_w, i)) = 1.0_dp
+         if (np > 1) then
+            if (sys%dof_of(dof_v, i) > 0) sys%r_v(sys%dof_of(dof_v, i)) = 1.0_dp
+         end if
       end do
 
       ! root strain eps = c * w''(0) from element 1's shape functions
       sys%fibre_distance = beam_fibre_distance(st%beam)
       sys%element_length = le
       allocate(sys%strain_row(n), source=0.0_dp)
-      idx = [sys%dof_of(:, 1), sys%dof_of(:, 2)]
+      idx = [sys%dof_of(1:2, 1), sys%dof_of(1:2, 2)]
       md = sys%fibre_distance * beam_curvature_row(le, 0.0_dp)
       do a = 1, 4
          if (idx(a) > 0) sys%strain_row(idx(a)) = md(a)
       end do
       sys%tip_dof = sys%dof_of(dof_w, nn)
+      if (np > 1) sys%tip_dof_v = sys%dof_of(dof_v, nn)
    end subroutine assemble
+
+   !> Number the translation and rotation of node i (0: fixed by an end condition).
+   pure subroutine number_node(i, nn, st, n, iw, it)
+      integer, intent(in) :: i, nn               !! node, number of nodes
+      type(structure_t), intent(in) :: st        !! structure (end conditions)
+      integer, intent(inout) :: n                !! dofs numbered so far
+      integer, intent(out) :: iw, it             !! index of the translation, the rotation
+      logical :: fix_w, fix_t
+      fix_w = .false.;  fix_t = .false.
+      if (i == 1) then
+         fix_w = .true.
+         fix_t = st%root%condition == 'clamped'
+      end if
+      if (i == nn .and. st%tip%condition /= 'free') then
+         fix_w = .true.
+         fix_t = fix_t .or. st%tip%condition == 'clamped'
+      end if
+      iw = 0;  it = 0
+      if (.not. fix_w) then
+         n = n + 1;  iw = n
+      end if
+      if (.not. fix_t) then
+         n = n + 1;  it = n
+      end if
+   end subroutine number_node
 
 end module gapbeam_assembly

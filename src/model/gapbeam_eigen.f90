@@ -186,6 +186,7 @@ contains
       end if
       allocate(y(n), z(n))
       x = sys%r
+      if (sys%planes > 1) x = x + sys%r_v          ! two planes: start in both
       if (all(x == 0.0_dp)) x = 1.0_dp
       mu_old = 0.0_dp;  mu = 0.0_dp;  calm = 0
       do it = 1, 400

@@ -2,10 +2,10 @@
 !> rule where asked), the assembled structure, damping, contacts and forcing, the initial
 !> state, and (when the deck asks for it) the modal reduction.
 module gapbeam_model_builder
-   use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, str
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t, str, fatal_error
    use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, law_code, &
-      forcing_omega
+      forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t
    use gapbeam_settings, only: initial_state_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: model_t, global_dof
@@ -33,6 +33,12 @@ contains
       call initial_vectors(full, deck%initial, uf, vf)
       if (deck%reduction%kind /= 'modal') then
          model = full;  u0 = uf;  v0 = vf
+         return
+      end if
+      if (full%sys%planes > 1 .or. full%n_rings > 0 .or. full%extra_load) then
+         call fatal_error(err, "group &reduction: kind = 'modal' reduces planar models with " &
+            // "flat frictionless stops and base motion along w; this model has two planes, " &
+            // "a circular clearance, friction or point forces: use kind = 'none'")
          return
       end if
       call reduce_model(full, deck%reduction%n_modes, deck%reduction%static_correction, model, &
@@ -67,7 +73,15 @@ contains
             else
                target = stops(i)%rule_f1_hz
             end if
-            call calibrate_spring(st, stops(i)%node, stops(i)%dof, target, ks, err)
+            ! the rule acts in the stop's plane: a two-plane structure is calibrated as the
+            ! planar structure of that plane (its f1 is the plane's)
+            if (st%beam%planes > 1) then
+               call calibrate_spring(plane_structure(st, stops(i)%dof), stops(i)%node, &
+                  merge(dof_w, dof_theta, stops(i)%dof == dof_w .or. stops(i)%dof == dof_v), &
+                  target, ks, err)
+            else
+               call calibrate_spring(st, stops(i)%node, stops(i)%dof, target, ks, err)
+            end if
             if (allocated(err)) then
                err%message = 'stop ' // str(i) // ' stiffness rule: ' // err%message
                return
@@ -76,6 +90,28 @@ contains
          end if
       end do
    end subroutine resolve_stop_stiffness
+
+   !> The planar structure of the plane of a dof of a two-plane structure: one plane, with the
+   !> springs of that plane (those of the second plane moved to its first-plane dofs).
+   function plane_structure(st, dof) result(ps)
+      type(structure_t), intent(in) :: st      !! two-plane structure
+      integer, intent(in) :: dof               !! a dof code of the plane
+      type(structure_t) :: ps
+      logical :: second
+      integer :: k
+      type(spring_t), allocatable :: keep(:)
+      ps = st
+      ps%beam%planes = 1
+      second = dof == dof_v .or. dof == dof_theta_v
+      allocate(keep(0))
+      do k = 1, size(st%springs)
+         if (second .neqv. (st%springs(k)%dof == dof_v .or. st%springs(k)%dof == dof_theta_v)) &
+            cycle
+         keep = [keep, st%springs(k)]
+         if (second) keep(size(keep))%dof = keep(size(keep))%dof - 2
+      end do
+      ps%springs = keep
+   end function plane_structure
 
    !> Assemble the structure and set up damping, forcing and contacts (full finite element
    !> model, no reduction).
@@ -103,26 +139,84 @@ contains
       model%q = matmul(model%sys%m, model%sys%r)
       model%omega = forcing_omega(forcing)
       model%half_amplitude = 0.5_dp * forcing%amplitude_pp
+      call set_loads(forcing, model)
       call set_contacts(stops, model)
    end subroutine build_full_model
 
-   !> One-sided contacts of the deck stops (two for a stop on both sides) and the distinct
-   !> dofs that carry them (slots).
+   !> The loads beyond the w-plane base motion: the direction and phase of a two-plane base
+   !> motion and the harmonic point forces (add_extra_load).
+   subroutine set_loads(forcing, model)
+      type(forcing_t), intent(in) :: forcing          !! deck forcing
+      type(model_t), intent(inout) :: model           !! model, q set for the w plane
+      real(dp) :: psi, ph
+      integer :: k, g
+      if (forcing%direction_deg /= 0.0_dp) then
+         psi = forcing%direction_deg * pi / 180.0_dp
+         model%q = cos(psi) * model%q
+         model%q_v = sin(psi) * matmul(model%sys%m, model%sys%r_v)
+         model%phase_v = forcing%phase_v_deg * pi / 180.0_dp
+         model%extra_load = .true.
+      end if
+      if (allocated(forcing%forces)) then
+         if (size(forcing%forces) > 0) then
+            allocate(model%p_sin(model%n), model%p_cos(model%n), source=0.0_dp)
+            do k = 1, size(forcing%forces)
+               g = global_dof(model%sys, forcing%forces(k)%node, forcing%forces(k)%dof)
+               ph = forcing%forces(k)%phase_deg * pi / 180.0_dp
+               if (g == 0) cycle
+               model%p_sin(g) = model%p_sin(g) + forcing%forces(k)%amplitude * cos(ph)
+               model%p_cos(g) = model%p_cos(g) + forcing%forces(k)%amplitude * sin(ph)
+            end do
+            model%extra_load = .true.
+         end if
+      end if
+   end subroutine set_loads
+
+   !> Contacts of the deck stops: one-sided contacts along a dof (two for a stop on both sides)
+   !> and ring contacts (a circular clearance; a flat stop with friction, one per side); the
+   !> distinct dofs that carry them (slots); per stop its node's (w, v) dofs and wear
+   !> coefficient.
    subroutine set_contacts(stops, model)
       type(stop_t), intent(in) :: stops(:)            !! deck stops
       type(model_t), intent(inout) :: model           !! assembled model, stiffness resolved
-      integer :: i, j, nc, s
+      integer :: i, j, nc, nr, s, ns, k, tw
+      integer, allocatable :: dofs(:)
+      logical :: ring
       model%n_stops = size(stops)
-      nc = 0
+      nc = 0;  nr = 0
       do i = 1, size(stops)
-         nc = nc + merge(2, 1, stops(i)%side == 'both')
+         ns = merge(2, 1, stops(i)%side == 'both' .and. stops(i)%shape /= 'circular')
+         if (stop_is_ring(stops(i))) then
+            nr = nr + ns
+         else
+            nc = nc + ns
+         end if
       end do
       model%n_contacts = nc
+      model%n_rings = nr
       allocate(model%c_dof(nc), model%c_sign(nc), model%c_gap(nc), model%c_law(nc), &
-               model%c_k(nc), model%c_c(nc), model%c_p(nc), model%c_stop(nc), model%c_slot(nc))
-      j = 0
+               model%c_k(nc), model%c_c(nc), model%c_p(nc), model%c_stop(nc), model%c_slot(nc), &
+               model%c_tdof(nc))
+      allocate(model%r_dof(2, nr), model%r_slot(2, nr), model%r_circular(nr), &
+               model%r_normal(2, nr), model%r_centre(2, nr), model%r_gap(nr), model%r_law(nr), &
+               model%r_k(nr), model%r_c(nr), model%r_p(nr), model%r_mu(nr), model%r_kt(nr), &
+               model%r_stop(nr))
+      allocate(model%stop_wear(size(stops)), model%stop_dofs(2, size(stops)))
+      j = 0;  k = 0
       do i = 1, size(stops)
-         do s = 1, merge(2, 1, stops(i)%side == 'both')
+         model%stop_wear(i) = stops(i)%wear_coefficient
+         model%stop_dofs(1, i) = global_dof(model%sys, stops(i)%node, dof_w)
+         model%stop_dofs(2, i) = 0
+         if (model%sys%planes > 1) model%stop_dofs(2, i) = global_dof(model%sys, stops(i)%node, &
+                                                                      dof_v)
+         ring = stop_is_ring(stops(i))
+         ns = merge(2, 1, stops(i)%side == 'both' .and. stops(i)%shape /= 'circular')
+         do s = 1, ns
+            if (ring) then
+               k = k + 1
+               call set_ring(stops(i), i, s, model%stop_stiffness(i), model, k)
+               cycle
+            end if
             j = j + 1
             model%c_dof(j) = global_dof(model%sys, stops(i)%node, stops(i)%dof)
             if (stops(i)%side == 'negative' .or. s == 2) then
@@ -136,23 +230,68 @@ contains
             model%c_c(j) = stops(i)%damping
             model%c_p(j) = stops(i)%exponent
             model%c_stop(j) = i
+            ! the other plane's translation slides along the stop
+            model%c_tdof(j) = 0
+            if (stops(i)%dof == dof_w) model%c_tdof(j) = model%stop_dofs(2, i)
+            if (stops(i)%dof == dof_v) model%c_tdof(j) = model%stop_dofs(1, i)
          end do
       end do
-      allocate(model%slot_dof(nc))
+      ! slots: the distinct dofs of the scalar contacts, then the rings' (w, v)
+      dofs = [model%c_dof, [(model%r_dof(:, k), k = 1, nr)]]
+      allocate(model%slot_dof(size(dofs)))
       model%n_slots = 0
-      do j = 1, nc
-         model%c_slot(j) = 0
+      do j = 1, size(dofs)
+         tw = 0
          do s = 1, model%n_slots
-            if (model%slot_dof(s) == model%c_dof(j)) model%c_slot(j) = s
+            if (model%slot_dof(s) == dofs(j)) tw = s
          end do
-         if (model%c_slot(j) == 0) then
+         if (tw == 0) then
             model%n_slots = model%n_slots + 1
-            model%slot_dof(model%n_slots) = model%c_dof(j)
-            model%c_slot(j) = model%n_slots
+            model%slot_dof(model%n_slots) = dofs(j)
+            tw = model%n_slots
+         end if
+         if (j <= nc) then
+            model%c_slot(j) = tw
+         else
+            model%r_slot(2 - mod(j - nc, 2), (j - nc + 1) / 2) = tw
          end if
       end do
       model%slot_dof = model%slot_dof(1:model%n_slots)
    end subroutine set_contacts
+
+   !> Ring contact k of deck stop i (side s of a flat stop with friction).
+   subroutine set_ring(st, i, s, k_stop, model, k)
+      type(stop_t), intent(in) :: st                  !! the deck stop
+      integer, intent(in) :: i, s                     !! stop index, side (1 or 2)
+      real(dp), intent(in) :: k_stop                  !! resolved normal stiffness
+      type(model_t), intent(inout) :: model           !! model
+      integer, intent(in) :: k                        !! ring index
+      real(dp) :: sgn
+      model%r_dof(:, k) = [global_dof(model%sys, st%node, dof_w), &
+                           global_dof(model%sys, st%node, dof_v)]
+      model%r_circular(k) = st%shape == 'circular'
+      model%r_centre(:, k) = 0.0_dp
+      model%r_normal(:, k) = 0.0_dp
+      if (model%r_circular(k)) then
+         model%r_centre(:, k) = [st%offset_w, st%offset_v]
+      else
+         sgn = merge(-1.0_dp, 1.0_dp, st%side == 'negative' .or. s == 2)
+         if (st%dof == dof_v) then
+            model%r_normal(:, k) = [0.0_dp, sgn]
+         else
+            model%r_normal(:, k) = [sgn, 0.0_dp]
+         end if
+      end if
+      model%r_gap(k) = st%gap
+      model%r_law(k) = law_code(st%law)
+      model%r_k(k) = k_stop
+      model%r_c(k) = st%damping
+      model%r_p(k) = st%exponent
+      model%r_mu(k) = st%friction
+      model%r_kt(k) = st%tangential_stiffness
+      if (model%r_kt(k) <= 0.0_dp) model%r_kt(k) = k_stop
+      model%r_stop(k) = i
+   end subroutine set_ring
 
    !> Initial displacement and velocity relative to the base: zero ('rest') or the given
    !> values at the listed node dofs.

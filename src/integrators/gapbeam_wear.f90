@@ -1,0 +1,329 @@
+!> The wear and energy meter of a transient run: what a support sees beyond the impacts (normal
+!> work rate, sliding, friction work, Archard wear), the ring contacts' share of the impact
+!> statistics, the orbits at the supports, and the energy balance of the record.
+!>
+!> The recorder (gapbeam_recorder) owns one and hands it the recorded pieces. Each piece is
+!> integrated with 3-point Gauss-Legendre quadrature on its dense output (pieces end at every
+!> contact and stick-slip switch, so the integrands are smooth inside one); exact end-point
+!> formulas where they exist:
+!> * normal work rate W_N = (1/T) int f_n |v_t| dt (v_t: the tangential velocity of the node,
+!>   t.x' for a ring, the other plane's translation for a flat stop of a two-plane model);
+!> * sliding distance: the friction slider's travel over the slip pieces, sigma (tau_a(tb) -
+!>   tau_a(ta)) at the contact radius (exact; the stick spring's stretch, at most mu f_n / k_t,
+!>   is not sliding), or int |v_t| dt over the contact time for a support without friction;
+!> * friction work over a slip piece: int -f_t v_t dt - (E_t(tb) - E_t(ta)) (the work into the
+!>   Jenkins element less the change of its spring energy); nothing in stick;
+!> * wear volume rate = wear_coefficient W_N (Archard with the work-rate form of tube-wear
+!>   practice);
+!> * energy balance (when asked): input work int P(t).v dt, Rayleigh int v'Cv dt, contact
+!>   dampers int (f - k d) d' dt, friction, and the change of the stored energy (kinetic, strain,
+!>   contact springs, stick springs) between the start and the end of the record.
+module gapbeam_wear
+   use gapbeam_kinds, only: dp
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
+   use gapbeam_description, only: law_bilinear
+   use gapbeam_contact_law, only: contact_force
+   use gapbeam_ring_contact, only: ring_force, ring_geometry, ring_stored_energy, ring_slip, &
+      ring_anchor_of, ring_tangent_gap
+   use gapbeam_linalg, only: band_matvec, dense_matvec
+   use gapbeam_observer, only: piece_t
+   use gapbeam_results, only: transient_result_t
+   implicit none
+   private
+   public :: wear_meter_t
+
+   real(dp), parameter :: gx(3) = [0.5_dp - 0.5_dp * sqrt(0.6_dp), 0.5_dp, &
+                                   0.5_dp + 0.5_dp * sqrt(0.6_dp)]   ! Gauss points on [0, 1]
+   real(dp), parameter :: gw(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 18.0_dp  ! their weights
+
+   !> Accumulates the wear outputs and the energy balance of the recorded pieces.
+   type :: wear_meter_t
+      logical :: active = .false.          !! the model has two planes or ring contacts
+      logical :: energy = .false.          !! energy balance asked
+      type(model_t) :: model               !! the model (a copy, when active or energy)
+      real(dp), allocatable :: wn(:), slide(:), fric(:), stick(:), contact(:)   !! per stop
+      real(dp) :: e_in = 0.0_dp, e_ray = 0.0_dp, e_damp = 0.0_dp, e_fric = 0.0_dp
+      real(dp) :: e_start = 0.0_dp, e_end = 0.0_dp   !! stored energy [J]
+      logical :: started = .false.         !! the first recorded piece was seen
+      real(dp), allocatable :: u(:), v(:), w(:), y(:)   !! workspaces (n)
+   contains
+      procedure :: init => meter_init
+      procedure :: piece => meter_piece
+      procedure :: sample => meter_sample
+      procedure :: finish => meter_finish
+      procedure, private :: energy_at, ring_piece_stats, scalar_point
+   end type wear_meter_t
+
+contains
+
+   !> Prepare for a model with ns deck stops.
+   subroutine meter_init(self, model, ns, energy)
+      class(wear_meter_t), intent(inout) :: self   !! meter
+      type(model_t), intent(in) :: model           !! model
+      integer, intent(in) :: ns                    !! deck stops
+      logical, intent(in) :: energy                !! energy balance asked
+      self%active = has_tube_physics(model)
+      self%energy = energy
+      allocate(self%wn(ns), self%slide(ns), self%fric(ns), self%stick(ns), self%contact(ns), &
+               source=0.0_dp)
+      if (.not. (self%active .or. self%energy)) return
+      self%model = model
+      allocate(self%u(model%n), self%v(model%n), self%w(model%n), self%y(model%n), &
+               source=0.0_dp)
+   end subroutine meter_init
+
+   !> A recorded piece: wear integrals, the rings' impact statistics (added to the recorder's
+   !> per-stop accumulators), the energy terms.
+   subroutine meter_piece(self, p, acc_f, acc_f2, acc_work, acc_contact, n_impacts, peak)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      class(piece_t), intent(in) :: p                  !! the piece
+      real(dp), intent(inout) :: acc_f(:), acc_f2(:), acc_work(:), acc_contact(:)  !! per stop
+      integer, intent(inout) :: n_impacts(:)           !! per stop
+      real(dp), intent(inout) :: peak(:)               !! per stop [N]
+      real(dp) :: h, wq, t, pv, ray
+      integer :: q
+      if (.not. (self%active .or. self%energy)) return
+      associate (m => self%model)
+         h = p%tb - p%ta
+         if (self%energy .and. .not. self%started) then
+            call p%state_at(p%ta, self%u, self%v)
+            self%e_start = self%energy_at(p, self%u, self%v)
+         end if
+         self%started = .true.
+         do q = 1, 3
+            t = p%ta + gx(q) * h
+            wq = gw(q) * h
+            call p%state_at(t, self%u, self%v)
+            if (self%energy) then
+               self%w = load_factor(m, t) * m%q
+               call add_extra_load(m, t, self%w)
+               pv = dot_product(self%w, self%v)
+               ray = m%beta * quad(m, m%sys%m_band, m%sys%m, self%v, self%y) + m%gamma &
+                     * quad(m, m%sys%k_band, m%sys%k, self%v, self%y)
+               self%e_in = self%e_in + wq * pv
+               self%e_ray = self%e_ray + wq * ray
+            end if
+            call self%scalar_point(wq)
+         end do
+         if (m%n_rings > 0) call self%ring_piece_stats(p, acc_f, acc_f2, acc_work, acc_contact, &
+                                                       n_impacts, peak)
+         if (self%energy) then
+            call p%state_at(p%tb, self%u, self%v)
+            self%e_end = self%energy_at(p, self%u, self%v)
+         end if
+      end associate
+   end subroutine meter_piece
+
+   !> The scalar contacts at one quadrature point (state in u, v): normal work rate and
+   !> sliding along the other plane, contact-damper dissipation.
+   subroutine scalar_point(self, wq)
+      class(wear_meter_t), intent(inout) :: self   !! meter
+      real(dp), intent(in) :: wq                   !! quadrature weight times the piece [s]
+      integer :: c, i, k, it
+      real(dp) :: d, dd, f
+      associate (m => self%model)
+         do c = 1, m%n_contacts
+            i = m%c_dof(c);  k = m%c_stop(c)
+            d = m%c_sign(c) * self%u(i) - m%c_gap(c)
+            dd = m%c_sign(c) * self%v(i)
+            f = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), d, dd)
+            ! the damper's share of the work, wherever the spring is compressed (a released
+            ! damped contact, f = 0 at d > 0, returns the spring's energy to nothing)
+            if (self%energy .and. m%c_law(c) == law_bilinear .and. m%c_c(c) > 0.0_dp .and. &
+                d > 0.0_dp) self%e_damp = self%e_damp + wq * (f - m%c_k(c) * d) * dd
+            if (f <= 0.0_dp) cycle
+            it = m%c_tdof(c)
+            if (it > 0) then
+               self%wn(k) = self%wn(k) + wq * f * abs(self%v(it))
+               self%slide(k) = self%slide(k) + wq * abs(self%v(it))
+            end if
+         end do
+      end associate
+   end subroutine scalar_point
+
+   !> The ring contacts over a piece.
+   subroutine ring_piece_stats(self, p, acc_f, acc_f2, acc_work, acc_contact, n_impacts, peak)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      class(piece_t), intent(in) :: p                  !! the piece
+      real(dp), intent(inout) :: acc_f(:), acc_f2(:), acc_work(:), acc_contact(:)  !! per stop
+      integer, intent(inout) :: n_impacts(:)           !! per stop
+      real(dp), intent(inout) :: peak(:)               !! per stop [N]
+      real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn
+      real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
+      real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
+      real(dp) :: rho_a(self%model%n_rings), rho_b(self%model%n_rings)
+      integer :: q, r, k, e
+      associate (m => self%model)
+         h = p%tb - p%ta
+         pw = 0.0_dp
+         ! the ends: stick-spring energy (its change is not dissipated)
+         do e = 1, 2
+            t = merge(p%ta, p%tb, e == 1)
+            call p%state_at(t, self%u, self%v)
+            do r = 1, m%n_rings
+               x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
+               call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
+               call ring_geometry(m, r, x, d, n, tg, tau, gt)
+               if (e == 1) then
+                  ea(r) = 0.0_dp
+                  if (m%r_mu(r) > 0.0_dp) ea(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
+                  ta_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
+                  rho_a(r) = m%r_gap(r) + d
+               else
+                  eb(r) = 0.0_dp
+                  if (m%r_mu(r) > 0.0_dp) eb(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
+                  tb_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
+                  rho_b(r) = m%r_gap(r) + d
+               end if
+               if (.not. m%r_circular(r)) then      ! flat: no radius, the factor is 1
+                  rho_a(r) = 1.0_dp;  rho_b(r) = 1.0_dp
+               end if
+            end do
+         end do
+         do q = 1, 3
+            t = p%ta + gx(q) * h
+            wq = gw(q) * h
+            call p%state_at(t, self%u, self%v)
+            do r = 1, m%n_rings
+               k = m%r_stop(r)
+               x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
+               call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
+               call ring_geometry(m, r, x, d, n, tg, tau, gt)
+               vt = dot_product(tg, xd);  dn = dot_product(n, xd)
+               if (self%energy .and. m%r_law(r) == law_bilinear .and. m%r_c(r) > 0.0_dp .and. &
+                   d > 0.0_dp) self%e_damp = self%e_damp + wq * (fn - m%r_k(r) * d) * dn
+               if (fn <= 0.0_dp) cycle
+               acc_f(k) = acc_f(k) + wq * fn
+               acc_f2(k) = acc_f2(k) + wq * fn**2
+               acc_work(k) = acc_work(k) + wq * fn * abs(dn)
+               self%wn(k) = self%wn(k) + wq * fn * abs(vt)
+               if (m%r_mu(r) == 0.0_dp) self%slide(k) = self%slide(k) + wq * abs(vt)
+               if (p%r_mode(r) == ring_slip) pw(r) = pw(r) - wq * ft * vt
+            end do
+         end do
+         do r = 1, m%n_rings
+            k = m%r_stop(r)
+            if (p%fn_a(r) > 0.0_dp .and. p%fn_b(r) > 0.0_dp) then
+               tc = h
+            else if (p%fn_a(r) > 0.0_dp .or. p%fn_b(r) > 0.0_dp) then
+               tc = 0.5_dp * h
+            else
+               tc = 0.0_dp
+            end if
+            acc_contact(k) = acc_contact(k) + tc
+            self%contact(k) = self%contact(k) + tc
+            if (p%r_mode(r) /= ring_slip .and. m%r_mu(r) > 0.0_dp) &
+               self%stick(k) = self%stick(k) + tc
+            if (p%r_onset(r)) n_impacts(k) = n_impacts(k) + 1
+            peak(k) = max(peak(k), p%fn_b(r))
+            if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp) then
+               self%fric(k) = self%fric(k) + pw(r) - (eb(r) - ea(r))
+               ! the slider's travel, at the contact radius
+               tc = 1.0_dp
+               if (m%r_circular(r)) tc = 0.5_dp * (rho_a(r) + rho_b(r)) / m%r_gap(r)
+               self%slide(k) = self%slide(k) + p%r_sigma(r) * ring_tangent_gap(m, r, tb_a(r), &
+                  ta_a(r)) * tc
+            end if
+         end do
+      end associate
+   end subroutine ring_piece_stats
+
+   !> Stored energy at a state of a piece: kinetic, strain, contact springs and stick springs
+   !> (the rings in the piece's regime) [J].
+   real(dp) function energy_at(self, p, u, v) result(e)
+      class(wear_meter_t), intent(inout) :: self   !! meter
+      class(piece_t), intent(in) :: p              !! the piece (ring regimes)
+      real(dp), intent(in) :: u(:), v(:)           !! state
+      integer :: c, r
+      real(dp) :: d
+      associate (m => self%model)
+         e = 0.5_dp * quad(m, m%sys%m_band, m%sys%m, v, self%y) &
+             + 0.5_dp * quad(m, m%sys%k_band, m%sys%k, u, self%y)
+         do c = 1, m%n_contacts
+            d = m%c_sign(c) * u(m%c_dof(c)) - m%c_gap(c)
+            if (d <= 0.0_dp) cycle
+            if (m%c_law(c) == law_bilinear) then
+               e = e + 0.5_dp * m%c_k(c) * d**2
+            else
+               e = e + m%c_k(c) * d**(m%c_p(c) + 1.0_dp) / (m%c_p(c) + 1.0_dp)
+            end if
+         end do
+         do r = 1, m%n_rings
+            e = e + ring_stored_energy(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
+                                       u(m%r_dof(:, r)), v(m%r_dof(:, r)))
+         end do
+      end associate
+   end function energy_at
+
+   !> x' A x with A in band storage when there is one, else dense.
+   real(dp) function quad(model, ab, ad, x, y) result(s)
+      type(model_t), intent(in) :: model          !! model (size, band width)
+      real(dp), intent(in) :: ab(:, :), ad(:, :)  !! band and dense storage
+      real(dp), intent(in) :: x(:)                !! vector
+      real(dp), intent(inout) :: y(:)             !! workspace
+      if (size(ab, 2) == model%n) then
+         call band_matvec(model%n, model%sys%kd, ab, x, y)
+      else
+         call dense_matvec(model%n, ad, x, y)
+      end if
+      s = dot_product(x, y)
+   end function quad
+
+   !> Orbits, tangential and ring normal forces at a history sample (two-plane models).
+   subroutine meter_sample(self, p, t, ih, res)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      class(piece_t), intent(in) :: p                  !! the piece holding t
+      real(dp), intent(in) :: t                        !! instant [s]
+      integer, intent(in) :: ih                        !! history sample
+      type(transient_result_t), intent(inout) :: res   !! results (orbits, stop forces)
+      integer :: k, r
+      real(dp) :: pr(2), fn, ft
+      if (.not. self%active) return
+      associate (m => self%model)
+         call p%state_at(t, self%u, self%v)
+         do k = 1, m%n_stops
+            if (m%stop_dofs(1, k) > 0) res%orbit_w(ih, k) = self%u(m%stop_dofs(1, k))
+            if (m%stop_dofs(2, k) > 0) res%orbit_v(ih, k) = self%u(m%stop_dofs(2, k))
+         end do
+         res%tangential_force(ih, :) = 0.0_dp
+         do r = 1, m%n_rings
+            call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
+                            self%u(m%r_dof(:, r)), self%v(m%r_dof(:, r)), pr, fn, ft)
+            k = m%r_stop(r)
+            res%stop_force(ih, k) = res%stop_force(ih, k) + fn
+            res%tangential_force(ih, k) = res%tangential_force(ih, k) + ft
+         end do
+      end associate
+   end subroutine meter_sample
+
+   !> The wear outputs and the energy balance over a record of length t_len.
+   subroutine meter_finish(self, t_len, res)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      real(dp), intent(in) :: t_len                    !! record length [s]
+      type(transient_result_t), intent(inout) :: res   !! results
+      real(dp) :: tl
+      tl = max(t_len, tiny(1.0_dp))
+      res%normal_work_rate = self%wn / tl
+      res%sliding_distance = self%slide
+      res%friction_work = self%fric
+      res%friction_work_rate = self%fric / tl
+      if (allocated(self%model%stop_wear)) then
+         res%wear_volume_rate = self%model%stop_wear * res%normal_work_rate
+      else
+         res%wear_volume_rate = 0.0_dp
+      end if
+      where (self%contact > 0.0_dp)
+         res%stick_fraction = self%stick / self%contact
+      elsewhere
+         res%stick_fraction = 0.0_dp
+      end where
+      res%has_energy = self%energy
+      if (self%energy) then
+         res%input_work = self%e_in
+         res%rayleigh_dissipation = self%e_ray
+         res%contact_damping_dissipation = self%e_damp
+         res%friction_dissipation = sum(self%fric)
+         res%stored_energy_change = self%e_end - self%e_start
+      end if
+   end subroutine meter_finish
+end module gapbeam_wear
