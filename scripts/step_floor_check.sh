@@ -5,7 +5,8 @@
 # Usage:
 #   scripts/step_floor_check.sh [PERIODS]      (default 2 forcing periods per run, from rest)
 #   GAPBEAM=/path/to/gapbeam scripts/step_floor_check.sh
-#   DECKS="inputs/a.nml ..." STEP_FLOOR_OUT=bench_results/x.txt scripts/step_floor_check.sh
+#   DECKS="inputs/a.nml ..." METHODS="newmark rk45" TOLS="1e-9" STEP_FLOOR_OUT=bench_results/x.txt \
+#      scripts/step_floor_check.sh        (a subset, into another file)
 #
 # Every deck of inputs/ that describes a forced beam (the transient decks, and the base model
 # of the sweep decks run as a transient) is run with each error-controlled method
@@ -45,8 +46,8 @@ read -r -a decks <<< "${DECKS:-}"
        inputs/tube_multispan.nml)
 # a deck missing from this checkout is skipped
 for i in "${!decks[@]}"; do [[ -f ${decks[i]} ]] || unset 'decks[i]'; done
-methods=(newmark hht generalized_alpha rk45)
-tols=(1e-2 1e-4 1e-6 1e-9)
+read -r -a methods <<< "${METHODS:-newmark hht generalized_alpha rk45}"
+read -r -a tols <<< "${TOLS:-1e-2 1e-4 1e-6 1e-9}"
 variants=(as_given damper hertz)
 
 n_run=0; n_fail=0
