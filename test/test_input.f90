@@ -461,6 +461,21 @@ contains
          [character(len=60) :: '&masses', 'node(1) = -1'])
       call expect_error('spring at node -1', base // '&springs node = -1, stiffness = 1.0 /', &
          [character(len=60) :: '&springs', 'node(1) = -1'])
+      ! entries beyond the node list would be ignored silently
+      call expect_error('mass list longer than node', base &
+         // '&masses node = 3, mass = 1.0, 2.0 /', &
+         [character(len=60) :: '&masses', 'mass has an entry beyond the 1', 'node'])
+      call expect_error('spring list ending in -1 beyond node', base &
+         // '&springs node = 3, stiffness = 10.0, -1 /', &
+         [character(len=60) :: '&springs', 'stiffness has an entry beyond the 1'])
+      call expect_error('spring dof beyond node', base &
+         // "&springs node = 3, dof = 'w', 'theta', stiffness = 10.0 /", &
+         [character(len=60) :: '&springs', 'dof has an entry beyond the 1'])
+      call expect_error('point-force amplitude beyond node', base &
+         // '&point_forces node = 3, amplitude = 0.5, 0.5 /', &
+         [character(len=60) :: '&point_forces', 'amplitude has an entry beyond the 1'])
+      call expect_ok('mass list as long as node', base &
+         // '&masses node = 3, 4, mass = 1.0, 2.0, inertia = 0.0 /')
       ! empty (null) values would keep the defaults silently
       call expect_error('empty value n_elem = ,', job // replace(beam, 'n_elem = 4', &
          'n_elem = '), [character(len=60) :: '&beam', 'no value for n_elem'])

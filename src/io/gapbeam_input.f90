@@ -37,6 +37,10 @@ module gapbeam_input
    ! --- end of the continuation hook
 
    integer, parameter :: nmax = 64   !! most entries of a list group (&springs, &stops, ...)
+   !> what a list entry holds before a read that looks for entries beyond the node list
+   real(dp), parameter :: list_marker = -7.77e77_dp
+   character(len=*), parameter :: list_word_marker = '#'
+
    character(len=*), parameter :: dof_words = "'w', 'theta', 'v', 'theta_v'"
 
    character(len=*), parameter :: known_groups = 'job beam root springs masses modes ' // &
@@ -707,6 +711,32 @@ contains
          transfer(first, 1_int64, size(first)) == transfer(second, 1_int64, size(second)), n, err)
    end subroutine list_entries_real
 
+   !> An entry of a per-node list beyond the n entries of `node` is refused: it would be ignored
+   !> silently ('mass = 1.0, 2.0' with one node). `marked` is the list read again over
+   !> list_marker.
+   subroutine no_entries_beyond(group, var, marked, n, err)
+      character(len=*), intent(in) :: group, var      !! group and variable, for messages
+      real(dp), intent(in) :: marked(:)               !! the list read over list_marker
+      integer, intent(in) :: n                        !! entries node gives
+      type(error_t), allocatable, intent(inout) :: err  !! set on an entry beyond n
+      if (allocated(err)) return
+      if (any(marked(n + 1:) /= list_marker)) call fatal_error(err, 'group &' // group // ': ' &
+         // var // ' has an entry beyond the ' // str(n) // ' that node lists (one value per ' &
+         // 'node entry)')
+   end subroutine no_entries_beyond
+
+   !> no_entries_beyond for a list of words (read again over list_word_marker).
+   subroutine no_words_beyond(group, var, marked, n, err)
+      character(len=*), intent(in) :: group, var      !! group and variable, for messages
+      character(len=*), intent(in) :: marked(:)       !! the list read over list_word_marker
+      integer, intent(in) :: n                        !! entries node gives
+      type(error_t), allocatable, intent(inout) :: err  !! set on an entry beyond n
+      if (allocated(err)) return
+      if (any(marked(n + 1:) /= list_word_marker)) call fatal_error(err, 'group &' // group &
+         // ': ' // var // ' has an entry beyond the ' // str(n) // ' that node lists (one ' &
+         // 'value per node entry)')
+   end subroutine no_words_beyond
+
    !> Number of the last given entry; an error if an entry before it was not given.
    subroutine check_gaps(group, var, given, n, err)
       character(len=*), intent(in) :: group, var      !! group and variable, for messages
@@ -986,6 +1016,17 @@ contains
       call apply_group(srcs, 'springs', 'node() dof():8 stiffness()', reader, err)
       call list_entries('springs', 'node', given, node, n, err)
       if (allocated(err)) return
+      block
+         real(dp) :: s_stiffness(nmax)
+         character(len=8) :: s_dof(nmax)
+         s_stiffness = stiffness;  s_dof = dof
+         stiffness = list_marker;  dof = list_word_marker
+         call apply_group(srcs, 'springs', 'node() dof():8 stiffness()', reader, err)
+         call no_entries_beyond('springs', 'stiffness', stiffness, n, err)
+         call no_words_beyond('springs', 'dof', dof, n, err)
+         stiffness = s_stiffness;  dof = s_dof
+         if (allocated(err)) return
+      end block
       allocate(list(n))
       do i = 1, n
          call require_word('springs', 'dof(' // str(i) // ')', dof(i), dof_words, err)
@@ -1020,6 +1061,16 @@ contains
       call apply_group(srcs, 'masses', 'node() mass() inertia()', reader, err)
       call list_entries('masses', 'node', given, node, n, err)
       if (allocated(err)) return
+      block
+         real(dp) :: s_mass(nmax), s_inertia(nmax)
+         s_mass = mass;  s_inertia = inertia
+         mass = list_marker;  inertia = list_marker
+         call apply_group(srcs, 'masses', 'node() mass() inertia()', reader, err)
+         call no_entries_beyond('masses', 'mass', mass, n, err)
+         call no_entries_beyond('masses', 'inertia', inertia, n, err)
+         mass = s_mass;  inertia = s_inertia
+         if (allocated(err)) return
+      end block
       allocate(list(n))
       do i = 1, n
          call require_int('masses', 'node(' // str(i) // ')', node(i), 1, n_elem + 1, err, &
@@ -1459,6 +1510,18 @@ contains
       call apply_group(srcs, 'point_forces', vars, reader, err)
       call list_entries('point_forces', 'node', given, node, n, err)
       if (allocated(err)) return
+      block
+         real(dp) :: s_amplitude(nmax), s_phase(nmax)
+         character(len=8) :: s_dof(nmax)
+         s_amplitude = amplitude;  s_phase = phase_deg;  s_dof = dof
+         amplitude = list_marker;  phase_deg = list_marker;  dof = list_word_marker
+         call apply_group(srcs, 'point_forces', vars, reader, err)
+         call no_entries_beyond('point_forces', 'amplitude', amplitude, n, err)
+         call no_entries_beyond('point_forces', 'phase_deg', phase_deg, n, err)
+         call no_words_beyond('point_forces', 'dof', dof, n, err)
+         amplitude = s_amplitude;  phase_deg = s_phase;  dof = s_dof
+         if (allocated(err)) return
+      end block
       allocate(list(n))
       do i = 1, n
          call require_word('point_forces', 'dof(' // str(i) // ')', dof(i), dof_words, err)
