@@ -11,7 +11,7 @@ module gapbeam_test_runs
    use gapbeam_transient, only: integrate
    implicit none
    private
-   public :: run_deck
+   public :: run_deck, load_deck
 
 contains
 
@@ -24,10 +24,21 @@ contains
       type(error_t), allocatable, intent(out) :: err    !! deck, model or solver failure
       type(deck_t) :: deck
       real(dp), allocatable :: u0(:), v0(:)
+      call load_deck(path, overrides, deck, model, u0, v0, err)
+      if (.not. allocated(err)) call integrate(model, deck%solver, deck%output, u0, v0, res, err)
+   end subroutine run_deck
+
+   !> Read `path` with `overrides` and build its model and initial state; err on any failure.
+   subroutine load_deck(path, overrides, deck, model, u0, v0, err)
+      character(len=*), intent(in) :: path              !! deck
+      character(len=*), intent(in) :: overrides(:)      !! namelist fragments
+      type(deck_t), intent(out) :: deck                 !! the deck read
+      type(model_t), intent(out) :: model              !! its model
+      real(dp), allocatable, intent(out) :: u0(:), v0(:) !! its initial state
+      type(error_t), allocatable, intent(out) :: err    !! deck or model failure
       character(len=len(overrides)) :: ov(size(overrides))
       ov = overrides
       call read_deck(path, ov, deck, err)
       if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
-      if (.not. allocated(err)) call integrate(model, deck%solver, deck%output, u0, v0, res, err)
-   end subroutine run_deck
+   end subroutine load_deck
 end module gapbeam_test_runs

@@ -6,7 +6,7 @@ program test_continuation
    use gapbeam_deck, only: deck_t
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
-   use gapbeam_model_builder, only: build_model
+   use gapbeam_test_runs, only: load_deck
    use gapbeam_periodic, only: orbit_map_t, newton_orbit, transient_orbit, floquet_multipliers, &
       energy_size
    use gapbeam_continuation, only: run_continuation
@@ -45,10 +45,7 @@ contains
       type(model_t), intent(out) :: model
       real(dp), allocatable, intent(out) :: u0(:), v0(:)
       type(error_t), allocatable :: err
-      character(len=300) :: ov(size(overrides))
-      ov = overrides
-      call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      call load_deck(path, overrides, deck, model, u0, v0, err)
       if (allocated(err)) then
          call check('load ' // path, .false., err%message)
          call finish('test_continuation')

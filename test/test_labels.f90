@@ -12,7 +12,7 @@ program test_labels
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
-   use gapbeam_model_builder, only: build_model
+   use gapbeam_test_runs, only: load_deck
    use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
       label_undecided, label_unsettled, label_failed, certificate_certified, &
       certificate_disputed
@@ -51,10 +51,7 @@ contains
       type(model_t), intent(out) :: model
       real(dp), allocatable, intent(out) :: u0(:), v0(:)
       type(error_t), allocatable :: err
-      character(len=200) :: ov(size(overrides))
-      ov = overrides
-      call read_deck(path, ov, deck, err)
-      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      call load_deck(path, overrides, deck, model, u0, v0, err)
       if (allocated(err)) then
          call check('load ' // path, .false., err%message)
          call finish('test_labels')
