@@ -9,9 +9,11 @@ module gapbeam_test_runs
    use gapbeam_model_builder, only: build_model
    use gapbeam_results, only: transient_result_t
    use gapbeam_transient, only: integrate
+   use gapbeam_sweep, only: sweep_plan_t, make_plan
+   use gapbeam_testing, only: check, finish
    implicit none
    private
-   public :: run_deck, load_deck
+   public :: run_deck, load_deck, load_or_stop, make_plan_or_stop
 
 contains
 
@@ -41,4 +43,33 @@ contains
       call read_deck(path, ov, deck, err)
       if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
    end subroutine load_deck
+
+   !> load_deck, or a failed check and the end of test program `program`.
+   subroutine load_or_stop(program, path, overrides, deck, model, u0, v0)
+      character(len=*), intent(in) :: program           !! test program name
+      character(len=*), intent(in) :: path              !! deck
+      character(len=*), intent(in) :: overrides(:)      !! namelist fragments
+      type(deck_t), intent(out) :: deck                 !! the deck read
+      type(model_t), intent(out) :: model              !! its model
+      real(dp), allocatable, intent(out) :: u0(:), v0(:) !! its initial state
+      type(error_t), allocatable :: err
+      call load_deck(path, overrides, deck, model, u0, v0, err)
+      if (allocated(err)) then
+         call check('load ' // path, .false., err%message)
+         call finish(program)
+      end if
+   end subroutine load_or_stop
+
+   !> The sweep plan of `deck`, or a failed check and the end of test program `program`.
+   subroutine make_plan_or_stop(program, deck, plan)
+      character(len=*), intent(in) :: program           !! test program name
+      type(deck_t), intent(in) :: deck                  !! a sweep deck
+      type(sweep_plan_t), intent(out) :: plan           !! its plan
+      type(error_t), allocatable :: err
+      call make_plan(deck, plan, err)
+      if (allocated(err)) then
+         call check('sweep plan', .false., err%message)
+         call finish(program)
+      end if
+   end subroutine make_plan_or_stop
 end module gapbeam_test_runs

@@ -6,7 +6,7 @@ program test_continuation
    use gapbeam_deck, only: deck_t
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
-   use gapbeam_test_runs, only: load_deck
+   use gapbeam_test_runs, only: load_or_stop
    use gapbeam_periodic, only: orbit_map_t, newton_orbit, transient_orbit, floquet_multipliers, &
       energy_size
    use gapbeam_continuation, only: run_continuation
@@ -39,18 +39,6 @@ program test_continuation
 
 contains
 
-   subroutine load(path, overrides, deck, model, u0, v0)
-      character(len=*), intent(in) :: path, overrides(:)
-      type(deck_t), intent(out) :: deck
-      type(model_t), intent(out) :: model
-      real(dp), allocatable, intent(out) :: u0(:), v0(:)
-      type(error_t), allocatable :: err
-      call load_deck(path, overrides, deck, model, u0, v0, err)
-      if (allocated(err)) then
-         call check('load ' // path, .false., err%message)
-         call finish('test_continuation')
-      end if
-   end subroutine load
 
    !> Bad &continuation groups are rejected with one line naming the deck, the group, the
    !> variable, the value and what is allowed.
@@ -141,7 +129,7 @@ contains
       type(error_t), allocatable :: err
       integer :: p
       real(dp) :: e
-      call load(ref, [character(len=300) :: "&solver method = 'exact' /", &
+      call load_or_stop('test_continuation', ref, [character(len=300) :: "&solver method = 'exact' /", &
          '&forcing frequency_hz = 10.0 /', case], deck, model, u0, v0)
       call ex%setup(model, deck%solver, 1, 0.0_dp, .true., 1.0e-5_dp, err)
       if (.not. allocated(err)) call fd%setup(model, deck%solver, 1, 0.0_dp, .false., &
@@ -220,7 +208,7 @@ contains
       integer :: k, j, i, nf
       real(dp) :: f
       character(len=:), allocatable :: name
-      call load(ref, [character(len=300) :: "&solver method = 'exact' /", &
+      call load_or_stop('test_continuation', ref, [character(len=300) :: "&solver method = 'exact' /", &
          '&forcing frequency_hz = 8.40 /', "&job analysis = 'continuation' /", &
          "&continuation parameter = '&forcing frequency_hz', parameter_min = 8.40, " &
          // "parameter_max = 8.62, direction = 'up', step_max = 0.02, max_period = 2 /"], &
@@ -327,7 +315,7 @@ contains
       real(dp), allocatable :: u0(:), v0(:), fs(:), folds(:)
       integer, allocatable :: per(:), imp(:)
       integer :: j, nf, i_up, i_down
-      call load(ref, [character(len=300) :: "&solver method = 'exact' /", &
+      call load_or_stop('test_continuation', ref, [character(len=300) :: "&solver method = 'exact' /", &
          '&forcing frequency_hz = 8.82 /', "&job analysis = 'continuation' /", &
          "&continuation parameter = '&forcing frequency_hz', parameter_min = 8.74, " &
          // "parameter_max = 8.82, direction = 'down', step_max = 0.01, " &

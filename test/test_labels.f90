@@ -12,13 +12,13 @@ program test_labels
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
-   use gapbeam_test_runs, only: load_deck
+   use gapbeam_test_runs, only: load_or_stop, make_plan_or_stop
    use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
       label_undecided, label_unsettled, label_failed, certificate_certified, &
       certificate_disputed
    use gapbeam_attractor, only: diagnose
    use gapbeam_certify, only: certify_point
-   use gapbeam_sweep, only: sweep_plan_t, make_plan, run_items, n_items, n_points, &
+   use gapbeam_sweep, only: sweep_plan_t, run_items, n_items, n_points, &
       combine_point
    use gapbeam_sweep_job, only: run_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep
@@ -44,19 +44,6 @@ program test_labels
 
 contains
 
-   !> Read a deck with overrides and build its model; stop the program if that fails.
-   subroutine load(path, overrides, deck, model, u0, v0)
-      character(len=*), intent(in) :: path, overrides(:)
-      type(deck_t), intent(out) :: deck
-      type(model_t), intent(out) :: model
-      real(dp), allocatable, intent(out) :: u0(:), v0(:)
-      type(error_t), allocatable :: err
-      call load_deck(path, overrides, deck, model, u0, v0, err)
-      if (allocated(err)) then
-         call check('load ' // path, .false., err%message)
-         call finish('test_labels')
-      end if
-   end subroutine load
 
    !> Diagnose the deck's own point (no certificate); stop if the run fails.
    subroutine run(path, overrides, pr)
@@ -67,7 +54,7 @@ contains
       type(transient_result_t) :: res
       type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
-      call load(path, overrides, deck, model, u0, v0)
+      call load_or_stop('test_labels', path, overrides, deck, model, u0, v0)
       call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
       if (allocated(err)) then
          call check('run ' // path, .false., err%message)
@@ -88,7 +75,7 @@ contains
       real(dp) :: exact
       character(len=200), parameter :: linear(2) = [character(len=200) :: &
          '&stops gap = 1.0 /', '&solver transient_periods = 50, record_periods = 100 /']
-      call load('inputs/moon_shaw_10p5hz.nml', linear, deck, model, u0, v0)
+      call load_or_stop('test_labels', 'inputs/moon_shaw_10p5hz.nml', linear, deck, model, u0, v0)
       exact = -0.5_dp * deck%damping%stiffness_coefficient &
               * (2.0_dp * acos(-1.0_dp) * model%f1_open_hz)**2
       call run('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: linear, &
@@ -229,7 +216,7 @@ contains
          ! (a local first: gfortran mishandles deferred-length results in array constructors)
          solver = "&solver method = 'newmark', step_control = 'fixed', steps_per_period = " &
             // str(steps(k)) // ', transient_periods = 200, record_periods = 100 /'
-         call load('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: solver, &
+         call load_or_stop('test_labels', 'inputs/moon_shaw_10p5hz.nml', [character(len=200) :: solver, &
             '&diagnostics lyapunov_periods = 50, lyapunov_max_periods = 50 /'], &
             deck, model, u0, v0)
          pr = point_result_t()
@@ -263,10 +250,10 @@ contains
       type(point_result_t) :: p1, p2
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k
-      call load(sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
+      call load_or_stop('test_labels', sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
          '&sweep frequency_hz = 20.75, 21.0 /', &
          "&diagnostics starts = 'up', 'down', certify = .false. /"], deck, model, u0, v0)
-      call make_plan_or_stop(deck, plan)
+      call make_plan_or_stop('test_labels', deck, plan)
       allocate(slots(n_points(plan) * plan%ns))
       call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, slots)
       p1 = combine_point(deck, plan, slots, 1)
@@ -290,12 +277,12 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k
       logical :: same
-      call load(sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
+      call load_or_stop('test_labels', sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
          '&sweep frequency_hz = 20.75, 21.0 /', '&solver transient_periods = 100, ' &
          // 'record_periods = 100 /', "&diagnostics starts = 'up', 'down', 'random', " &
          // 'random_starts = 2, lyapunov_periods = 50, lyapunov_max_periods = 200 /'], &
          deck, model, u0, v0)
-      call make_plan_or_stop(deck, plan)
+      call make_plan_or_stop('test_labels', deck, plan)
       allocate(r1(n_points(plan) * plan%ns), r2(n_points(plan) * plan%ns))
       !$ call omp_set_num_threads(1)
       call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r1)
@@ -327,10 +314,10 @@ contains
       type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k
-      call load(sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
+      call load_or_stop('test_labels', sdof, [character(len=200) :: "&job analysis = 'sweep' /", &
          "&sweep x_variable = '&stops gap', x_values = 0.0, 1.0 /", &
          '&diagnostics certify = .false., lyapunov_max_periods = 400 /'], deck, model, u0, v0)
-      call make_plan_or_stop(deck, plan)
+      call make_plan_or_stop('test_labels', deck, plan)
       allocate(slots(n_points(plan) * plan%ns))
       call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, slots)
       call note('gap map: gap 0: ' // label_text(slots(1)%label) // ', lambda ' &
@@ -361,14 +348,4 @@ contains
       has = index(err%message, text) > 0
    end function has
 
-   subroutine make_plan_or_stop(deck, plan)
-      type(deck_t), intent(in) :: deck
-      type(sweep_plan_t), intent(out) :: plan
-      type(error_t), allocatable :: err
-      call make_plan(deck, plan, err)
-      if (allocated(err)) then
-         call check('sweep plan', .false., err%message)
-         call finish('test_labels')
-      end if
-   end subroutine make_plan_or_stop
 end program test_labels

@@ -13,7 +13,8 @@ program test_sweep
    use gapbeam_results, only: transient_result_t
    use gapbeam_transient, only: integrate
    use gapbeam_results, only: point_result_t
-   use gapbeam_sweep, only: sweep_plan_t, make_plan, run_items, n_items, n_points
+   use gapbeam_test_runs, only: make_plan_or_stop
+   use gapbeam_sweep, only: sweep_plan_t, run_items, n_items, n_points
    use gapbeam_attractor, only: diagnose
    use gapbeam_sweep_job, only: run_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
@@ -131,7 +132,7 @@ contains
          ov = "&sweep mode = 'independent' /"
          if (mode == 2) ov = "&sweep mode = 'continuation' /"
          call load(small, [ov], deck, model)
-         call make_plan_or_stop(deck, plan)
+         call make_plan_or_stop('test_sweep', deck, plan)
          call initial_vectors(model, deck%initial, u0, v0)
          allocate(r1(n_points(plan) * plan%ns), r2(n_points(plan) * plan%ns))
          !$ call omp_set_num_threads(1)
@@ -156,16 +157,6 @@ contains
       end do
    end subroutine thread_count_independence
 
-   subroutine make_plan_or_stop(deck, plan)
-      type(deck_t), intent(in) :: deck
-      type(sweep_plan_t), intent(out) :: plan
-      type(error_t), allocatable :: err
-      call make_plan(deck, plan, err)
-      if (allocated(err)) then
-         call check('sweep plan', .false., err%message)
-         call finish('test_sweep')
-      end if
-   end subroutine make_plan_or_stop
 
    logical function same(a, b)
       type(point_result_t), intent(in) :: a, b
@@ -319,7 +310,7 @@ contains
       integer :: k, nf
       logical :: ok
       call load(small, [character(len=200) :: "&sweep mode = 'independent' /"], deck, model)
-      call make_plan_or_stop(deck, plan)
+      call make_plan_or_stop('test_sweep', deck, plan)
       call initial_vectors(model, deck%initial, u0, v0)
       allocate(r(n_points(plan) * plan%ns))
       call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, r)
