@@ -19,7 +19,7 @@ module gapbeam_starts
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error
    use gapbeam_model, only: model_t
-   use gapbeam_settings, only: diagnostics_settings_t
+   use gapbeam_settings, only: diagnostics_settings_t, starts_given
    use gapbeam_results, only: point_result_t, modes_t, label_failed
    use gapbeam_eigen, only: solve_modes
    use gapbeam_diagnostics, only: orbit_distance, statistics_distance
@@ -39,15 +39,7 @@ contains
       character(len=8), allocatable, intent(out) :: kinds(:)  !! one per start
       integer, allocatable, intent(out) :: random_index(:)    !! random number (0: not random)
       integer :: j, r, n
-      n = 0
-      do j = 1, size(diag%starts)
-         if (len_trim(diag%starts(j)) == 0) exit
-         if (diag%starts(j) == 'random') then
-            n = n + diag%random_starts
-         else
-            n = n + 1
-         end if
-      end do
+      n = starts_given(diag)
       if (n == 0) then
          kinds = [character(len=8) :: default]
          random_index = [0]

@@ -8,7 +8,7 @@ module gapbeam_settings
    private
    public :: job_t, calibrate_t, solver_settings_t, output_settings_t, initial_state_t, &
       diagnostics_settings_t, reduction_settings_t, model_size_settings_t, sweep_settings_t, &
-      study_settings_t, batch_options_t
+      study_settings_t, batch_options_t, starts_given
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words, start_words
@@ -202,4 +202,22 @@ module gapbeam_settings
       logical :: quiet = .false.                     !! no progress lines (--quiet)
       real(dp) :: progress_interval_s = 0.0_dp       !! between progress lines [s], 0: default
    end type batch_options_t
+
+contains
+
+   !> Starts per point that `diag` asks for ('random' counts random_starts); 0 when none is
+   !> given (a run then has its one default start).
+   pure integer function starts_given(diag) result(n)
+      type(diagnostics_settings_t), intent(in) :: diag   !! settings
+      integer :: j
+      n = 0
+      do j = 1, size(diag%starts)
+         if (len_trim(diag%starts(j)) == 0) exit
+         if (diag%starts(j) == 'random') then
+            n = n + diag%random_starts
+         else
+            n = n + 1
+         end if
+      end do
+   end function starts_given
 end module gapbeam_settings

@@ -38,6 +38,7 @@
 !> **Functionals** watched by the event search (one per contact dof, the root strain, the tip
 !> displacement) and the load are kept as modal rows.
 module gapbeam_exact_modes
+   use gapbeam_linalg, only: dense_to_band
    use gapbeam_kinds, only: dp, xp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_model, only: model_t
@@ -148,12 +149,12 @@ contains
          end if
       end if
       om%kd = max(bandwidth(model%sys%k), bandwidth(model%sys%m))
-      call upper_band(model%sys%k, om%kd, om%k_band)
-      call upper_band(model%sys%m, om%kd, om%m_band)
+      call dense_to_band(model%sys%k, om%kd, om%k_band)
+      call dense_to_band(model%sys%m, om%kd, om%m_band)
       if (om%ns > 0) then
          kss = model%sys%k(om%is, om%is)
          om%kds = bandwidth(kss)
-         call upper_band(kss, om%kds, om%kss_fac)
+         call dense_to_band(kss, om%kds, om%kss_fac)
          call dpbtrf('U', om%ns, om%kds, om%kss_fac, om%kds + 1, info)
          if (info /= 0) then
             call fatal_error(err, 'gapbeam_exact: the stiffness of the massless dofs is ' &
@@ -526,21 +527,6 @@ contains
          end do
       end do
    end function bandwidth
-
-   !> Upper band storage of a dense symmetric matrix.
-   pure subroutine upper_band(a, kd, ab)
-      real(dp), intent(in) :: a(:, :)
-      integer, intent(in) :: kd
-      real(dp), allocatable, intent(out) :: ab(:, :)
-      integer :: i, j, n
-      n = size(a, 2)
-      allocate(ab(kd + 1, n), source=0.0_dp)
-      do j = 1, n
-         do i = max(1, j - kd), j
-            ab(kd + 1 + i - j, j) = a(i, j)
-         end do
-      end do
-   end subroutine upper_band
 
    !> Roots of lambda^2 + d lambda + w2, stable for any damping ratio: p1 upper (or slow),
    !> p2 lower (or fast).

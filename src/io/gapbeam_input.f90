@@ -23,7 +23,7 @@ module gapbeam_input
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
       linear_solver_words, method_words, initial_state_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words, calibration_words, analysis_words, &
-      start_words
+      start_words, starts_given
    use gapbeam_deck, only: deck_t
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
       get_deck_value, set_deck_value, deck_variable_label, parse_deck_variables, &
@@ -287,7 +287,7 @@ contains
       per_point = 2_int64 * deck%solver%record_periods + lyap &
                   + 4_int64 * deck%structure%beam%planes * (deck%structure%beam%n_elem + 1) &
                   + 16_int64 * size(deck%stops)
-      points = int(size(deck%sweep%x), int64) * size(deck%sweep%y) * n_starts(deck%diagnostics)
+      points = int(size(deck%sweep%x), int64) * size(deck%sweep%y) * max(1, starts_given(deck%diagnostics))
       if (points * per_point > max_values) then
          call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' runs (points x ' &
             // 'starts) x ' // str_int64(per_point) // ' values kept per run (2 x &solver ' &
@@ -297,22 +297,6 @@ contains
             // 'starts or record fewer periods')
       end if
    end subroutine check_sizes
-
-   !> Starts per point of a deck's diagnostics ('random' counts random_starts).
-   pure integer function n_starts(diag)
-      type(diagnostics_settings_t), intent(in) :: diag   !! settings
-      integer :: j
-      n_starts = 0
-      do j = 1, size(diag%starts)
-         if (len_trim(diag%starts(j)) == 0) exit
-         if (diag%starts(j) == 'random') then
-            n_starts = n_starts + diag%random_starts
-         else
-            n_starts = n_starts + 1
-         end if
-      end do
-      n_starts = max(1, n_starts)
-   end function n_starts
 
    !> 'up' and 'down' starts need the lines of a sweep, along an axis the sweep has.
    subroutine check_starts(deck, err)
