@@ -38,6 +38,7 @@ program test_input
    call quotes_and_comments()
    call bad_decks()
    call bad_overrides()
+   call docs_tables()
    call remove(tmp)
    call check('temporary deck removed', .not. exists(tmp))
    call finish('test_input')
@@ -504,9 +505,13 @@ contains
          // '&forcing frequency_hz = 5.0 /' // nl // '&sweep n_frequency = 100000000, ' &
          // 'frequency_start_hz = 1.0, frequency_end_hz = 2.0 /', &
          [character(len=60) :: '&sweep', 'n_frequency = 100000000', 'must be in 0..1000000'])
-      call expect_error('transient_periods + record_periods overflow', base &
+      call expect_error('transient_periods = 2^31 - 1 (no wrap of the period counts)', base &
          // '&solver transient_periods = 2147483647, record_periods = 2147483647 /', &
-         [character(len=60) :: '&solver', 'record_periods'])
+         [character(len=60) :: '&solver', 'transient_periods = 2147483647', &
+         'must be in 0..100000000'])
+      call expect_error('the periods a run may integrate, counted in 64 bits', base &
+         // '&solver transient_periods = 100000000, record_periods = 100000000 /', &
+         [character(len=60) :: '&solver', 'a run may integrate up to', 'at most 2000000000'])
       call expect_error('thickness = 1e308 (EI overflows)', job // replace(beam, &
          'thickness = 5.0e-4', 'thickness = 1.0e308'), [character(len=60) :: '&beam', &
          'thickness', 'EI = Infinity'])
@@ -626,6 +631,31 @@ contains
          [character(len=60) :: 'override 1', 'group &forcing appears more than once'], &
          [character(len=80) :: '&forcing frequency_hz = 3.0 / &forcing amplitude_pp = 0.1 /'])
    end subroutine bad_overrides
+
+   !> docs/decks.md holds, for every group of the deck table, exactly the table that
+   !> `gapbeam --help-deck --markdown` prints (renew them with scripts/test_docs.py
+   !> --write-decks GAPBEAM).
+   subroutine docs_tables()
+      use gapbeam_deck_help, only: deck_help, deck_table_begin, deck_table_end
+      use gapbeam_deck_check, only: deck_names_t, deck_names
+      character(len=:), allocatable :: doc, tables, block, group
+      type(deck_names_t) :: names
+      type(error_t), allocatable :: err
+      integer :: g, a, b
+      doc = file_text('docs/decks.md')
+      call deck_help('', .true., tables, err)
+      call check('--help-deck --markdown works', .not. allocated(err))
+      if (allocated(err)) return
+      names = deck_names()
+      do g = 1, size(names%names)
+         group = trim(names%names(g))
+         a = index(tables, deck_table_begin(group))
+         b = index(tables, deck_table_end(group)) + len(deck_table_end(group)) - 1
+         block = tables(a:b)
+         call check('docs/decks.md holds the generated table of &' // group, a > 0 .and. &
+            index(doc, block) > 0, 'run: python3 scripts/test_docs.py --write-decks GAPBEAM')
+      end do
+   end subroutine docs_tables
 
    ! ---------------------------------------------------------------- helpers
 
