@@ -54,7 +54,7 @@ program main
       write(output_unit, '(a)') version_text()
       call finish(0)
    case ('--help-deck')
-      call help_deck()
+      call help_deck(n_args)
    end select
    if (path(1:min(1, len(path))) == '-') call usage_error("unknown option '" // path &
       // "' (a deck file name comes first)")
@@ -277,12 +277,14 @@ contains
    end subroutine fail
 
    !> `gapbeam --help-deck [GROUP] [--markdown]`: the deck variables (docs/decks.md's tables).
-   subroutine help_deck()
+   subroutine help_deck(n)
+      integer, intent(in) :: n                     !! number of arguments
       character(len=:), allocatable :: text, group
+      type(error_t), allocatable :: e
       logical :: markdown
       integer :: k
       group = '';  markdown = .false.
-      do k = 2, n_args
+      do k = 2, n
          if (argument(k) == '--markdown') then
             markdown = .true.
          else if (len(group) == 0) then
@@ -291,8 +293,8 @@ contains
             call usage_error("--help-deck takes one group, got '" // argument(k) // "' too")
          end if
       end do
-      call deck_help(group, markdown, text, err)
-      if (allocated(err)) call usage_error(err%message)
+      call deck_help(group, markdown, text, e)
+      if (allocated(e)) call usage_error(e%message)
       write(output_unit, '(a)') text
       call finish(0)
    end subroutine help_deck

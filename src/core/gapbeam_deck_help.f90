@@ -83,7 +83,8 @@ contains
       if (.not. self%active) return
       if (self%markdown) then
          self%out = self%out // deck_table_begin(name) // nl &
-            // '| variable | unit | default | allowed | meaning |' // nl // '|---|---|---|---|---|' &
+            // '| variable | unit | default | allowed | meaning |' // nl &
+            // '|---|---|---|---|---|' &
             // nl
       else
          self%out = self%out // nl // '&' // name // ': ' // meaning // nl

@@ -27,7 +27,8 @@ module gapbeam_deck_table
    use gapbeam_deck, only: deck_t
    implicit none
    private
-   public :: walk_deck, node_lo, node_hi, mesh, dof_words, max_list_entries, max_axis_values, max_periods, &
+   public :: walk_deck, node_lo, node_hi, mesh, dof_words, max_list_entries, max_axis_values, &
+      max_periods, &
       max_frequency_hz, min_amplitude_pp, max_initial_entries
 
    !> Words of a dof; the position of a word is its code (dof_w = 1, ... dof_theta_v = 4).
@@ -69,7 +70,8 @@ contains
       call walk_masses(v, deck%structure%masses, deck%structure%beam%n_elem)
       call v%begin_group('modes', 'modal analysis printout')
       call v%int('n_print', deck%n_print_modes, lo=0, meaning='modes printed on standard ' &
-         // 'output; 0 prints all (the output files always hold all modes)', why='0 prints all modes')
+         // 'output; 0 prints all (the output files always hold all modes)', &
+         why='0 prints all modes')
       call v%end_group()
       call walk_calibrate(v, deck%calibrate)
       call walk_stops(v, deck%stops, deck%structure%beam%n_elem)
@@ -164,7 +166,7 @@ contains
       n = v%entries(m, max_list_entries)
       if (n < 0) then
          call v%at(1)
-         call spring(proto)
+         call spring(v, proto, n_elem)
       else
          if (.not. allocated(list) .or. n /= m) then
             allocate(tmp(n))
@@ -173,19 +175,21 @@ contains
          end if
          do i = 1, n
             call v%at(i)
-            call spring(list(i))
+            call spring(v, list(i), n_elem)
          end do
       end if
       call v%end_group()
    contains
-      subroutine spring(s)
+      subroutine spring(v, s, n_elem)
+         class(deck_visitor_t), intent(inout) :: v
          type(spring_t), intent(inout) :: s
+         integer, intent(in) :: n_elem
          call v%int('node', s%node, lo=node_lo(v), hi=node_hi(v, n_elem), why=mesh(n_elem), &
             required=.true., note='1..n_elem+1, a free dof', &
             meaning='node of the spring')
          call v%code('dof', s%dof, dof_words, note="'v', 'theta_v' with planes = 2", &
             meaning='degree of freedom')
-         call v%real('stiffness', s%stiffness, 'N/m', lo=0.0_dp, lo_open=.true., &
+         call v%real('stiffness', s%stiffness, 'N/m', lo=0.0_dp, lo_open=.true., hi=big, &
             design=.true., meaning='spring stiffness (N m/rad on a rotation)')
       end subroutine spring
    end subroutine walk_springs
@@ -203,7 +207,7 @@ contains
       n = v%entries(m, max_list_entries)
       if (n < 0) then
          call v%at(1)
-         call mass(proto)
+         call mass(v, proto, n_elem)
       else
          if (.not. allocated(list) .or. n /= m) then
             allocate(tmp(n))
@@ -212,19 +216,22 @@ contains
          end if
          do i = 1, n
             call v%at(i)
-            call mass(list(i))
+            call mass(v, list(i), n_elem)
          end do
       end if
       call v%end_group()
    contains
-      subroutine mass(p)
+      subroutine mass(v, p, n_elem)
+         class(deck_visitor_t), intent(inout) :: v
          type(point_mass_t), intent(inout) :: p
+         integer, intent(in) :: n_elem
          call v%int('node', p%node, lo=node_lo(v), hi=node_hi(v, n_elem), why=mesh(n_elem), &
             required=.true., note='1..n_elem+1', &
             meaning='node of the mass')
-         call v%real('mass', p%mass, 'kg', lo=0.0_dp, design=.true., meaning='translational ' &
+         call v%real('mass', p%mass, 'kg', lo=0.0_dp, hi=big, design=.true., &
+            meaning='translational ' &
             // 'mass (on w, and v with two planes)')
-         call v%real('inertia', p%inertia, 'kg m^2', lo=0.0_dp, design=.true., &
+         call v%real('inertia', p%inertia, 'kg m^2', lo=0.0_dp, hi=big, design=.true., &
             meaning='rotary inertia (on theta)')
       end subroutine mass
    end subroutine walk_masses
@@ -256,7 +263,7 @@ contains
       n = v%entries(m, max_list_entries)
       if (n < 0) then
          call v%at(1)
-         call stop_entry(proto)
+         call stop_entry(v, proto, n_elem)
       else
          if (.not. allocated(list) .or. n /= m) then
             allocate(tmp(n))
@@ -265,13 +272,15 @@ contains
          end if
          do i = 1, n
             call v%at(i)
-            call stop_entry(list(i))
+            call stop_entry(v, list(i), n_elem)
          end do
       end if
       call v%end_group()
    contains
-      subroutine stop_entry(s)
+      subroutine stop_entry(v, s, n_elem)
+         class(deck_visitor_t), intent(inout) :: v
          type(stop_t), intent(inout) :: s
+         integer, intent(in) :: n_elem
          call v%int('node', s%node, lo=node_lo(v), hi=node_hi(v, n_elem), why=mesh(n_elem), &
             required=.true., note='1..n_elem+1, a free dof', &
             meaning='node of the stop')
@@ -281,23 +290,24 @@ contains
             // "(u > gap, u < -gap, or both)")
          call v%word('law', s%law, stop_law_words, meaning='contact law: f = max(0, k d + ' &
             // "c d') or f = k d^p, d = s u - gap the penetration")
-         call v%real('gap', s%gap, 'm', lo=0.0_dp, design=.true., &
+         call v%real('gap', s%gap, 'm', lo=0.0_dp, hi=big, design=.true., &
             meaning='clearance g (rad on a rotation dof)')
-         call v%real('stiffness', s%stiffness, 'N/m', lo=0.0_dp, design=.true., &
-            positive=.not. (s%rule_factor > 0.0_dp), why='or rule_factor' // ix() &
+         call v%real('stiffness', s%stiffness, 'N/m', lo=0.0_dp, hi=big, design=.true., &
+            positive=.not. (s%rule_factor > 0.0_dp), why='or rule_factor' // ix(v%entry) &
             // ' > 0: the stiffness from the rule', note='> 0 unless rule_factor > 0', &
             meaning='contact stiffness k (N m/rad on a rotation; N/m^p for hertz)')
-         call v%real('damping', s%damping, 'N s/m', lo=0.0_dp, design=.true., &
+         call v%real('damping', s%damping, 'N s/m', lo=0.0_dp, hi=big, design=.true., &
             note="0 with law = 'hertz'", meaning='contact damper c, active only in contact')
          call v%real('exponent', s%exponent, '1', lo=1.0_dp, hi=10.0_dp, design=.true., &
             meaning="Hertz exponent p (law = 'hertz')")
-         call v%real('rule_factor', s%rule_factor, '1', lo=0.0_dp, design=.true., &
+         call v%real('rule_factor', s%rule_factor, '1', lo=0.0_dp, hi=big, design=.true., &
             meaning='> 0: stiffness = rule_factor x the spring that raises f1 to the rule ' &
             // 'target; 0: stiffness as given')
          call v%real('rule_f1_ratio', s%rule_f1_ratio, '1', lo=1.0_dp + 1.0e-9_dp, &
             hi=1.0e6_dp, zero=.true., design=.true., meaning='rule target as a multiple of ' &
             // 'f1 with the stops open')
-         call v%real('rule_f1_hz', s%rule_f1_hz, 'Hz', lo=0.0_dp, design=.true., &
+         call v%real('rule_f1_hz', s%rule_f1_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
+            design=.true., &
             note='> 0 with rule_factor > 0 and rule_f1_ratio = 0', &
             meaning='rule target as a frequency')
          call v%word('shape', s%shape, stop_shape_words, note="'circular' needs planes = 2, " &
@@ -315,10 +325,11 @@ contains
          call v%real('wear_coefficient', s%wear_coefficient, '1/Pa', lo=0.0_dp, hi=big, &
             design=.true., meaning='Archard coefficient: wear volume rate / normal work rate')
       end subroutine stop_entry
-      function ix() result(t)
+      function ix(i) result(t)
+         integer, intent(in) :: i
          character(len=:), allocatable :: t
          character(len=12) :: buf
-         write(buf, '(i0)') v%entry
+         write(buf, '(i0)') i
          t = '(' // trim(buf) // ')'
       end function ix
    end subroutine walk_stops
@@ -336,14 +347,18 @@ contains
          design=.true., note="model = 'rayleigh'", meaning='beta')
       call v%real('stiffness_coefficient', d%stiffness_coefficient, 's', lo=0.0_dp, hi=big, &
          design=.true., note="model = 'rayleigh'", meaning='gamma')
-      call v%real('frequency1_hz', d%frequency1_hz, 'Hz', lo=0.0_dp, positive=ratios, &
+      call v%real('frequency1_hz', d%frequency1_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
+         positive=ratios, &
          design=.true., note="> 0 with model = 'ratios'", meaning='first frequency f_1')
-      call v%real('ratio1', d%ratio1, '1', lo=0.0_dp, design=.true., note="model = 'ratios'", &
+      call v%real('ratio1', d%ratio1, '1', lo=0.0_dp, hi=big, design=.true., &
+         note="model = 'ratios'", &
          meaning='damping ratio at f_1')
-      call v%real('frequency2_hz', d%frequency2_hz, 'Hz', lo=0.0_dp, positive=ratios, &
+      call v%real('frequency2_hz', d%frequency2_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
+         positive=ratios, &
          design=.true., note="> frequency1_hz with model = 'ratios'", &
          meaning='second frequency f_2')
-      call v%real('ratio2', d%ratio2, '1', lo=0.0_dp, design=.true., note="model = 'ratios'", &
+      call v%real('ratio2', d%ratio2, '1', lo=0.0_dp, hi=big, design=.true., &
+         note="model = 'ratios'", &
          meaning='damping ratio at f_2')
       call v%end_group()
    end subroutine walk_damping
@@ -359,11 +374,13 @@ contains
       if (.not. v%describing .and. omega > 0.0_dp .and. omega <= 2.0_dp * pi * max_frequency_hz) &
          then
          a_hi = min(big, 2.0_dp * big / omega**2)
-         why_a = 'the base acceleration (A_pp/2) (2 pi f)^2 at most 1.34e154'
+         if (f%amplitude_pp > a_hi) why_a = 'the base acceleration (A_pp/2) (2 pi f)^2 at most ' &
+            // '1.34e154'
       end if
       if (.not. v%describing .and. f%amplitude_pp > 0.0_dp .and. f%amplitude_pp <= big) then
          f_hi = min(max_frequency_hz, sqrt(2.0_dp * big / f%amplitude_pp) / (2.0_dp * pi))
-         if (f_hi < max_frequency_hz) why_f = why_a
+         if (f%frequency_hz > f_hi .and. f_hi < max_frequency_hz) why_f = 'the base ' &
+            // 'acceleration (A_pp/2) (2 pi f)^2 at most 1.34e154'
       end if
       call v%begin_group('forcing', 'harmonic base excitation u_b = (A_pp/2) sin(2 pi f t)')
       call v%real('frequency_hz', f%frequency_hz, 'Hz', lo=0.0_dp, hi=f_hi, lo_open=.true., &
@@ -393,7 +410,7 @@ contains
       n = v%entries(m, max_list_entries)
       if (n < 0) then
          call v%at(1)
-         call force(proto)
+         call force(v, proto, n_elem)
       else
          if (.not. allocated(list) .or. n /= m) then
             allocate(tmp(n))
@@ -402,13 +419,15 @@ contains
          end if
          do i = 1, n
             call v%at(i)
-            call force(list(i))
+            call force(v, list(i), n_elem)
          end do
       end if
       call v%end_group()
    contains
-      subroutine force(p)
+      subroutine force(v, p, n_elem)
+         class(deck_visitor_t), intent(inout) :: v
          type(point_force_t), intent(inout) :: p
+         integer, intent(in) :: n_elem
          call v%int('node', p%node, lo=node_lo(v), hi=node_hi(v, n_elem), why=mesh(n_elem), &
             required=.true., note='1..n_elem+1, a free dof', &
             meaning='node of the force')

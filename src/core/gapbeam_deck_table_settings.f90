@@ -110,7 +110,7 @@ contains
       n = v%entries(m, max_initial_entries)
       if (n < 0) then
          call v%at(1)
-         call entry(proto%node, proto%dof, proto%displacement, proto%velocity)
+         call entry(v, n_elem, proto%node, proto%dof, proto%displacement, proto%velocity)
       else
          if (.not. allocated(ini%node) .or. n /= m) then
             call resize_int(ini%node, n, proto%node)
@@ -120,12 +120,14 @@ contains
          end if
          do i = 1, n
             call v%at(i)
-            call entry(ini%node(i), ini%dof(i), ini%displacement(i), ini%velocity(i))
+            call entry(v, n_elem, ini%node(i), ini%dof(i), ini%displacement(i), ini%velocity(i))
          end do
       end if
       call v%end_group()
    contains
-      subroutine entry(node, dof, u, du)
+      subroutine entry(v, n_elem, node, dof, u, du)
+         class(deck_visitor_t), intent(inout) :: v
+         integer, intent(in) :: n_elem
          integer, intent(inout) :: node, dof
          real(dp), intent(inout) :: u, du
          call v%int('node', node, lo=node_lo(v), hi=node_hi(v, n_elem), why=mesh(n_elem), &
@@ -182,7 +184,8 @@ contains
       call v%real('period_tolerance', d%period_tolerance, '1', lo=1.0e-12_dp, hi=0.5_dp, &
          zero=.true., meaning='repeat distance / orbit size accepted as periodic (0: from the ' &
          // 'accuracy of the method)')
-      call v%int('period_points', d%period_points, lo=1, meaning='last Poincare points tested')
+      call v%int('period_points', d%period_points, lo=1, hi=max_periods, &
+         meaning='last Poincare points tested')
       call v%int('lyapunov_periods', d%lyapunov_periods, lo=0, hi=max_periods, &
          unit='periods', why='every period keeps its running estimate', note='0 with ring ' &
          // 'supports (their default)', meaning='first periods averaged for the exponent ' &
@@ -279,8 +282,8 @@ contains
          meaning='amplitudes of the range (0: no range)')
       call v%logical('progress', s%progress, meaning='progress lines on standard error ' &
          // '(also --quiet, --progress S)')
-      call v%int('chunk', s%chunk, lo=0, unit='work items', meaning='work items between ' &
-         // 'checkpoints and time-limit checks (0: automatic)')
+      call v%int('chunk', s%chunk, lo=0, hi=1000000, unit='work items', &
+         meaning='work items between checkpoints and time-limit checks (0: automatic)')
       call v%logical('checkpoint', s%checkpoint, meaning='append every finished point to ' &
          // 'PREFIX.checkpoint and resume from it')
       call v%end_group()

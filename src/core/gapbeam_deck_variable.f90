@@ -335,10 +335,10 @@ contains
       if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0) then
          ! a ratio or a frequency of model 'ratios': the coefficients follow
          dd = deck%damping
-         call set_on(dd%frequency1_hz, 'frequency1_hz')
-         call set_on(dd%ratio1, 'ratio1')
-         call set_on(dd%frequency2_hz, 'frequency2_hz')
-         call set_on(dd%ratio2, 'ratio2')
+         call set_on(dd%frequency1_hz, 'frequency1_hz', var%name, x)
+         call set_on(dd%ratio1, 'ratio1', var%name, x)
+         call set_on(dd%frequency2_hz, 'frequency2_hz', var%name, x)
+         call set_on(dd%ratio2, 'ratio2', var%name, x)
          call rayleigh_from_ratios(dd%frequency1_hz, dd%ratio1, dd%frequency2_hz, &
                                    dd%ratio2, beta, gamma)
          if (beta < 0.0_dp .or. gamma < 0.0_dp .or. &
@@ -361,10 +361,12 @@ contains
          deck%damping%mass_coefficient = beta;  deck%damping%stiffness_coefficient = gamma
       end if
    contains
-      subroutine set_on(y, name)
+      !> y = x when the variable set is `name`.
+      pure subroutine set_on(y, name, set_name, x)
          real(dp), intent(inout) :: y
-         character(len=*), intent(in) :: name
-         if (var%name == name) y = x
+         character(len=*), intent(in) :: name, set_name
+         real(dp), intent(in) :: x
+         if (set_name == name) y = x
       end subroutine set_on
    end subroutine set_deck_value
 

@@ -437,7 +437,13 @@ contains
       case default
          t = 'text, at most ' // str(s%length) // ' characters'
       end select
-      if (s%list) t = 'up to ' // str(s%max_entries) // ' of ' // t
+      if (s%list .and. (s%kind == kind_word .or. s%kind == kind_code)) then
+         t = 'up to ' // str(s%max_entries) // ' of ' // t
+      else if (s%list .and. t == 'finite') then
+         t = 'up to ' // str(s%max_entries) // ' values'
+      else if (s%list) then
+         t = 'up to ' // str(s%max_entries) // ' values, each ' // t
+      end if
       if (len(s%note) > 0) t = t // '; ' // s%note
    end function spec_allowed
 

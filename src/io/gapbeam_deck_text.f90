@@ -210,12 +210,20 @@ contains
                // "starts with '!')")
             return
          else
-            call fatal_error(err, at(c) // "text outside a group: '" // rest_of_line(c) &
-               // "' (a group starts with &name, a comment with '!')")
+            call fatal_error(err, at(c) // "text outside a group" // after(closed) // ": '" &
+               // rest_of_line(c) // "' (a group starts with &name, a comment with '!')")
             return
          end if
       end do
    end subroutine parse_source
+
+   !> ' (after group &name)', or '' before the first group.
+   pure function after(closed) result(t)
+      character(len=*), intent(in) :: closed
+      character(len=:), allocatable :: t
+      t = ''
+      if (len(closed) > 0) t = ' (after group &' // closed // ')'
+   end function after
 
    !> '&name ... /' at the cursor.
    subroutine parse_group(c, g, err)
@@ -229,7 +237,7 @@ contains
       c%p = c%p + 1
       if (.not. is_letter(peek(c))) then
          call fatal_error(err, at(c) // "'&" // rest_of_line(c) // "': '&' must be followed " &
-            // 'by a group name, with no blank between (e.g. &forcing)')
+            // 'directly by a group name' // meant(c))
          return
       end if
       g%name = lower(read_name(c))
@@ -583,6 +591,27 @@ contains
       peek = ' '
       if (c%p <= len(c%t)) peek = c%t(c%p:c%p)
    end function peek
+
+   !> ' (&name?)': the first name on the rest of the line, the group perhaps meant.
+   pure function meant(c) result(t)
+      type(cursor_t), intent(in) :: c
+      character(len=:), allocatable :: t
+      integer :: p, q
+      t = ''
+      p = c%p
+      do while (p <= len(c%t))
+         if (c%t(p:p) == lf) return
+         if (is_letter(c%t(p:p))) exit
+         p = p + 1
+      end do
+      if (p > len(c%t)) return
+      q = p
+      do while (q <= len(c%t))
+         if (.not. is_name_char(c%t(q:q))) exit
+         q = q + 1
+      end do
+      t = ' (&' // lower(c%t(p:q - 1)) // '?)'
+   end function meant
 
    !> The rest of the cursor's line, at most 40 characters.
    pure function rest_of_line(c) result(t)

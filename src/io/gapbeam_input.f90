@@ -433,6 +433,15 @@ contains
             end if
             call rayleigh_from_ratios(d%frequency1_hz, d%ratio1, d%frequency2_hz, d%ratio2, &
                d%mass_coefficient, d%stiffness_coefficient)
+            if (d%mass_coefficient > sqrt(huge(1.0_dp)) .or. &
+                d%stiffness_coefficient > sqrt(huge(1.0_dp))) then
+               call fatal_error(err, 'group &damping: the ratios (' // str(d%ratio1) // ' at ' &
+                  // str(d%frequency1_hz) // ' Hz, ' // str(d%ratio2) // ' at ' &
+                  // str(d%frequency2_hz) // ' Hz) give beta = ' // str(d%mass_coefficient) &
+                  // ' 1/s, gamma = ' // str(d%stiffness_coefficient) // ' s: each must be ' &
+                  // 'at most ' // str(sqrt(huge(1.0_dp))) // ' (the scale rule)')
+               return
+            end if
             if (d%mass_coefficient < 0.0_dp .or. d%stiffness_coefficient < 0.0_dp) then
                call fatal_error(err, 'group &damping: the ratios (' // str(d%ratio1) // ' at ' &
                   // str(d%frequency1_hz) // ' Hz, ' // str(d%ratio2) // ' at ' &
