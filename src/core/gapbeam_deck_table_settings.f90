@@ -263,10 +263,12 @@ contains
          hi=max_frequency_hz, lo_open=.true., note='not with n_frequency > 0', &
          meaning='frequency axis as a list (default: &forcing frequency_hz)')
       call v%real('frequency_start_hz', s%frequency_start_hz, 'Hz', lo=0.0_dp, &
-         hi=max_frequency_hz, positive=s%n_frequency > 0, note='> 0 when n_frequency > 0', &
+         hi=max_frequency_hz, positive=s%n_frequency > 0 .and. s%n_frequency <= 1000000, &
+         note='> 0 when n_frequency > 0', &
          meaning='first frequency of a range')
       call v%real('frequency_end_hz', s%frequency_end_hz, 'Hz', lo=0.0_dp, &
-         hi=max_frequency_hz, positive=s%n_frequency > 1, note='> 0 when n_frequency > 1', &
+         hi=max_frequency_hz, positive=s%n_frequency > 1 .and. s%n_frequency <= 1000000, &
+         note='> 0 when n_frequency > 1', &
          meaning='last frequency of the range')
       call v%int('n_frequency', s%n_frequency, lo=0, hi=1000000, &
          meaning='frequencies of the range (0: no range)')

@@ -401,7 +401,8 @@ contains
          else
             t = 'any integer'
          end if
-      else if (has_lo .and. has_hi .and. .not. (s%lo_open .or. s%hi_open)) then
+      else if (has_lo .and. has_hi .and. .not. (s%lo_open .or. s%hi_open) .and. &
+               s%hi /= sqrt(huge(1.0_dp))) then
          t = '[' // lo // ', ' // hi // ']'
          if (.not. short) t = 'in ' // t
       else if (has_lo .and. has_hi) then

@@ -236,7 +236,7 @@ contains
       g%line = c%line
       c%p = c%p + 1
       if (.not. is_letter(peek(c))) then
-         call fatal_error(err, at(c) // "'&" // rest_of_line(c) // "': '&' must be followed " &
+         call fatal_error(err, at(c) // "'" // group_token(c) // "': '&' must be followed " &
             // 'directly by a group name' // meant(c))
          return
       end if
@@ -244,8 +244,9 @@ contains
       ch = peek(c)
       if (.not. (ch == ' ' .or. ch == tab .or. ch == lf .or. ch == '/' .or. &
                  c%p > len(c%t))) then
-         call fatal_error(err, at(c) // "'&" // g%name // rest_of_line(c) // "': a group " &
-            // 'name must be followed by a blank or the end of the line')
+         c%p = c%p - len(g%name)
+         call fatal_error(err, at(c) // "'" // group_token(c) // "': a group name must be " &
+            // 'followed by a blank or the end of the line')
          return
       end if
       allocate(g%items(0))
@@ -591,6 +592,24 @@ contains
       peek = ' '
       if (c%p <= len(c%t)) peek = c%t(c%p:c%p)
    end function peek
+
+   !> The group opening as written, from its '&' (just before the cursor) to the first blank
+   !> after a name: '&forcing.', '& forcing', '&-tops' (at most 30 characters).
+   pure function group_token(c) result(t)
+      type(cursor_t), intent(in) :: c
+      character(len=:), allocatable :: t
+      integer :: q
+      logical :: named
+      named = .false.
+      q = c%p
+      do while (q <= len(c%t) .and. q - c%p < 29)
+         if (c%t(q:q) == lf) exit
+         if ((c%t(q:q) == ' ' .or. c%t(q:q) == tab) .and. named) exit
+         if (is_letter(c%t(q:q))) named = .true.
+         q = q + 1
+      end do
+      t = '&' // c%t(c%p:q - 1)
+   end function group_token
 
    !> ' (&name?)': the first name on the rest of the line, the group perhaps meant.
    pure function meant(c) result(t)
