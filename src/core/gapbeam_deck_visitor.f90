@@ -402,7 +402,7 @@ contains
             t = 'any integer'
          end if
       else if (has_lo .and. has_hi .and. .not. (s%lo_open .or. s%hi_open) .and. &
-               s%hi /= sqrt(huge(1.0_dp))) then
+               .not. (s%lo == 0.0_dp .and. s%hi == sqrt(huge(1.0_dp)))) then
          t = '[' // lo // ', ' // hi // ']'
          if (.not. short) t = 'in ' // t
       else if (has_lo .and. has_hi) then
