@@ -83,6 +83,7 @@
 #SBATCH --cpus-per-task=8
 #SBATCH --time=02:00:00
 #SBATCH --requeue
+#SBATCH --open-mode=append
 #SBATCH --output=logs/%x_%A_%a.out
 set -euo pipefail
 
@@ -117,6 +118,7 @@ fi
 merge=0
 shards=""
 prefix=""
+shard_costs=${GAPBEAM_SHARD_COSTS:-}
 time_limit=${GAPBEAM_TIME_LIMIT:-}
 while [[ $# -gt 0 ]]; do
    case $1 in
@@ -133,6 +135,10 @@ while [[ $# -gt 0 ]]; do
          [[ $# -ge 2 ]] || usage
          time_limit=$2; shift 2 ;;
       --time-limit=*) time_limit=${1#--time-limit=}; shift ;;
+      --shard-costs)
+         [[ $# -ge 2 ]] || usage
+         shard_costs=$2; shift 2 ;;
+      --shard-costs=*) shard_costs=${1#--shard-costs=}; shift ;;
       --) shift; break ;;
       -*) printf 'slurm_sweep: unknown option %s\n' "$1" >&2; usage ;;
       *) break ;;
@@ -148,6 +154,9 @@ if [[ -n ${shards} && ! ${shards} =~ ^[1-9][0-9]*$ ]]; then
 fi
 if [[ -n ${time_limit} && ! ${time_limit} =~ ^[0-9]+$ ]]; then
    die "--time-limit ${time_limit}: expected a whole number of seconds (0: none)"
+fi
+if [[ -n ${shard_costs} && ! -f ${shard_costs} ]]; then
+   die "--shard-costs ${shard_costs}: no such file (relative to $(pwd))"
 fi
 
 # gapbeam's executable (see GAPBEAM above).
@@ -243,7 +252,12 @@ task_time_limit() {
    if [[ ${SLURM_JOB_END_TIME:-} =~ ^[0-9]+$ ]]; then
       left=$((SLURM_JOB_END_TIME - now))
    elif command -v squeue >/dev/null 2>&1; then
-      left=$(slurm_seconds "$(squeue -h -j "${SLURM_JOB_ID}" -o %L 2>/dev/null | head -n 1)")
+      # this task's own line: `squeue -j` of the first task's job id lists the whole array
+      local job=${SLURM_JOB_ID}
+      if [[ -n ${SLURM_ARRAY_JOB_ID:-} && -n ${SLURM_ARRAY_TASK_ID:-} ]]; then
+         job=${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}
+      fi
+      left=$(slurm_seconds "$(squeue -h -j "${job}" -o %L 2>/dev/null | head -n 1)")
    fi
    [[ -n ${left} && ${left} -gt 0 ]] || return 0
    [[ ${margin} =~ ^[0-9]+$ ]] || margin=300
@@ -341,16 +355,39 @@ exe=$(find_gapbeam)
 out_dir=$(dirname -- "$(deck_prefix)")
 mkdir -p -- "${out_dir}" || die "cannot create the output directory ${out_dir}"
 args=(--shard "${index}/${count}")
+if [[ -n ${shard_costs} ]]; then args+=(--shard-costs "${shard_costs}"); fi
 limit=$(task_time_limit)
 if [[ -n ${limit} ]]; then args+=(--time-limit "${limit}"); fi
 printf 'slurm_sweep: %s on %s: shard %d of %d, OMP_NUM_THREADS=%s, time limit %s\n' \
    "$(date '+%Y-%m-%d %H:%M:%S')" "$(hostname)" "${index}" "${count}" "${OMP_NUM_THREADS}" \
    "${limit:-none}${limit:+ s}"
 printf 'slurm_sweep: %s %s %s%s\n' "${exe}" "${deck}" "${args[*]}" "${overrides[*]+ ${overrides[*]}}"
-status=0
-"${exe}" "${deck}" "${args[@]}" "${overrides[@]+"${overrides[@]}"}" || status=$?
+# The program runs as a child that the script waits for, so that a SIGTERM (Slurm's signal at
+# the time limit, on preemption and on scancel) reaches the script without ending it: the
+# program, which Slurm signals too, finishes its chunk, keeps the checkpoint and exits with 3;
+# outside Slurm the script passes the signal on (and Ctrl-C as SIGTERM: a child started in the
+# background ignores SIGINT). A task stopped so is not requeued here.
+got_term=0
+"${exe}" "${deck}" "${args[@]}" "${overrides[@]+"${overrides[@]}"}" &
+child=$!
+on_term() {
+   got_term=1
+   if [[ -z ${SLURM_JOB_ID:-} ]]; then kill -TERM "${child}" 2>/dev/null || true; fi
+}
+trap on_term TERM
+trap 'got_term=1; kill -TERM "${child}" 2>/dev/null || true' INT
+while :; do
+   status=0
+   wait "${child}" || status=$?
+   if ((status > 128)) && kill -0 "${child}" 2>/dev/null; then continue; fi   # the trap ran
+   break
+done
+trap - TERM INT
 
-if [[ ${status} -eq 3 ]]; then
+if [[ ${status} -eq 3 && ${got_term} -eq 1 ]]; then
+   printf 'slurm_sweep: shard %d of %d stopped by SIGTERM (scancel, preemption or the job time limit); its checkpoint is kept: run the same shard again to finish (not requeued here)\n' \
+      "${index}" "${count}" >&2
+elif [[ ${status} -eq 3 ]]; then
    printf 'slurm_sweep: shard %d of %d reached the time limit; its checkpoint is kept: run the same shard again to finish\n' \
       "${index}" "${count}" >&2
    if [[ ${GAPBEAM_AUTO_REQUEUE:-0} == 1 && -n ${SLURM_JOB_ID:-} ]]; then
