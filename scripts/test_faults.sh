@@ -23,9 +23,15 @@
 #   locks         5 sweeps and 6 transients started together on one prefix (one runs, the others
 #                 exit 4, the files equal a single run's); a stale lock; another host's lock
 #   checkpoints   a sweep stopped by --time-limit, its checkpoint corrupted (bit flip, NaN,
-#                 duplicate, conflicting valid record, torn tail, old format, damaged header),
-#                 then resumed: reported and recomputed (results equal an uninterrupted run) or
-#                 refused
+#                 duplicate, conflicting valid record, torn tail, old formats, damaged header,
+#                 a middle record's mark or length, another deck's records spliced in, a forged
+#                 'failed' record), then resumed: reported and recomputed (results equal an
+#                 uninterrupted run) or refused
+#   SIGTERM       a sweep stopped by SIGTERM: chunk finished, checkpoint kept, exit 3, resumed
+#   lock statuses exit 4 only for a lock held by another run; a lock file that cannot be
+#                 created or written, or whose name is too long, is exit 1 with the reason
+#   options       --shard, --time-limit, --progress values read whole; merge --quiet OUT
+#   shard costs   shards dealt by --shard-costs merge into the whole run's tables
 #   sweeps        a failed first point; scripts/slurm_sweep.sh into a missing directory
 #   merge         output equal to an input; an input given twice
 #   studies       a diverged work-precision run is failed, never "reached"
@@ -728,17 +734,25 @@ checkpoint_case splice 0 'another deck or shard' \
 checkpoint_case failed 0 'records a failed run' \
    "a forged 'failed' record with a right checksum: recomputed (was: never recomputed, exit 5)"
 
-# the records after a damaged middle record are read, not recomputed: 3 of the 4 points come
-# from the checkpoint
+# the records after a damaged middle record are read, not recomputed (3 of the 4 points come
+# from the checkpoint), and the file is rewritten clean: the run after reports nothing
 new_case
+run 60 "${small}" "$(out_override ref)"
 run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /' --time-limit 0.000001
 ckpt_tool "${dir}/out.checkpoint" midmark
-run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /'
+run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /' --time-limit 0.000001
 why=()
 mapfile -t why < <(crash_reasons)
-[[ ${status} -eq 0 ]] || why+=("exit status ${status}, want 0")
+[[ ${status} -eq 3 ]] || why+=("second run: exit status ${status}, want 3")
 grep -q ' 3 already in the checkpoint' "${dir}/run.stdout" || why+=('not 3 points from the checkpoint')
-report 'a damaged middle record: the records after it are still used (3 of 4 points loaded)' "${why[@]}"
+grep -q 'a damaged mark or length' "${dir}/run.stderr" || why+=('the damage was not reported')
+run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /'
+[[ ${status} -eq 0 ]] || why+=("third run: exit status ${status}, want 0")
+grep -q ' 7 already in the checkpoint' "${dir}/run.stdout" || why+=('third run: not 7 points from the checkpoint')
+grep -q 'checkpoint' "${dir}/run.stderr" && why+=('third run: the checkpoint was reported again (not rewritten clean)')
+cmp -s "${dir}/ref.sweep.dat" "${dir}/out.sweep.dat" || why+=('the results differ from an uninterrupted run')
+report 'a damaged middle record: the records after it are used (3 of 4), the file rewritten clean, results unchanged' \
+   "${why[@]}"
 
 # ---- SIGTERM (a batch job's time limit, preemption, scancel) stops a sweep like its time limit --
 new_case
