@@ -25,11 +25,12 @@
 #      GAPBEAM* and OMP_NUM_THREADS unset (a new user's shell; SLURM_CONF points at the test's
 #      configuration, as /etc/slurm/slurm.conf would on a cluster);
 #   5. checks campaigns A (a 20-point deck in 4 shards: merge waits, merged file = single-process
-#      sweep bitwise, sacct CPU times), B (a 96-point deck in 2 shards, walltime 1 minute: each
-#      task stops at its time limit with status 3, requeues itself, resumes from its checkpoint,
-#      same result) and C (A's deck in 2 shards: task 2 cancelled by scancel after its first
-#      checkpointed point, the merge waits in vain and a merge without the dependency refuses,
-#      the recovery block completes the campaign, same result).
+#      sweep bitwise, sacct CPU times), B (about 90 s of work in 2 shards, sized from the measured
+#      cost of a point, walltime 1 minute: each task stops at its time limit with status 3,
+#      requeues itself, resumes from its checkpoint, same result) and C (A's deck in 2 shards:
+#      task 2 cancelled by scancel after its first checkpointed points, the merge waits in vain
+#      and a merge without the dependency refuses, the recovery block completes the campaign,
+#      same result).
 # The single-process reference of each deck is run with the same release executable, in
 # another folder with the same relative output prefix (so that /deck and /run/files agree).
 # "Bitwise on every dataset": every dataset and attribute of the two files is compared byte for
@@ -313,15 +314,15 @@ EOF
 }
 write_deck mid results/slurm_mid "&sweep mode = 'independent', frequency_start_hz = 9.6, frequency_end_hz = 10.5, n_frequency = 10,
        amplitude_pp = 2.0e-3, 4.0e-3, progress = .false., chunk = 2 /"
-write_deck slow results/slurm_slow "&sweep mode = 'independent', frequency_start_hz = 9.0, frequency_end_hz = 11.0, n_frequency = 24,
-       amplitude_pp = 2.0e-3, 3.0e-3, 4.0e-3, 5.0e-3, progress = .false., chunk = 2 /"
 exe=$(cd "${T}/repo" && fpm run --profile release --runner echo gapbeam 2>/dev/null | tail -n 1)
 [[ ${exe} == /* ]] || exe=${T}/repo/${exe}
 if [[ ! -x ${exe} ]]; then
    fail "the copy's release executable is not there (${exe})"
    finish
 fi
-for d in mid slow; do
+# reference run R DECK: the single-process sweep, in ref/ (same relative output prefix)
+reference() {
+   local d=$1 t0
    t0=$(date +%s)
    if ! (cd "${T}/ref" && OMP_NUM_THREADS=${cores} OPENBLAS_NUM_THREADS=1 GAPBEAM_GIT_COMMIT=unknown \
          "${exe}" "${T}/repo/slurm_test/${d}.nml" --quiet >"${T}/log/ref_${d}.out" 2>&1); then
@@ -330,7 +331,17 @@ for d in mid slow; do
       finish
    fi
    note "reference: slurm_test/${d}.nml in one process (${cores} threads): $(($(date +%s) - t0)) s wall, $(grep -o '^cpu: [^,]*' "${T}/log/ref_${d}.out")"
-done
+}
+reference mid
+# campaign B's deck: about 45 s of work per shard on this machine (the mid deck's CPU time per
+# point tells), so that the first run of each task (time limit about 30 s from its 1-minute
+# walltime) stops with work left, and the second (another 30 s) finishes it
+per_point=$(awk '/^cpu: / {print $2 / 20; exit}' "${T}/log/ref_mid.out")
+n_slow=$(python3 -c "import math, sys; print(min(250, max(8, math.ceil(2 * 45.0 / 4 / float(sys.argv[1])))))" "${per_point:-0.7}")
+write_deck slow results/slurm_slow "&sweep mode = 'independent', frequency_start_hz = 9.0, frequency_end_hz = 11.0, n_frequency = ${n_slow},
+       amplitude_pp = 2.0e-3, 3.0e-3, 4.0e-3, 5.0e-3, progress = .false., chunk = 2 /"
+note "campaign B's deck: ${n_slow} x 4 points (${per_point} s CPU a point in the reference)"
+reference slow
 
 # Compare a merged file with its reference, dataset by dataset, byte for byte.
 compare() {   # compare NAME (results/NAME.h5 in the copy and in ref/)
@@ -411,21 +422,27 @@ run_block() {
 }
 
 # wait_jobs SECONDS JOBID...: until none of the jobs is in squeue; a task held after its requeue
-# (Slurm keeps it PENDING, reason BeginTime, for about two minutes) is released at once with
-# `scontrol update StartTime=now`. False at the deadline.
+# (Slurm keeps it PENDING, reason BeginTime, for about two minutes) is released with
+# `scontrol update StartTime=now` once it has been held 5 s: the run before must be gone from the
+# node first (its clean-up removes the task's spool folder; a release within the same second
+# started the next run there and lost its script: FAILED 1:0 with an empty log). False at the
+# deadline.
+declare -A held_since=()
 wait_jobs() {
-   local limit=$1 t0 line id
+   local limit=$1 t0 id reason ids q now
    shift
    t0=$(date +%s)
+   ids=$(IFS=,; echo "$*")
    while (($(date +%s) - t0 < limit)); do
-      local ids
-      ids=$(IFS=,; echo "$*")
-      local q
       q=$(squeue -h -j "${ids}" -o '%i %T %r' 2>/dev/null)
       [[ -z ${q} ]] && return 0
+      now=$(date +%s)
       while read -r id _ reason; do
-         if [[ ${reason} == BeginTime ]]; then
+         [[ ${reason} == BeginTime ]] || continue
+         [[ -n ${held_since[${id}]:-} ]] || held_since[${id}]=${now}
+         if ((now - held_since[${id}] >= 5)); then
             scontrol update JobId="${id}" StartTime=now >/dev/null 2>&1 && released+=("${id}")
+            unset 'held_since[${id}]'
          fi
       done <<<"${q}"
       sleep 1
@@ -556,6 +573,7 @@ if [[ -n ${jid} && -n ${mid} ]]; then
       [[ $(tail -n 1 <<<"${runs}") == *'|COMPLETED|0:0' ]] || why+=("last run: $(tail -n 1 <<<"${runs}")")
       limit=$(grep -o 'time limit [0-9]* s' "${log}" 2>/dev/null | head -n 1)
       check "campaign B: task ${i} stopped at its time limit (${limit:-?} from --time=00:01:00, status 3), requeued itself, resumed with ${loaded:-0} points from its checkpoint, COMPLETED" "${why[@]}"
+      [[ ${#why[@]} -eq 0 ]] || show_log "${log}" 40
    done
    mrow=$(sacct_rows "${mid}" 'ExitCode' | head -n 1)
    msg=$(compare slurm_slow 2>&1)
