@@ -444,6 +444,8 @@ elif mode == 'splice':                         # another deck's records after th
 elif mode == 'torn':                           # the last record cut in the middle
     r, _, _, e = recs[-1]
     b = b[:r + (e - r) // 2]
+elif mode == 'headcut':                        # killed while creating it: 30 header bytes
+    b = b[:30]
 elif mode == 'v1':
     b[0:20] = b'GAPBEAM-CHECKPOINT-1'
 elif mode == 'v4':
@@ -721,6 +723,8 @@ checkpoint_case nan 0 'fails its checksum' 'a NaN written into a checkpoint reco
 checkpoint_case dup 0 '' 'a duplicated checkpoint record: harmless, results unchanged'
 checkpoint_case conflict 0 'two different records' 'two valid records of one point that differ: neither trusted'
 checkpoint_case torn 0 'not a whole record' 'a torn last record (killed while writing): dropped, recomputed'
+checkpoint_case headcut 0 'cut short in its header' \
+   'a checkpoint cut short in its header (killed while creating it): started afresh (was: refused)'
 checkpoint_case v1 1 'older gapbeam' 'a checkpoint of the old format (no checksums): refused'
 checkpoint_case v4 1 'do not cover the deck' 'a checkpoint of format 4 (checksums without the deck): refused'
 checkpoint_case header 1 'damaged header' 'a damaged deck text in the checkpoint header: refused'

@@ -78,6 +78,11 @@ contains
       ck%hash = crc32(text_bytes(signature))
       n_loaded = 0
       report = ''
+      if (file_exists(path) .and. header_cut_short(path, signature, ck%hash)) then
+         call remove_file(path)
+         report = path // ': cut short in its header (a run stopped while creating it): ' &
+            // 'started afresh'
+      end if
       if (.not. file_exists(path)) then
          call create_file(ck, signature, err)
          return
@@ -131,6 +136,34 @@ contains
       inquire(unit=ck%unit, pos=header_end)
       call load_records(ck, header_end, fsize, results, done, n_loaded, report, err)
    end subroutine checkpoint_open
+
+   !> Whether the file at `path` is shorter than the header this run would write and equal to
+   !> its beginning (empty, or a header cut short by a kill): it holds nothing.
+   function header_cut_short(path, signature, hash) result(cut)
+      character(len=*), intent(in) :: path               !! the checkpoint file
+      character(len=*), intent(in) :: signature          !! deck text and shard
+      integer(int64), intent(in) :: hash                 !! the deck hash
+      logical :: cut
+      integer(int8), allocatable :: head(:), b(:)
+      integer(int64) :: n
+      integer :: unit, ios
+      cut = .false.
+      head = [text_bytes(magic), transfer(hash, [0_int8]), &
+              transfer(int(len(signature), int64), [0_int8]), text_bytes(signature)]
+      n = file_size(path)
+      if (n < 0 .or. n >= size(head, kind=int64)) return
+      if (n == 0) then
+         cut = .true.
+         return
+      end if
+      allocate(b(n))
+      open(newunit=unit, file=path, access='stream', form='unformatted', status='old', &
+           action='read', iostat=ios)
+      if (ios /= 0) return
+      read(unit, pos=1, iostat=ios) b
+      close(unit)
+      cut = ios == 0 .and. all(b == head(1:n))
+   end function header_cut_short
 
    !> Create a new checkpoint file holding the header only.
    subroutine create_file(ck, signature, err)
