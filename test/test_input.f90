@@ -817,6 +817,11 @@ contains
       type(deck_names_t) :: names
       type(error_t), allocatable :: err
       integer :: g, a, b
+      call deck_help('&stops', .false., tables, err)
+      call check("--help-deck '&stops': gap's default, unit, range", .not. allocated(err) &
+         .and. index(tables, 'gap = 0 [m];  >= 0') > 0 .and. index(tables, '&damping:') == 0)
+      call deck_help('stop', .false., tables, err)
+      call check("--help-deck stop: an unknown group", allocated(err))
       doc = file_text('docs/decks.md')
       call deck_help('', .true., tables, err)
       call check('--help-deck --markdown works', .not. allocated(err))
