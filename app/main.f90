@@ -23,6 +23,7 @@ program main
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_usage, only: usage_lines, help_text, version_text
+   use gapbeam_deck_help, only: deck_help
    use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
    use gapbeam_stop_signal, only: catch_stop_signal
    implicit none
@@ -54,6 +55,8 @@ program main
    case ('--version', '-V')
       write(output_unit, '(a)') version_text()
       call finish(0)
+   case ('--help-deck')
+      call help_deck(n_args)
    end select
    if (path(1:min(1, len(path))) == '-') call usage_error("unknown option '" // path &
       // "' (a deck file name comes first)")
@@ -364,6 +367,29 @@ contains
       if (present(status)) call finish(status)
       call finish(status_error)
    end subroutine fail
+
+   !> `gapbeam --help-deck [GROUP] [--markdown]`: the deck variables (docs/decks.md's tables).
+   subroutine help_deck(n)
+      integer, intent(in) :: n                     !! number of arguments
+      character(len=:), allocatable :: text, group
+      type(error_t), allocatable :: e
+      logical :: markdown
+      integer :: k
+      group = '';  markdown = .false.
+      do k = 2, n
+         if (argument(k) == '--markdown') then
+            markdown = .true.
+         else if (len(group) == 0) then
+            group = argument(k)
+         else
+            call usage_error("--help-deck takes one group, got '" // argument(k) // "' too")
+         end if
+      end do
+      call deck_help(group, markdown, text, e)
+      if (allocated(e)) call usage_error(e%message)
+      write(output_unit, '(a)') text
+      call finish(0)
+   end subroutine help_deck
 
    !> `text` on one line: line feeds and carriage returns become blanks.
    function one_line(text) result(s)

@@ -17,7 +17,7 @@ contains
       t = 'usage: gapbeam DECK [--shard I/N] [--shard-costs FILE.h5] [--time-limit S] [--quiet] ' &
          // '[--progress S] [OVERRIDE ...]' // nl &
          // '       gapbeam merge [--quiet] OUT.h5 SHARD.h5 ...' // nl &
-         // '       gapbeam --help | --version'
+         // '       gapbeam --help | --version | --help-deck [GROUP]'
    end function usage_lines
 
    !> The whole help text.
@@ -42,7 +42,9 @@ contains
          // 'where the' // nl &
          // '                    line is rewritten in place; 10 otherwise, one line each)' // nl &
          // '  merge             join the shard files of a sweep into OUT.h5' // nl &
-         // '  --help, -h        this text;  --version, -V  version and build' // nl // nl &
+         // '  --help, -h        this text;  --version, -V  version and build' // nl &
+         // '  --help-deck [GROUP]  every deck variable (of one group): unit, default, what ' &
+         // 'is allowed' // nl // nl &
          // 'Results: PREFIX.h5 (HDF5, every dataset with units and long_name), gnuplot-ready ' &
          // 'PREFIX.*.dat' // nl &
          // 'tables, PREFIX.xdmf for ParaView (with &output state_history); PREFIX from &job ' &
