@@ -34,6 +34,7 @@ module gapbeam_files
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
    public :: process_id, host_name, real_path, file_size, ignore_file_size_signal
+   public :: output_prefix_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: part_suffix = '.part'      ! temporary name: path // part_suffix
@@ -205,6 +206,26 @@ contains
          return
       end do
    end subroutine make_parent_directory
+
+   !> Why `prefix` cannot be an output prefix (the files are PREFIX.h5, PREFIX.history.dat,
+   !> ...), '' when it can: a prefix that names a directory ('results/x/', '.', '..', '/')
+   !> would give hidden files ('results/x/.h5'). It is refused rather than given a stem: the
+   !> user meant a directory, and only the user can say what the files there should be called.
+   pure function output_prefix_problem(prefix) result(why)
+      character(len=*), intent(in) :: prefix             !! output prefix as given
+      character(len=:), allocatable :: why, last
+      why = ''
+      last = trim(prefix)
+      last = last(index(last, '/', back=.true.) + 1:)
+      if (len_trim(prefix) == 0) then
+         why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
+      else if (len(last) == 0 .or. last == '.' .or. last == '..') then
+         why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
+            // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
+            // 'a stem in it, e.g. ' // q(trim(prefix) // trim(merge('/  ', '   ', &
+            len(last) > 0)) // 'run')
+      end if
+   end function output_prefix_problem
 
    !> Whether a file or directory exists at `path` (C `access` with F_OK).
    logical function file_exists(path)
