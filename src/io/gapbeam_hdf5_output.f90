@@ -318,13 +318,15 @@ contains
       call note(self, hdferr /= 0, 'cannot create ' // at(path, self%part_path))
       if (allocated(self%err)) return
       if (product(dims) > 0) call h5dwrite_f(dset_id, type_id, buf, hdferr)
-      call note(self, hdferr /= 0, 'cannot write ' // at(path, self%part_path))
+      call note(self, hdferr /= 0, 'cannot write ' // at(path, self%part_path) // ' (a full ' &
+         // 'disk?)')
       call attach(self, dset_id, 'units', u, path)
       call attach(self, dset_id, 'long_name', name, path)
       if (len(dims_attribute(entry)) > 0) call attach(self, dset_id, 'dimensions', &
                                                       dims_attribute(entry), path)
       call h5dclose_f(dset_id, hdferr)
-      call note(self, hdferr /= 0, 'cannot close ' // at(path, self%part_path))
+      call note(self, hdferr /= 0, 'cannot close ' // at(path, self%part_path) // ' (a full ' &
+         // 'disk?)')
    end subroutine put_data
 
    !> A string attribute on an open object, unless a call failed already.

@@ -309,16 +309,16 @@ contains
       call h5%put('/wear/friction_work', res%friction_work)
       call h5%put('/wear/friction_work_rate', res%friction_work_rate)
       call h5%put('/wear/wear_volume_rate', res%wear_volume_rate)
-      call h5%put('/wear/wear_coefficient', deck%stops%wear_coefficient)
+      call h5%put('/wear/wear_coefficient', [deck%stops%wear_coefficient])
       call h5%put('/wear/stick_fraction', res%stick_fraction)
       if (model%sys%planes > 1) then
          call h5%put('/orbit/w', transpose(res%orbit_w))
          call h5%put('/orbit/v', transpose(res%orbit_v))
          call h5%put('/orbit/normal_force', transpose(res%stop_force))
          call h5%put('/orbit/tangential_force', transpose(res%tangential_force))
-         call h5%put('/orbit/gap', deck%stops%gap)
-         call h5%put('/orbit/offset_w', deck%stops%offset_w)
-         call h5%put('/orbit/offset_v', deck%stops%offset_v)
+         call h5%put('/orbit/gap', [deck%stops%gap])
+         call h5%put('/orbit/offset_w', [deck%stops%offset_w])
+         call h5%put('/orbit/offset_v', [deck%stops%offset_v])
       end if
       if (.not. res%has_energy) return
       call h5%put('/energy/input_work', res%input_work)
