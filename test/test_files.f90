@@ -4,6 +4,7 @@ program test_files
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_files, only: rename_file, remove_file, make_parent_directory, file_exists, &
+      output_prefix_problem, &
       write_table, write_text_file
    use gapbeam_testing, only: check, check_close, finish
    implicit none
@@ -22,11 +23,30 @@ program test_files
    call test_zero_rows()
    call test_text_round_trip()
    call test_errors()
+   call test_output_prefixes()
    call clean_up()
    call check('temporary files and directories removed', .not. file_exists(tmp_dir))
    call finish('test_files')
 
 contains
+
+   !> An output prefix names the files' stem: one that names a directory is refused, with
+   !> the hidden file it would give and a stem to use instead.
+   subroutine test_output_prefixes()
+      character(len=:), allocatable :: why
+      call check('output prefix: a stem in a directory is fine', &
+         output_prefix_problem('results/sweep/run') == '' .and. &
+         output_prefix_problem('run') == '' .and. output_prefix_problem('./run') == '' .and. &
+         output_prefix_problem('../a.b') == '')
+      why = output_prefix_problem('results/x/')
+      call check('output prefix results/x/: refused, naming the hidden file and a stem', &
+         index(why, "'results/x/' names a directory") > 0 .and. &
+         index(why, "'results/x/.h5'") > 0 .and. index(why, "'results/x/run'") > 0, why)
+      call check('output prefix . and .. and / and an empty one: refused', &
+         output_prefix_problem('.') /= '' .and. output_prefix_problem('..') /= '' .and. &
+         output_prefix_problem('a/..') /= '' .and. output_prefix_problem('/') /= '' .and. &
+         output_prefix_problem('   ') /= '')
+   end subroutine test_output_prefixes
 
    !> make_parent_directory creates nested directories; a second call is fine.
    subroutine test_directories()

@@ -187,102 +187,50 @@ contains
       end do
    end function impact_counts
 
-   !> Integer field j (int_names) of a point.
-   pure integer function int_field(pr, j) result(v)
+   !> The integer fields of a point, in the order of int_names.
+   pure function int_fields(pr) result(v)
       type(point_result_t), intent(in) :: pr   !! point
-      integer, intent(in) :: j                 !! field
-      select case (j)
-      case (1);  v = pr%period
-      case (2);  v = pr%label
-      case (3);  v = pr%status
-      case (4);  v = pr%certificate
-      case (5);  v = pr%lyapunov_periods
-      case (6);  v = pr%lyapunov_converged
-      case (7);  v = pr%period_max_tested
-      case (8);  v = pr%closest_period
-      case (9);  v = pr%transient_periods
-      case (10);  v = pr%settle_windows
-      case (11);  v = pr%settled
-      case (12);  v = pr%accuracy_label
-      case (13);  v = pr%perturbed_label
-      case default;  v = pr%n_attractors
-      end select
-   end function int_field
+      integer :: v(size(int_names))
+      v = [pr%period, pr%label, pr%status, pr%certificate, pr%lyapunov_periods, &
+           pr%lyapunov_converged, pr%period_max_tested, pr%closest_period, &
+           pr%transient_periods, pr%settle_windows, pr%settled, pr%accuracy_label, &
+           pr%perturbed_label, pr%n_attractors]
+   end function int_fields
 
-   !> Set integer field j of a point.
-   pure subroutine set_int_field(pr, j, v)
+   !> Set the integer fields of a point (int_names order).
+   pure subroutine set_int_fields(pr, v)
       type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: j, v                 !! field, value
-      select case (j)
-      case (1);  pr%period = v
-      case (2);  pr%label = v
-      case (3);  pr%status = v
-      case (4);  pr%certificate = v
-      case (5);  pr%lyapunov_periods = v
-      case (6);  pr%lyapunov_converged = v
-      case (7);  pr%period_max_tested = v
-      case (8);  pr%closest_period = v
-      case (9);  pr%transient_periods = v
-      case (10);  pr%settle_windows = v
-      case (11);  pr%settled = v
-      case (12);  pr%accuracy_label = v
-      case (13);  pr%perturbed_label = v
-      case default;  pr%n_attractors = v
-      end select
-   end subroutine set_int_field
+      integer, intent(in) :: v(:)                 !! values
+      pr%period = v(1);  pr%label = v(2);  pr%status = v(3);  pr%certificate = v(4)
+      pr%lyapunov_periods = v(5);  pr%lyapunov_converged = v(6)
+      pr%period_max_tested = v(7);  pr%closest_period = v(8);  pr%transient_periods = v(9)
+      pr%settle_windows = v(10);  pr%settled = v(11);  pr%accuracy_label = v(12)
+      pr%perturbed_label = v(13);  pr%n_attractors = v(14)
+   end subroutine set_int_fields
 
-   !> Real field j (real_names) of a point.
-   pure real(dp) function real_field(pr, j) result(v)
+   !> The real fields of a point, in the order of real_names.
+   pure function real_fields(pr) result(v)
       type(point_result_t), intent(in) :: pr   !! point
-      integer, intent(in) :: j                 !! field
-      select case (j)
-      case (1);  v = pr%lyapunov
-      case (2);  v = pr%lyapunov_error
-      case (3);  v = pr%seconds
-      case (4);  v = real(pr%steps, dp)
-      case (5);  v = pr%f1_open_hz
-      case (6);  v = pr%period_tolerance
-      case (7);  v = pr%repeat_distance
-      case (8);  v = pr%window_difference
-      case (9);  v = pr%strain_range
-      case (10);  v = pr%strain_rate_range
-      case (11);  v = pr%seconds_label
-      case (12);  v = pr%seconds_certify
-      case (13);  v = pr%accuracy_lyapunov
-      case (14);  v = pr%accuracy_lyapunov_error
-      case (15);  v = pr%accuracy_distance
-      case (16);  v = pr%perturbed_lyapunov
-      case (17);  v = pr%perturbed_lyapunov_error
-      case default;  v = pr%perturbed_distance
-      end select
-   end function real_field
+      real(dp) :: v(size(real_names))
+      v = [pr%lyapunov, pr%lyapunov_error, pr%seconds, real(pr%steps, dp), pr%f1_open_hz, &
+           pr%period_tolerance, pr%repeat_distance, pr%window_difference, pr%strain_range, &
+           pr%strain_rate_range, pr%seconds_label, pr%seconds_certify, pr%accuracy_lyapunov, &
+           pr%accuracy_lyapunov_error, pr%accuracy_distance, pr%perturbed_lyapunov, &
+           pr%perturbed_lyapunov_error, pr%perturbed_distance]
+   end function real_fields
 
-   !> Set real field j of a point.
-   pure subroutine set_real_field(pr, j, v)
+   !> Set the real fields of a point (real_names order).
+   pure subroutine set_real_fields(pr, v)
       type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: j                    !! field
-      real(dp), intent(in) :: v                   !! value
-      select case (j)
-      case (1);  pr%lyapunov = v
-      case (2);  pr%lyapunov_error = v
-      case (3);  pr%seconds = v
-      case (4);  pr%steps = nint(v, int64)
-      case (5);  pr%f1_open_hz = v
-      case (6);  pr%period_tolerance = v
-      case (7);  pr%repeat_distance = v
-      case (8);  pr%window_difference = v
-      case (9);  pr%strain_range = v
-      case (10);  pr%strain_rate_range = v
-      case (11);  pr%seconds_label = v
-      case (12);  pr%seconds_certify = v
-      case (13);  pr%accuracy_lyapunov = v
-      case (14);  pr%accuracy_lyapunov_error = v
-      case (15);  pr%accuracy_distance = v
-      case (16);  pr%perturbed_lyapunov = v
-      case (17);  pr%perturbed_lyapunov_error = v
-      case default;  pr%perturbed_distance = v
-      end select
-   end subroutine set_real_field
+      real(dp), intent(in) :: v(:)                !! values
+      pr%lyapunov = v(1);  pr%lyapunov_error = v(2);  pr%seconds = v(3)
+      pr%steps = nint(v(4), int64);  pr%f1_open_hz = v(5);  pr%period_tolerance = v(6)
+      pr%repeat_distance = v(7);  pr%window_difference = v(8);  pr%strain_range = v(9)
+      pr%strain_rate_range = v(10);  pr%seconds_label = v(11);  pr%seconds_certify = v(12)
+      pr%accuracy_lyapunov = v(13);  pr%accuracy_lyapunov_error = v(14)
+      pr%accuracy_distance = v(15);  pr%perturbed_lyapunov = v(16)
+      pr%perturbed_lyapunov_error = v(17);  pr%perturbed_distance = v(18)
+   end subroutine set_real_fields
 
    !> Text field j (text_names) of a point ('' when unset).
    pure function text_field(pr, j) result(t)
@@ -386,7 +334,8 @@ contains
          'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
          'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
          'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
-      real(dp), allocatable :: f(:), a(:), x(:), y(:)
+      real(dp), allocatable :: f(:), a(:), x(:), y(:), rv(:, :)
+      integer, allocatable :: iv(:, :)
       character(len=16), allocatable :: labels(:), certs(:)
       integer :: m, ns, nr, nl, j, k
       m = size(sf%points)
@@ -425,13 +374,16 @@ contains
       call h5%put('/sweep/y', y, units=unit_string(sf%y_units))
       call h5%put('/sweep/frequency_hz', f)
       call h5%put('/sweep/amplitude_pp', a)
+      allocate(iv(size(int_names), m), rv(size(real_names), m))
+      do j = 1, m
+         iv(:, j) = int_fields(results(sf%points(j)))
+         rv(:, j) = real_fields(results(sf%points(j)))
+      end do
       do k = 1, size(int_names)
-         call h5%put('/sweep/' // trim(int_names(k)), [(int_field(results(sf%points(j)), k), &
-                     j = 1, m)])
+         call h5%put('/sweep/' // trim(int_names(k)), iv(k, :))
       end do
       do k = 1, size(real_names)
-         call h5%put('/sweep/' // trim(real_names(k)), [(real_field(results(sf%points(j)), k), &
-                     j = 1, m)])
+         call h5%put('/sweep/' // trim(real_names(k)), rv(k, :))
       end do
       call h5%put('/sweep/label_text', labels)
       call h5%put('/sweep/certificate_text', certs)
@@ -721,12 +673,8 @@ contains
       if (allocated(err)) return
       do j = 1, n
          associate (r => results(sf%points(j)))
-            do k = 1, size(int_names)
-               call set_int_field(r, k, iv(j, k))
-            end do
-            do k = 1, size(real_names)
-               call set_real_field(r, k, rv(j, k))
-            end do
+            call set_int_fields(r, iv(j, :))
+            call set_real_fields(r, rv(j, :))
             do k = 1, size(text_names)
                call set_text_field(r, k, trim(tv(k)%v(j)))
             end do
