@@ -4,7 +4,7 @@ program test_files
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_files, only: rename_file, remove_file, make_parent_directory, file_exists, &
-      output_prefix_problem, &
+      output_prefix_problem, directory_exists, &
       write_table, write_text_file
    use gapbeam_testing, only: check, check_close, finish
    implicit none
@@ -92,7 +92,7 @@ contains
          [character(len=6) :: 't', 'w_tip', 'f_stop'], [character(len=1) :: 's', 'm', 'N'], &
          columns, err)
       call check('write_table succeeds', .not. allocated(err), message(err))
-      call check('write_table leaves no .part file', file_exists(table_name) &
+      call check('write_table writes its file, no other', file_exists(table_name) &
          .and. .not. file_exists(table_name // '.part'))
 
       allocate(character(len=1024) :: header(0))
@@ -219,12 +219,11 @@ contains
          contains_text(err, 'gapbeam_files:write_text_file: ') &
          .and. contains_text(err, no_dir), message(err))
 
-      call write_table(nested_dir, 'onto a directory', ['x'], ['m'], &   ! rename: EISDIR
+      call write_table(nested_dir, 'onto a directory', ['x'], ['m'], &   ! open: EISDIR
          reshape([1.0_dp], [1, 1]), err)
-      call check('write_table onto a directory: rename error, no .part left', &
-         contains_text(err, 'gapbeam_files:write_table: cannot rename') &
-         .and. contains_text(err, nested_dir // '.part') &
-         .and. .not. file_exists(nested_dir // '.part'), message(err))
+      call check('write_table onto a directory: error naming it, the directory kept', &
+         contains_text(err, 'gapbeam_files:write_table: cannot create') &
+         .and. contains_text(err, nested_dir) .and. directory_exists(nested_dir), message(err))
    end subroutine test_errors
 
    !> Delete everything the test creates (directories last, deepest first).

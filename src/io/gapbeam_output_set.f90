@@ -180,8 +180,7 @@ contains
       character(len=*), intent(in) :: names(:), units(:) !! column names and units
       real(dp), intent(in) :: columns(:, :)              !! (rows, columns)
       if (allocated(self%err)) return
-      call write_table(self%temp(which(self, suffix)), title, names, units, columns, self%err, &
-                       in_place=.true.)
+      call write_table(self%temp(which(self, suffix)), title, names, units, columns, self%err)
    end subroutine set_table
 
    !> Write the text file PREFIX // suffix of the set.
@@ -190,7 +189,7 @@ contains
       character(len=*), intent(in) :: suffix             !! which file, e.g. '.stability.txt'
       character(len=*), intent(in) :: text               !! its contents
       if (allocated(self%err)) return
-      call write_text_file(self%temp(which(self, suffix)), text, self%err, in_place=.true.)
+      call write_text_file(self%temp(which(self, suffix)), text, self%err)
    end subroutine set_text
 
    !> Keep a failure the caller found (the first one is kept).
