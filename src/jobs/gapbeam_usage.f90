@@ -17,7 +17,8 @@ contains
       t = 'usage: gapbeam DECK [--shard I/N] [--shard-costs FILE.h5] [--time-limit S] [--quiet] ' &
          // '[--progress S] [OVERRIDE ...]' // nl &
          // '       gapbeam merge [--quiet] OUT.h5 SHARD.h5 ...' // nl &
-         // '       gapbeam --help | --version | --help-deck [GROUP] | --help-outputs [ANALYSIS | tsv]'
+         // '       gapbeam --help | --version | --help-deck [GROUP]' // nl &
+         // '       gapbeam --help-outputs [ANALYSIS | tsv]'
    end function usage_lines
 
    !> The whole help text.
