@@ -375,7 +375,8 @@ expect_clean_error '&stops rule_f1_ratio=NaN is an error naming it (was: rule_f1
 # =================================================================================================
 small=${root}/test/decks/sweep_small.nml      # 8 points, about 1 s in the debug build
 transient_cheap=('&solver transient_periods=2, record_periods=4 /' '&diagnostics lyapunov_periods=2 /')
-transient_big=('&solver transient_periods=20, record_periods=20 /')   # tables of about 160 KB
+# a history table of about 320 KB (20 periods x 128 samples), an .h5 of about 200 KB
+transient_big=('&solver transient_periods=20, record_periods=20 /' '&output samples_per_period=128 /')
 
 # Python (stdlib) tool for checkpoint files: corrupt them in the ways a disk, a copy or a kill
 # would, keeping or recomputing the checksum (the layout is in src/io/gapbeam_checkpoint.f90).
@@ -453,9 +454,9 @@ report 'a run failing after it took the lock: exit 1, no lock file or result lef
 # `ulimit -f` works for anyone: a write past the limit fails with EFBIG (gapbeam ignores
 # SIGXFSZ), like a write to a full disk. gfortran reports neither: the sizes on disk tell.
 new_case
-# 140 KB: the .h5 (about 120 KB, with its units, long names and /parameters) fits, the history
-# table (about 160 KB) does not
-(ulimit -f 140; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
+# 260 KB: the .h5 (about 200 KB, with its units, long names and /parameters) fits, the history
+# table (about 320 KB) does not
+(ulimit -f 260; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
    "${transient_big[@]}"; printf '%s' "${status}" >"${dir}/status")
 status=$(<"${dir}/status"); rm -f "${dir}/status"
 why=()
@@ -465,7 +466,7 @@ mapfile -t why < <(crash_reasons)
 grep -q '^error: .*is incomplete: [0-9]* of [0-9]* bytes stored' "${dir}/run.stderr" \
    || why+=('the error does not say the file is incomplete')
 [[ -z $(files_left) ]] || why+=("files left: $(files_left)")
-report 'ulimit -f 140: a transient whose tables do not fit fails, no file left' "${why[@]}"
+report 'ulimit -f 260: a transient whose tables do not fit fails, no file left' "${why[@]}"
 
 new_case
 run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" "${transient_cheap[@]}"
