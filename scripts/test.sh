@@ -13,7 +13,9 @@
 # concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
 # under 60 s), scripts/test_labels_cli.sh (failed sweep points: exit status 5, issue 11) and
 # scripts/test_users.sh (--help, --version, options, progress lines, figures in every format,
-# and scripts/test_docs.py: every deck variable documented, the README's length)
+# and scripts/test_docs.py: every deck variable documented, the README's length),
+# scripts/test_paraview.sh (the XDMF files in ParaView's two readers and a headless scene; it
+# installs python3-paraview and xvfb with apt-get where it can, else prints a NOTE and skips)
 # on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
@@ -29,8 +31,8 @@
 #   GAPBEAM_TEST_FLAGS    compiler flags (default below); the same string must be given to every
 #                         fpm command, or fpm builds into another folder
 #   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh,
-#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh, test_users.sh and
-#                         test_reader.py
+#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh, test_users.sh,
+#                         test_paraview.sh and test_reader.py
 #                         (default 900)
 #   GAPBEAM_FUZZ_JOBS     parallel runs of the fuzz test (default 2)
 #   OMP_NUM_THREADS       passed through untouched; OPENBLAS_NUM_THREADS is set to 1
@@ -149,7 +151,7 @@ if [[ -n ${gapbeam_exe} ]]; then
 fi
 count test_sweep_kill.sh "${log}" "${status}"
 
-for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh; do
+for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh test_paraview.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0

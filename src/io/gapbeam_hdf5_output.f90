@@ -31,6 +31,7 @@
 !> on a full disk), and never shut down by this module, so several files can be written and
 !> read in one program, one after another or at the same time; every file must be closed.
 module gapbeam_hdf5_output
+   use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
@@ -49,7 +50,7 @@ module gapbeam_hdf5_output
       H5T_STRING, h5tset_cset_f, H5T_CSET_UTF8_F, &
       H5T_INTEGER_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       h5acreate_f, h5aopen_f, h5aclose_f, h5awrite_f, h5aread_f, h5aexists_f, h5aget_type_f, &
-      h5aget_space_f
+      h5aget_space_f, haddr_t, h5dget_offset_f, h5tget_order_f, H5T_ORDER_LE_F
    implicit none
    private
    public :: h5_writer_t, h5_reader_t, write_failed
@@ -132,6 +133,7 @@ module gapbeam_hdf5_output
       procedure :: read_text => reader_read_text       !! scalar string dataset
       procedure :: read_units => reader_read_units     !! the `units` attribute of a dataset
       procedure :: read_attr => reader_read_attr       !! a string attribute of a group or dataset
+      procedure :: data_offset => reader_data_offset   !! byte offset and order of stored values
       procedure :: close => reader_close               !! close the file, quietly
    end type h5_reader_t
 
@@ -629,6 +631,43 @@ contains
             // q(self%path))
       end if
    end subroutine reader_open
+
+   !> Where the values of a dataset start in the file (bytes from its start) and whether they
+   !> are little-endian, for readers that address them directly (the XDMF files' Format="Binary"
+   !> Seek="..."). The writer stores every dataset contiguously, uncompressed; an error when
+   !> this one is not (an edited or repacked file).
+   subroutine reader_data_offset(self, dset_path, offset, little_endian, err)
+      class(h5_reader_t), intent(in) :: self             !! reader with an open file
+      character(len=*), intent(in) :: dset_path          !! dataset, e.g. '/history/shape_w'
+      integer(int64), intent(out) :: offset              !! first byte of the values
+      logical, intent(out) :: little_endian              !! byte order of the values
+      type(error_t), allocatable, intent(out) :: err     !! set on failure; names file and dataset
+      character(len=*), parameter :: proc = 'data_offset'
+      integer(hid_t) :: dset_id, type_id
+      integer(haddr_t) :: addr
+      integer :: hdferr, status, order
+
+      offset = -1;  little_endian = .true.
+      call open_dataset(self, proc, dset_path, dset_id, err)
+      if (allocated(err)) return
+      call h5dget_offset_f(dset_id, addr, hdferr)
+      offset = int(addr, int64)
+      if (hdferr /= 0 .or. offset < 0) then
+         call fatal_error(err, here(proc) // at('dataset', clean_path(dset_path), self%path) &
+            // ' is not stored contiguously (no byte offset)')
+      else
+         call h5dget_type_f(dset_id, type_id, hdferr)
+         if (hdferr == 0) then
+            call h5tget_order_f(type_id, order, hdferr)
+            call h5tclose_f(type_id, status)
+            call keep_first(hdferr, status)
+         end if
+         if (hdferr /= 0) call fatal_error(err, here(proc) // 'cannot get the byte order of ' &
+            // at('dataset', clean_path(dset_path), self%path))
+         little_endian = order == H5T_ORDER_LE_F
+      end if
+      call close_dataset(proc, dset_id, dset_path, self%path, err)
+   end subroutine reader_data_offset
 
    !> Whether a dataset or group exists; false (not an error) when a group on the way is missing
    !> or no file is open.

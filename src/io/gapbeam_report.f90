@@ -7,7 +7,7 @@ module gapbeam_report
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t, write_failed
    use gapbeam_files, only: write_table, write_text_file
-   use gapbeam_xdmf, only: xdmf_text
+   use gapbeam_xdmf, only: write_xdmf, write_xdmf_datasets
    use gapbeam_output_set, only: output_set_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
@@ -258,9 +258,8 @@ contains
       if (.not. allocated(err) .and. deck%output%write_text .and. model%sys%planes > 1) &
          call write_orbit_tables(set, deck, model, res, err)
       if (.not. allocated(err) .and. with_state) &
-         call write_text_file(set%temp(set%size() - merge(1, 0, deck%output%write_text)), &
-            xdmf_text(base_name(deck%job%output) // '.h5', trim(deck%job%title), res%time, &
-            size(shape_points(model%sys, deck%output%shape_points))), err, in_place=.true.)
+         call write_xdmf(set%temp(set%size() - merge(1, 0, deck%output%write_text)), &
+            set%temp(1), base_name(deck%job%output) // '.h5', deck, model, res, err)
       if (.not. allocated(err) .and. with_state .and. deck%output%write_text) &
          call write_shape_table(set%temp(set%size()), deck, model, res, err)
       call set%finish(err)
@@ -401,7 +400,9 @@ contains
          if (allocated(err)) return
          call h5%write('/history/shape_segments', seg, '1', err, 'line segments of the ' &
             // 'shape mesh: the two points (from 0) each joins', 'segment end')
+         if (allocated(err)) return
       end block
+      call write_xdmf_datasets(h5, deck, model, res, err)
    end subroutine write_history
 
    !> PREFIX.shape.dat: the deflected shape at every history sample, one gnuplot block (index)
