@@ -142,7 +142,7 @@ set bmargin at screen 0.06
 unset title
 set format x "%g"
 set xlabel "forcing frequency [Hz]"
-set ylabel "λ [1/s]"
+set ylabel "largest Lyapunov\nexponent λ [1/s]"
 set autoscale y
 set xzeroaxis lt 1 lw 1.2 lc rgb "black"
 plot up . ".sweep.dat" using 1:5 with linespoints pt 7 ps 0.4 lw 1 lc rgb "#1f4e9c", \

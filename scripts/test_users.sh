@@ -42,10 +42,12 @@ for opt in --help -h; do
    ok=0
    [[ ${st} -eq 0 ]] || ok=1
    for w in 'usage: gapbeam DECK' modes calibrate transient sweep work_precision stability \
-            model_size 'Exit status' '--quiet' '--progress' 'docs/'; do
+            model_size continuation 'Exit status' '0 done' '1 error' '2 usage' '3 a sweep' \
+            '4 the output' '5 a sweep' '--quiet' '--progress' '--shard' '--time-limit' 'merge' \
+            '--version' 'GAPBEAM_BACKTRACE' 'docs/'; do
       [[ ${out} == *"${w}"* ]] || { ok=1; why="no '${w}'"; }
    done
-   check "gapbeam ${opt}: exit 0, usage, the analyses, exit statuses, options, docs" "${ok}" \
+   check "gapbeam ${opt}: exit 0, usage, the analyses, every exit status (0-5), every option, docs" "${ok}" \
       "status ${st}; ${why:-}"
 done
 
