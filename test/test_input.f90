@@ -37,6 +37,7 @@ program test_input
    call overrides()
    call quotes_and_comments()
    call bad_decks()
+   call swallowed_group_is_named()
    call bad_overrides()
    call remove(tmp)
    call check('temporary deck removed', .not. exists(tmp))
@@ -350,6 +351,25 @@ contains
    end subroutine quotes_and_comments
 
    !> Bad decks: each must fail with a message naming the deck and holding the fragments.
+   !> A quote left open in one group's value, closed only by a quote in a later group, would
+   !> swallow the groups between (here &beam, so the error was "required group &beam is
+   !> missing"; an optional group would vanish silently): the error names the swallowed group,
+   !> the line of the open quote, its group and the variables assigned there.
+   subroutine swallowed_group_is_named()
+      call expect_error('a quote left open swallows the next group', &
+         "&job analysis = ', title = 'a title'," // nl // "   output = 'results/x' /" // nl &
+         // beam // "&root condition = 'clamped' /" // nl, [character(len=60) :: &
+         'group &beam (line 3) lies inside a quoted string', 'line 2', '&job', 'analysis', &
+         'title', 'output'])
+      ! (the quote closed by an apostrophe in a later comment)
+      call expect_error('a quote left open swallows an optional group', base &
+         // "&solver method = 'exact /" // nl // "&stops node = 5, stiffness = 100.0 /" // nl &
+         // "&output write_text = .true. /   ! the tables' header" // nl &
+         // "&forcing frequency_hz = 10.0 /" // nl, &
+         [character(len=60) :: 'group &stops (line 4) lies inside a quoted string', &
+         '&solver', 'method'])
+   end subroutine swallowed_group_is_named
+
    subroutine bad_decks()
       character(len=*), parameter :: bad_ratios = "&damping model = 'ratios', " &
          // "frequency1_hz = 1.0, ratio1 = 0.1, frequency2_hz = 10.0, ratio2 = 0.001 /"
@@ -558,7 +578,7 @@ contains
       call rayleigh_from_ratios(1.0_dp, 0.1_dp, 10.0_dp, 0.001_dp, beta, gamma)
       call check('the first bad ratio pair gives gamma < 0', gamma < 0.0_dp)
       call expect_error('&damping ratios with a negative stiffness coefficient', &
-         base // bad_ratios, [character(len=60) :: '&damping', 'ratios (0.1 at 1 Hz', &
+         base // bad_ratios, [character(len=60) :: '&damping', 'ratio1 = 0.1 at 1 Hz', &
          'negative Rayleigh coefficient'])
       call rayleigh_from_ratios(1.0_dp, 0.001_dp, 10.0_dp, 0.5_dp, beta, gamma)
       call check('the second bad ratio pair gives beta < 0', beta < 0.0_dp)

@@ -9,6 +9,7 @@ module gapbeam_deck_text
    private
    public :: source_t, load_file, make_source, group_names, group_block, split_assignments
    public :: lower, basename_stem, null_value, longest_text_value, assigned_name, quote_left_open
+   public :: swallowed_group
 
    !> One source of namelist text (file or override), as lines.
    type :: source_t
@@ -319,6 +320,92 @@ contains
       end do
       quote_left_open = q /= ' '
    end function quote_left_open
+
+   !> A group of `groups` (space-separated names) that starts a line inside a quoted string: a
+   !> quote opened in an earlier value and never closed swallows the groups after it (up to the
+   !> next quote), so that they would silently vanish. The message names that group and its line,
+   !> and the line where the open quote stands with its group and the variables assigned there
+   !> (which of its quotes is the stray one the text cannot tell); '' when there is none.
+   pure function swallowed_group(src, groups) result(t)
+      type(source_t), intent(in) :: src                    !! source
+      character(len=*), intent(in) :: groups               !! known group names
+      character(len=:), allocatable :: t, line, grp, grp_q
+      character(len=1) :: q
+      integer :: l, i, j, k, ql, gl, gl_q, m
+      t = '';  q = ' ';  ql = 0;  grp = '';  grp_q = '';  gl = 1;  gl_q = 1
+      do l = 1, size(src%lines)
+         line = trim(src%lines(l))
+         k = verify(line, ' ')
+         if (q /= ' ' .and. k > 0) then
+            if (line(k:k) == '&' .or. line(k:k) == '$') then
+               j = name_end(line, k + 1)
+               if (j > k + 1) then
+                  if (index(' ' // groups // ' ', ' ' // lower(line(k + 1:j - 1)) // ' ') > 0) then
+                     t = ''
+                     do m = gl_q, ql                  ! the group's assignments up to the quote
+                        if (len(t) > 0 .and. len(assigned_names(trim(src%lines(m)))) > 0) &
+                           t = t // ', '
+                        t = t // assigned_names(trim(src%lines(m)))
+                     end do
+                     t = 'group &' // lower(line(k + 1:j - 1)) // ' (line ' // int_text(l) &
+                        // ') lies inside a quoted string: a quote on line ' // int_text(ql) &
+                        // ' (&' // grp_q // ': ' // t // ') is left open'
+                     return
+                  end if
+               end if
+            end if
+         end if
+         i = 1
+         do while (i <= len(line))
+            if (q /= ' ') then
+               if (line(i:i) == q) q = ' '
+            else if (line(i:i) == '"' .or. line(i:i) == "'") then
+               q = line(i:i);  ql = l;  grp_q = grp;  gl_q = gl
+            else if (line(i:i) == '!') then
+               exit
+            else if (line(i:i) == '&' .or. line(i:i) == '$') then
+               j = name_end(line, i + 1)
+               if (j > i + 1) then
+                  grp = lower(line(i + 1:j - 1));  gl = l
+               end if
+               i = j - 1
+            end if
+            i = i + 1
+         end do
+      end do
+   contains
+      !> The position after the name that starts at `i`.
+      pure integer function name_end(line, i) result(j)
+         character(len=*), intent(in) :: line
+         integer, intent(in) :: i
+         j = i
+         do while (j <= len(line))
+            if (.not. is_name_char(line(j:j))) exit
+            j = j + 1
+         end do
+      end function name_end
+      !> The names before every '=' of a line, comma separated.
+      pure function assigned_names(line) result(s)
+         character(len=*), intent(in) :: line
+         character(len=:), allocatable :: s
+         integer :: e, b
+         s = ''
+         do e = 1, len(line)
+            if (line(e:e) /= '=') cycle
+            b = len_trim(line(1:e - 1))
+            if (b == 0) cycle
+            if (len(s) > 0) s = s // ', '
+            s = s // assigned_name(line(scan(line(1:b), ' ,', back=.true.) + 1:e))
+         end do
+      end function assigned_names
+      pure function int_text(n) result(s)
+         integer, intent(in) :: n
+         character(len=:), allocatable :: s
+         character(len=12) :: b
+         write(b, '(i0)') n
+         s = trim(b)
+      end function int_text
+   end function swallowed_group
 
    !> The variable name of an assignment, lower case: 'Node(2) = 3' -> 'node'.
    pure function assigned_name(item) result(var)

@@ -12,7 +12,7 @@ module gapbeam_input
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck_text, only: source_t, load_file, make_source, group_names, group_block, &
       split_assignments, lower, basename_stem, null_value, longest_text_value, assigned_name, &
-      quote_left_open
+      quote_left_open, swallowed_group
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
       stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
       stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
@@ -138,6 +138,13 @@ contains
                return
             end if
          end do
+      end do
+      do s = 1, size(srcs)
+         text = swallowed_group(srcs(s), known_groups)
+         if (len(text) > 0) then
+            call fatal_error(err, path // ': ' // where(srcs, s) // text)
+            return
+         end if
       end do
       do i = 1, 2
          if (i == 1) text = 'job'
@@ -1415,8 +1422,9 @@ contains
          call rayleigh_from_ratios(frequency1_hz, ratio1, frequency2_hz, ratio2, &
             mass_coefficient, stiffness_coefficient)
          if (mass_coefficient < 0.0_dp .or. stiffness_coefficient < 0.0_dp) then
-            call fatal_error(err, 'group &damping: the ratios (' // str(ratio1) // ' at ' &
-               // str(frequency1_hz) // ' Hz, ' // str(ratio2) // ' at ' // str(frequency2_hz) &
+            call fatal_error(err, 'group &damping: the ratios (ratio1 = ' // str(ratio1) &
+               // ' at ' // str(frequency1_hz) // ' Hz, ratio2 = ' // str(ratio2) // ' at ' &
+               // str(frequency2_hz) &
                // ' Hz) give a negative Rayleigh coefficient (beta = ' // str(mass_coefficient) &
                // ' 1/s, gamma = ' // str(stiffness_coefficient) // ' s): not allowed')
          end if
@@ -2068,8 +2076,13 @@ contains
          do i = 1, size(vars)
             call set_deck_value(d, vars(i), axis_out(k), err)
             if (allocated(err)) then
+               if (size(list) > 0) then       ! name the list entry that holds the value
+                  err%message = ' (' // c // '_values(' // str(k) // ')): ' // err%message
+               else
+                  err%message = ': ' // err%message
+               end if
                err%message = 'group &sweep: ' // c // " axis ('" // deck_variable_label(vars(i)) &
-                  // "') value " // str(k) // ': ' // err%message
+                  // "') value " // str(k) // err%message
                return
             end if
          end do
