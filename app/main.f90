@@ -14,7 +14,9 @@ program main
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
-   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal
+   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal, &
+      output_prefix_problem
+   use gapbeam_output_catalogue, only: catalogue_text, section_names, section_analyses
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
       run_stability, run_model_size
@@ -57,6 +59,8 @@ program main
       call finish(0)
    case ('--help-deck')
       call help_deck(n_args)
+   case ('--help-outputs')
+      call help_outputs()
    end select
    if (path(1:min(1, len(path))) == '-') call usage_error("unknown option '" // path &
       // "' (a deck file name comes first)")
@@ -106,6 +110,8 @@ program main
 
    call read_deck(path, overrides(1:n_over), deck, err)
    if (allocated(err)) call fail(path, err%message, lock)
+   if (len(output_prefix_problem(deck%job%output)) > 0) call fail(path, 'group &job: output ' &
+      // "= '" // trim(deck%job%output) // "': " // output_prefix_problem(deck%job%output), lock)
    if ((batch%shard_count > 1 .or. batch%time_limit_s > 0.0_dp .or. &
         allocated(batch%shard_costs)) .and. deck%job%analysis /= 'sweep') &
       call fail(path, path // ": --shard, --time-limit and --shard-costs apply to " &
@@ -154,6 +160,34 @@ program main
    call finish(0)
 
 contains
+
+   !> gapbeam --help-outputs [ANALYSIS | SECTION | tsv]: the output catalogue on standard output.
+   subroutine help_outputs()
+      character(len=:), allocatable :: which
+      which = ''
+      if (n_args > 1) which = argument(2)
+      if (which == 'tsv') then
+         write(output_unit, '(a)', advance='no') catalogue_text('tsv')
+      else if (which /= '' .and. .not. any(section_names == which) .and. &
+               index(' ' // section_analyses(1) // ' ', ' ' // which // ' ') == 0) then
+         call usage_error("--help-outputs '" // which // "': expected an analysis, a section " &
+            // '(' // trim(join_words(section_names)) // ') or tsv')
+      else
+         write(output_unit, '(a)', advance='no') catalogue_text('markdown', which)
+      end if
+      call finish(0)
+   end subroutine help_outputs
+
+   !> Words joined by ', '.
+   function join_words(words) result(t)
+      character(len=*), intent(in) :: words(:)     !! words
+      character(len=:), allocatable :: t
+      integer :: k
+      t = trim(words(1))
+      do k = 2, size(words)
+         t = t // ', ' // trim(words(k))
+      end do
+   end function join_words
 
    !> Command-line argument k, whole.
    function argument(k) result(a)
@@ -333,6 +367,8 @@ contains
       if (k > 3) then
          if (out(k - 2:) == '.h5') out = out(1:k - 3)
       end if
+      if (len(output_prefix_problem(out)) > 0) call fail('merge', 'gapbeam merge: ' &
+         // output_prefix_problem(out), held)
       call take_lock('merge', out, held)
       call merge_sweep(out, args(2:), .true., e, n_failed)
       if (allocated(e)) then

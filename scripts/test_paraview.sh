@@ -47,6 +47,7 @@ while [[ $# -gt 0 ]]; do
    shift
 done
 if [[ -n ${shot} && ${shot} != /* ]]; then shot=${PWD}/${shot}; fi
+if [[ -n ${exe} && ${exe} != /* ]]; then exe=${PWD}/${exe}; fi
 cd "${root}"
 
 n_fail=0

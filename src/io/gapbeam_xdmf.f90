@@ -38,11 +38,11 @@ module gapbeam_xdmf
    use gapbeam_results, only: transient_result_t
    use gapbeam_description, only: dof_w
    use gapbeam_deflection, only: shape_points, deflection
-   use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t
-   use gapbeam_files, only: write_text_file
+   use gapbeam_hdf5_output, only: h5_writer_t
+   use gapbeam_hdf5_input, only: h5_reader_t
    implicit none
    private
-   public :: write_xdmf_datasets, write_xdmf, stop_mesh, suggested_warp_scale
+   public :: write_xdmf_datasets, make_xdmf, stop_mesh, suggested_warp_scale
 
    !> One piece of text.
    type :: chunk_t
@@ -68,12 +68,12 @@ contains
    !> The datasets the XDMF file reads, under /history (with `&output state_history`): the
    !> undeformed mesh, the displacement vectors, v for two planes, the contact state of every
    !> stop and the stops' meshes.
-   subroutine write_xdmf_datasets(h5, deck, model, res, err)
-      type(h5_writer_t), intent(inout) :: h5           !! writer of the .h5 file
+   subroutine write_xdmf_datasets(h5, deck, model, res)
+      type(h5_writer_t), intent(inout) :: h5           !! writer of the .h5 file (its state
+                                                       !! keeps a failure)
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results (with history_u)
-      type(error_t), allocatable, intent(out) :: err   !! write failure
       real(dp), allocatable :: x(:), mesh(:, :), disp(:, :, :), sv(:, :)
       integer, allocatable :: contact(:, :)
       type(stop_mesh_t) :: sm
@@ -83,9 +83,7 @@ contains
       two = model%sys%planes
       allocate(mesh(3, size(x)), source=0.0_dp)
       mesh(1, :) = x
-      call h5%write('/history/shape_mesh_xyz', mesh, 'm', err, 'undeformed points (x, 0, 0) ' &
-         // 'of the shape mesh: the geometry of the .xdmf file', 'point coordinate')
-      if (allocated(err)) return
+      call h5%put('/history/shape_mesh_xyz', mesh)
       allocate(disp(3, size(x), ns), source=0.0_dp)
       if (two == 2) allocate(sv(size(x), ns))
       do i = 1, ns
@@ -95,30 +93,15 @@ contains
             disp(3, :, i) = sv(:, i)
          end if
       end do
-      call h5%write('/history/shape_displacement', disp, 'm', err, 'displacement (0, w, v) ' &
-         // 'of the points of the shape mesh relative to the base at each sample: the warp ' &
-         // 'vector of the .xdmf file', 'sample point component')
-      if (allocated(err)) return
-      if (two == 2) then
-         call h5%write('/history/shape_v', sv, 'm', err, 'deflected shape v(x) in the second ' &
-            // 'plane relative to the base at each sample, from the cubic Hermite shape ' &
-            // 'functions', 'sample point')
-         if (allocated(err)) return
-      end if
+      call h5%put('/history/shape_displacement', disp)
+      if (two == 2) call h5%put('/history/shape_v', sv)
       allocate(contact(size(res%stop_force, 2), ns))
       contact = merge(1, 0, transpose(res%stop_force) > 0.0_dp)
-      call h5%write('/history/stop_contact', contact, '1', err, 'contact state of each stop ' &
-         // 'at each sample: 1 while it pushes on the beam (force > 0), 0 open', 'sample stop')
-      if (allocated(err)) return
+      call h5%put('/history/stop_contact', contact)
       sm = stop_mesh(deck, model, maxval(abs(disp)))
       if (sm%n_grids == 0) return
-      call h5%write('/history/stop_mesh_xyz', sm%xyz, 'm', err, 'undeformed points (x of ' &
-         // 'the stop''s node, 0, 0) of the drawn stops (.xdmf file)', 'point coordinate')
-      if (allocated(err)) return
-      call h5%write('/history/stop_mesh_displacement', sm%disp, 'm', err, 'displacement ' &
-         // '(0, w, v) placing the points of the drawn stops relative to the base: a flat ' &
-         // 'stop''s face at its gap, a circular one''s circle (.xdmf file)', &
-         'point component')
+      call h5%put('/history/stop_mesh_xyz', sm%xyz)
+      call h5%put('/history/stop_mesh_displacement', sm%disp)
    end subroutine write_xdmf_datasets
 
    !> The drawn stops: a flat stop on w as a block (a quadrilateral of half-length 3 % of the
@@ -202,17 +185,17 @@ contains
       end if
    end function suggested_warp_scale
 
-   !> Write the XDMF file `path` for the .h5 file `h5_path` (complete and closed; read for the
-   !> byte offsets of its datasets), which the XDMF file names `h5_name` (relative to its own
-   !> directory: the two stay side by side).
-   subroutine write_xdmf(path, h5_path, h5_name, deck, model, res, err)
-      character(len=*), intent(in) :: path             !! the .xdmf file to write (in place)
+   !> The XDMF text for the .h5 file `h5_path` (complete and closed; read for the byte offsets
+   !> of its datasets), which the XDMF file names `h5_name` (relative to its own directory: the
+   !> two stay side by side).
+   subroutine make_xdmf(h5_path, h5_name, deck, model, res, text, err)
       character(len=*), intent(in) :: h5_path          !! the .h5 file as it is now named
       character(len=*), intent(in) :: h5_name          !! its final name, without a directory
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results (with history_u)
-      type(error_t), allocatable, intent(out) :: err   !! read or write failure
+      character(len=:), allocatable, intent(out) :: text  !! the XDMF file's text
+      type(error_t), allocatable, intent(out) :: err   !! the .h5 file could not be read
       type(h5_reader_t) :: rd
       integer(int64) :: off(7)
       logical :: little(7), two
@@ -244,12 +227,13 @@ contains
       end do
       call rd%close()
       if (allocated(err)) return
+      text = ''
       if (.not. all(little .eqv. little(1))) then
          call fatal_error(err, 'gapbeam_xdmf: ' // trim(h5_path) // ': datasets of mixed ' &
             // 'byte order')
          return
       end if
-      call write_text_file(path, xdmf_document(), err, in_place=.true.)
+      text = xdmf_document()
    contains
       function xdmf_document() result(t)
          character(len=:), allocatable :: t
@@ -372,7 +356,7 @@ contains
             // trim(merge('Little', 'Big   ', little(1))) // '" Seek="' // trim(sk) // '">' &
             // xml_escape(h5_name) // '</DataItem>' // new_line('a')
       end function data_item
-   end subroutine write_xdmf
+   end subroutine make_xdmf
 
    !> The pieces joined.
    function joined(parts) result(t)
