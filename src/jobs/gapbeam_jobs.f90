@@ -276,16 +276,19 @@ contains
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
       integer :: k
-      character(len=:), allocatable :: lambda
+      character(len=:), allocatable :: lambda, found
+      ! 'period 3 found' or 'no period found', up to the largest period tried
+      found = 'no period found'
+      if (diag%period > 0) found = 'period ' // str(diag%period) // ' found'
       ! no exponent asked for (lyapunov_periods = 0; the default with ring supports): say so
       if (diag%lyapunov_periods == 0) then
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; no ' &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) // '; no ' &
             // 'Lyapunov exponent: lyapunov_periods = 0)'
          lambda = 'no exponent'
       else
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) &
             // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
             // str(diag%lyapunov_error) // ' 1/s over ' // str(diag%lyapunov_periods) &
             // ' periods)'
