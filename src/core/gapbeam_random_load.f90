@@ -13,7 +13,7 @@ module gapbeam_random_load
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: random_load_t, add_random_load, random_signals_at, quintic_weights
+   public :: random_load_t, add_random_load, random_signals_at, quintic_weights, rms_load
 
    !> A tabulated random load (empty and inactive by default).
    type :: random_load_t
@@ -81,4 +81,27 @@ contains
          p(1:rl%n_signals) = p(1:rl%n_signals) + x
       end if
    end subroutine add_random_load
+
+   !> The RMS of the load on each of the n coordinates over the record's period (the signals
+   !> independent: sqrt(sum_m (map(i, m) rms_m)^2)), from the grid values.
+   pure function rms_load(rl, n) result(p)
+      type(random_load_t), intent(in) :: rl   !! record (active)
+      integer, intent(in) :: n                !! coordinates
+      real(dp) :: p(n)
+      real(dp) :: ms(rl%n_signals)
+      integer :: m
+      p = 0.0_dp
+      if (.not. rl%active) return
+      do m = 1, rl%n_signals
+         ms(m) = sum(rl%x(m, 1, :)**2) / real(rl%n_grid, dp)
+      end do
+      if (allocated(rl%map)) then
+         do m = 1, rl%n_signals
+            p = p + rl%map(:, m)**2 * ms(m)
+         end do
+      else
+         p(1:rl%n_signals) = ms
+      end if
+      p = sqrt(p)
+   end function rms_load
 end module gapbeam_random_load

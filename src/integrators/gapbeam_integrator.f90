@@ -240,7 +240,7 @@ contains
          n = n + 1;  items(n) = 'two planes of motion'
       end if
       if (model%extra_load) then
-         n = n + 1;  items(n) = 'loads out of the w plane or point forces'
+         n = n + 1;  items(n) = 'loads out of the w plane, point forces or turbulence'
       end if
       t = 'it has'
       do k = 1, n

@@ -19,6 +19,7 @@ module gapbeam_stepping
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_model, only: model_t, has_tube_physics
+   use gapbeam_random_load, only: rms_load
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: law_bilinear
@@ -893,6 +894,15 @@ contains
       end do
       self%out_floor(1:n_out) = fl
       self%out_floor(n_out + 1:) = model%omega * fl
+      if (.not. model%turbulence%active) return
+      ! turbulence: the static response to the load's RMS, its rate at the record's cut-off
+      zs = reshape(rms_load(model%turbulence, n), [n, 1])
+      call dpotrs('U', n, 1, kf, n, zs, n, info)
+      fl(1) = abs(dot_product(self%sw, zs(self%si, 1)))
+      fl(2:n_out) = abs(zs(self%out_dof, 1))
+      self%out_floor(1:n_out) = max(self%out_floor(1:n_out), fl)
+      self%out_floor(n_out + 1:) = max(self%out_floor(n_out + 1:), &
+                                       2.0_dp * pi * model%turbulence%cutoff_hz * fl)
    end subroutine tube_floors
 
    !> Carry `state` to t_target with error control: steps from the ladder, each accepted when

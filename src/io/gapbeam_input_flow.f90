@@ -5,9 +5,11 @@ module gapbeam_input_flow
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck, only: deck_t
+   use gapbeam_flow_results, only: wear_depth_t
+   use gapbeam_wear_geometry, only: wear_depth_history
    implicit none
    private
-   public :: check_flow, wear_tube_diameter, flow_is_random
+   public :: check_flow, wear_tube_diameter, flow_is_random, deck_wear_depth
 
 contains
 
@@ -23,6 +25,25 @@ contains
       d = deck%wear%tube_diameter
       if (d <= 0.0_dp) d = deck%flow%tube_diameter
    end function wear_tube_diameter
+
+   !> The wear depth of each support over &wear years from its Archard volume rate [m^3/s],
+   !> through the support geometry of &stops (needs &wear years > 0).
+   pure function deck_wear_depth(deck, volume_rate) result(wd)
+      type(deck_t), intent(in) :: deck          !! deck
+      real(dp), intent(in) :: volume_rate(:)    !! per stop [m^3/s]
+      type(wear_depth_t) :: wd
+      character(len=16), allocatable :: support(:)
+      real(dp), allocatable :: land(:), hole_radius(:), plate(:)
+      support = deck%stops%support
+      land = deck%stops%land_width
+      hole_radius = 0.5_dp * deck%stops%hole_diameter
+      plate = deck%stops%plate_thickness
+      associate (w => deck%wear)
+         wd = wear_depth_history(support, volume_rate, 0.5_dp * wear_tube_diameter(deck), &
+            land, hole_radius, plate, w%wall_thickness, w%years, w%wall_fraction, &
+            w%depth_points)
+      end associate
+   end function deck_wear_depth
 
    !> Every rule between the flow's variables (the first broken one in err).
    subroutine check_flow(deck, err)

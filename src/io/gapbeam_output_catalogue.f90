@@ -442,6 +442,17 @@ module gapbeam_output_catalogue
                 // 'each support (m3 per N m of normal work)'), &
       dataset_t('/wear/stick_fraction', '1', 'n_stops', 'fraction of the contact time each ' &
                 // 'support sticks'), &
+      dataset_t('/wear/depth_time', '31557600 s', 'n_depth', 'operating time in Julian ' &
+                // 'years, 0 to &wear years (written with &wear years > 0)'), &
+      dataset_t('/wear/depth', 'm', 'time=n_depth stop=n_stops', 'wear depth of each ' &
+                // 'support''s scar in the tube wall after that time at the wear volume rate ' &
+                // '(flat bar or drilled hole geometry, docs/flow.md; at most the wall)'), &
+      dataset_t('/wear/years_to_wall_fraction', '31557600 s', 'n_stops', 'operating time ' &
+                // '(Julian years) until the scar of each support reaches wall_fraction of the wall (1.8e308: ' &
+                // 'never)'), &
+      dataset_t('/wear/wall_fraction', '1', '', 'fraction of the wall of ' &
+                // 'years_to_wall_fraction (&wear wall_fraction)'), &
+      dataset_t('/wear/wall_thickness', 'm', '', 'tube wall thickness (&wear wall_thickness)'), &
       dataset_t('/orbit/w', 'm', 'sample=n_hist stop=n_stops', 'displacement w of each ' &
                 // 'support''s node at the history samples'), &
       dataset_t('/orbit/v', 'm', 'sample=n_hist stop=n_stops', 'displacement v of each ' &

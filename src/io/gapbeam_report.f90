@@ -21,6 +21,8 @@ module gapbeam_report
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
+   use gapbeam_flow_results, only: wear_depth_t
+   use gapbeam_input_flow, only: deck_wear_depth
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, on_trajectory_clock
@@ -329,6 +331,7 @@ contains
       call h5%put('/wear/wear_volume_rate', res%wear_volume_rate)
       call h5%put('/wear/wear_coefficient', [deck%stops%wear_coefficient])
       call h5%put('/wear/stick_fraction', res%stick_fraction)
+      if (deck%wear%years > 0.0_dp) call write_wear_depth(h5, deck, res%wear_volume_rate)
       if (model%sys%planes > 1) then
          call h5%put('/orbit/w', transpose(res%orbit_w))
          call h5%put('/orbit/v', transpose(res%orbit_v))
@@ -347,6 +350,20 @@ contains
       call h5%put('/energy/imbalance', res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation - res%stored_energy_change)
    end subroutine write_wear_h5
+
+   !> /wear/depth: each support's scar depth over &wear years, and the time to a wall fraction.
+   subroutine write_wear_depth(h5, deck, volume_rate)
+      type(h5_writer_t), intent(inout) :: h5           !! open writer
+      type(deck_t), intent(in) :: deck                 !! the deck (&wear years > 0)
+      real(dp), intent(in) :: volume_rate(:)           !! per stop [m^3/s]
+      type(wear_depth_t) :: wd
+      wd = deck_wear_depth(deck, volume_rate)
+      call h5%put('/wear/depth_time', wd%time_years)
+      call h5%put('/wear/depth', transpose(wd%depth))   ! a row per time (C)
+      call h5%put('/wear/years_to_wall_fraction', wd%years_to_fraction)
+      call h5%put('/wear/wall_fraction', deck%wear%wall_fraction)
+      call h5%put('/wear/wall_thickness', deck%wear%wall_thickness)
+   end subroutine write_wear_depth
 
    !> /diagnostics: the label of a transient run, its evidence, its certificate and its starts
    !> (docs/labels.md).

@@ -26,6 +26,8 @@ module gapbeam_jobs
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
+   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_flow_results, only: wear_depth_t
    use gapbeam_study_output, only: write_work_precision, write_stability, &
       work_precision_summary, write_model_size
    implicit none
@@ -441,6 +443,7 @@ contains
             // str(res%friction_work_rate(j)) // ' W, stick ' &
             // str(100.0_dp * res%stick_fraction(j)) // ' % of the contact time, wear volume ' &
             // 'rate ' // str(res%wear_volume_rate(j)) // ' m^3/s'
+         if (dk%wear%years > 0.0_dp) call print_wear_depth(dk, res%wear_volume_rate, j)
       end do
       if (res%has_energy) write(output_unit, '(a)') 'energy over the record: input ' &
          // str(res%input_work) // ' J = Rayleigh ' // str(res%rayleigh_dissipation) &
@@ -469,4 +472,20 @@ contains
          write(output_unit, '(a)') 'files: ' // files
       end block
    end subroutine run_transient_analysis
+
+   !> The wear depth of stop j after &wear years and the time to &wear wall_fraction.
+   subroutine print_wear_depth(dk, volume_rate, j)
+      type(deck_t), intent(in) :: dk            !! the deck (&wear years > 0)
+      real(dp), intent(in) :: volume_rate(:)    !! per stop [m^3/s]
+      integer, intent(in) :: j                  !! the stop
+      type(wear_depth_t) :: wd
+      character(len=:), allocatable :: when
+      wd = deck_wear_depth(dk, volume_rate)
+      when = 'never'
+      if (wd%years_to_fraction(j) < huge(1.0_dp)) when = str(wd%years_to_fraction(j)) // ' years'
+      write(output_unit, '(a)') '        wear depth (' // trim(dk%stops(j)%support) // '): ' &
+         // str(wd%depth(size(wd%depth, 1), j)) // ' m after ' // str(dk%wear%years) &
+         // ' years; ' // str(100.0_dp * dk%wear%wall_fraction) // ' % of the wall ' &
+         // str(dk%wear%wall_thickness) // ' m in ' // when
+   end subroutine print_wear_depth
 end module gapbeam_jobs

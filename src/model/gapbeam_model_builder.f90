@@ -13,6 +13,7 @@ module gapbeam_model_builder
    use gapbeam_eigen, only: band_frequencies
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
+   use gapbeam_flow_load, only: turbulence_record
    implicit none
    private
    public :: build_model, build_full_model, resolve_stop_stiffness, initial_vectors
@@ -21,18 +22,26 @@ contains
 
    !> The model of a deck and the initial state (u0, v0) in its coordinates (modal ones when
    !> the deck asks for a reduction).
-   subroutine build_model(deck, model, u0, v0, err)
+   subroutine build_model(deck, model, u0, v0, err, draw)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(model_t), intent(out) :: model              !! model to integrate
       real(dp), allocatable, intent(out) :: u0(:), v0(:)  !! initial state
       type(error_t), allocatable, intent(out) :: err   !! calibration, eigen or reduction failure
+      integer, intent(in), optional :: draw            !! turbulence draw (default 1)
       type(model_t) :: full
       real(dp), allocatable :: basis(:, :), uf(:), vf(:)
+      integer :: d
+      d = 1
+      if (present(draw)) d = draw
       call build_full_model(deck%structure, deck%stops, deck%damping, deck%forcing, full, err)
       if (allocated(err)) return
       call initial_vectors(full, deck%initial, uf, vf)
       if (deck%reduction%kind /= 'modal') then
          model = full;  u0 = uf;  v0 = vf
+         if (deck%turbulence%spectrum /= 'none') then
+            call turbulence_record(deck, full%sys, d, model%turbulence, err)
+            model%extra_load = .true.
+         end if
          return
       end if
       if (full%sys%planes > 1 .or. full%n_rings > 0 .or. full%extra_load) then
@@ -49,7 +58,14 @@ contains
       end if
       call project(full, basis, uf, u0, err)
       if (.not. allocated(err)) call project(full, basis, vf, v0, err)
-      if (allocated(err)) err%message = 'group &reduction: ' // err%message
+      if (allocated(err)) then
+         err%message = 'group &reduction: ' // err%message
+         return
+      end if
+      if (deck%turbulence%spectrum /= 'none') then
+         call turbulence_record(deck, full%sys, d, model%turbulence, err, basis)
+         model%extra_load = .true.
+      end if
    end subroutine build_model
 
    !> Stiffness of each deck stop, applying the paper's rule where asked:

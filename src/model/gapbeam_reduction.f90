@@ -34,7 +34,7 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! too few modes, singular selection
       type(modes_t) :: modes
       integer, allocatable :: pinned(:)
-      integer :: n, r, j
+      integer :: n, r, j, k
       n = full%n
       call solve_modes(full%sys, modes, err);  if (allocated(err)) return
       if (n_modes < 1 .or. n_modes > modes%n_modes) then
@@ -74,6 +74,10 @@ contains
          red%c_dof(j) = full%c_slot(j)
       end do
       red%slot_dof = [(j, j = 1, full%n_slots)]
+      ! the stops' own dofs (wear meter, orbits): their pinned coordinate, 0 when not pinned
+      if (allocated(full%stop_dofs)) red%stop_dofs = reshape([((first_index(pinned, &
+         full%stop_dofs(j, k)), j = 1, 2), k = 1, size(full%stop_dofs, 2))], &
+         shape(full%stop_dofs))
       call solve_modes(red%sys, modes, err);  if (allocated(err)) return
       red%omega_max = sqrt(maxval(modes%omega2))
    end subroutine reduce_model
@@ -177,6 +181,21 @@ contains
          basis(pinned(k), k) = 1.0_dp
       end do
    end subroutine reduction_basis
+
+   !> The position of value v in list, 0 when absent (or v = 0).
+   pure integer function first_index(list, v) result(k)
+      integer, intent(in) :: list(:)   !! values
+      integer, intent(in) :: v         !! value
+      integer :: i
+      k = 0
+      if (v == 0) return
+      do i = 1, size(list)
+         if (list(i) == v) then
+            k = i
+            return
+         end if
+      end do
+   end function first_index
 
    !> Coordinates z of a physical vector x in the basis, mass-weighted least squares.
    subroutine project(full, basis, x, z, err)

@@ -21,10 +21,11 @@
 !> reported as the wall thickness (the relations above hold for the solid section only).
 module gapbeam_wear_geometry
    use gapbeam_kinds, only: dp, pi
+   use gapbeam_flow_results, only: wear_depth_t
    implicit none
    private
    public :: segment_area, flat_bar_volume, drilled_hole_volume, scar_volume, scar_depth, &
-      seconds_per_year
+      seconds_per_year, wear_depth_history
 
    real(dp), parameter :: seconds_per_year = 365.25_dp * 86400.0_dp   !! Julian year [s]
 
@@ -122,4 +123,36 @@ contains
          if (h <= lo .or. h >= hi) h = 0.5_dp * (lo + hi)
       end do
    end function scar_depth
+
+   !> The depth of each support's scar at n times from 0 to `years` under its stationary
+   !> Archard volume rate (V(t) = V' t, the depth V's inverse), and the time at which the depth
+   !> reaches `fraction` of the wall: V(fraction wall) / V' (+huge without wear or geometry).
+   pure function wear_depth_history(support, volume_rate, r, land_width, hole_radius, &
+                                    plate_thickness, wall, years, fraction, n) result(wd)
+      character(len=*), intent(in) :: support(:)       !! per stop: geometry word
+      real(dp), intent(in) :: volume_rate(:)           !! per stop: V' [m^3/s]
+      real(dp), intent(in) :: r                        !! tube outer radius [m]
+      real(dp), intent(in) :: land_width(:), hole_radius(:), plate_thickness(:)  !! [m]
+      real(dp), intent(in) :: wall                     !! wall thickness [m]
+      real(dp), intent(in) :: years                    !! operating time [a]
+      real(dp), intent(in) :: fraction                 !! of the wall, for the time [-]
+      integer, intent(in) :: n                         !! times, >= 2
+      type(wear_depth_t) :: wd
+      integer :: i, j, ns
+      real(dp) :: v_frac
+      ns = size(support)
+      allocate(wd%time_years(n), wd%depth(n, ns), wd%years_to_fraction(ns))
+      wd%time_years = [(years * real(i - 1, dp) / real(n - 1, dp), i = 1, n)]
+      do j = 1, ns
+         do i = 1, n
+            wd%depth(i, j) = scar_depth(support(j), volume_rate(j) * wd%time_years(i) &
+               * seconds_per_year, r, land_width(j), hole_radius(j), plate_thickness(j), wall)
+         end do
+         wd%years_to_fraction(j) = huge(1.0_dp)
+         v_frac = scar_volume(support(j), fraction * wall, r, land_width(j), hole_radius(j), &
+                              plate_thickness(j))
+         if (volume_rate(j) > 0.0_dp .and. v_frac > 0.0_dp) &
+            wd%years_to_fraction(j) = v_frac / volume_rate(j) / seconds_per_year
+      end do
+   end function wear_depth_history
 end module gapbeam_wear_geometry
