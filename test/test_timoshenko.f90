@@ -14,6 +14,10 @@ program test_timoshenko
    use gapbeam_beam_element, only: beam_stiffness, beam_consistent_mass, timoshenko_phi, &
       timoshenko_stiffness, timoshenko_shapes, timoshenko_consistent_mass, timoshenko_lumped_mass
    use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_model, only: model_t
+   use gapbeam_description, only: stop_t, damping_t, forcing_t
+   use gapbeam_model_builder, only: build_full_model
+   use gapbeam_reduction, only: reduce_model
    implicit none
    ! a thick steel beam: L/h = 5
    real(dp), parameter :: e_mod = 200.0e9_dp, g_mod = e_mod / 2.6_dp, rho = 7850.0_dp
@@ -26,6 +30,7 @@ program test_timoshenko
    call pinned_pinned(st)
    call cantilever(st)
    call slender_limit(st)
+   call reduced_model(st)
    call finish('test_timoshenko')
 
 contains
@@ -153,6 +158,10 @@ contains
          call dpotrs('U', n, 1, a, n, f, n, info)
          call check_close('Timoshenko cantilever tip deflection P L^3/(3EI) + P L/(kGA), ' &
             // str(meshes(ne)) // ' element(s)', f(sys%tip_dof, 1), exact, rtol=1.0e-12_dp)
+         ! the bending moment P L at the root: strain c psi'(0) = (h/2) P L / EI, exact
+         call check_close('Timoshenko root strain (h/2) P L/EI from psi''(0), ' &
+            // str(meshes(ne)) // ' element(s)', dot_product(sys%strain_row, f(:, 1)), &
+            0.5_dp * h * len_ / ei, rtol=1.0e-12_dp)
          deallocate(f)
       end do
       call note('static tip deflection of the L/h = 5 cantilever: shear adds ' &
@@ -379,4 +388,40 @@ contains
             1.0_dp, rtol=1.0e-2_dp)
       end do
    end subroutine slender_limit
+
+   !> The reduction projects the Timoshenko K and M: its lowest frequencies are the full
+   !> model's (4 modes and the static correction at a stop at the tip, far open).
+   subroutine reduced_model(s0)
+      type(structure_t), intent(in) :: s0
+      integer :: info
+      real(dp), allocatable :: a(:, :), f(:, :)
+      type(structure_t) :: s
+      type(model_t) :: full, red
+      type(stop_t) :: stops(1)
+      type(modes_t) :: mf, mr
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: basis(:, :)
+      s = s0
+      s%beam%n_elem = 16
+      stops(1) = stop_t(node=17, gap=1.0_dp, stiffness=1.0e6_dp)
+      call build_full_model(s, stops, damping_t(), forcing_t(), full, err)
+      if (.not. allocated(err)) call reduce_model(full, 4, .true., red, basis, err)
+      if (.not. allocated(err)) call solve_modes(full%sys, mf, err)
+      if (.not. allocated(err)) call solve_modes(red%sys, mr, err)
+      if (allocated(err)) then
+         call check('Timoshenko reduced model', .false., err%message);  return
+      end if
+      call check_le('Timoshenko, 4 modes + static correction: f1..f4 of the full model', &
+         maxval(abs(mr%frequency_hz(1:4) - mf%frequency_hz(1:4)) / mf%frequency_hz(1:4)), &
+         1.0e-10_dp)
+      ! a tip load: the static correction holds K^-1 e_tip, so the root strain is exact
+      a = red%sys%k
+      allocate(f(red%n, 1), source=0.0_dp)
+      f(red%sys%tip_dof, 1) = 1.0_dp
+      call dpotrf('U', red%n, a, red%n, info)
+      call dpotrs('U', red%n, 1, a, red%n, f, red%n, info)
+      call check_close('Timoshenko reduced model: root strain (h/2) P L/EI under a tip load', &
+         dot_product(red%sys%strain_row, f(:, 1)), 0.5_dp * h * len_ / beam_ei(s%beam), &
+         rtol=1.0e-10_dp)
+   end subroutine reduced_model
 end program test_timoshenko
