@@ -201,6 +201,8 @@ module gapbeam_settings
       real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none
       logical :: quiet = .false.                     !! no progress lines (--quiet)
       real(dp) :: progress_interval_s = 0.0_dp       !! between progress lines [s], 0: default
+      character(len=:), allocatable :: shard_costs   !! --shard-costs FILE.h5: deal the points
+                                                     !! to the shards by these costs
    end type batch_options_t
 
 contains

@@ -33,7 +33,7 @@ module gapbeam_files
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
-   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal
+   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal, errno_text
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: part_suffix = '.part'      ! temporary name: path // part_suffix
