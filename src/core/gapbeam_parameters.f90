@@ -9,7 +9,8 @@ module gapbeam_parameters
    use gapbeam_kinds, only: dp, pi
    use gapbeam_deck, only: deck_t
    use gapbeam_description, only: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, &
-      dof_w, dof_theta, law_code, law_bilinear
+      dof_w, dof_theta, law_code, law_bilinear, beam_is_timoshenko, beam_shear_coefficient, &
+      beam_shear_stiffness
    implicit none
    private
    public :: parameter_t, parameter_set_t, run_parameters, stiffness_units
@@ -126,6 +127,16 @@ contains
          call set%add_text('beam/mass_matrix', trim(b%mass_matrix), 'element mass matrix')
          call set%add_text('beam/rotary_inertia', trim(b%rotary_inertia), &
                            'rotary inertia rule of the lumped mass matrix')
+         if (beam_is_timoshenko(b)) then
+            call set%add_text('beam/theory', trim(b%theory), 'beam theory')
+            call set%add_real('beam/shear_modulus', b%shear_modulus, 'Pa', 'shear modulus G')
+            call set%add_real('beam/shear_coefficient', beam_shear_coefficient(b), '1', &
+                              'shear coefficient k (5/6 for a rectangle unless the deck gives it)')
+            call set%add_real('beam/shear_stiffness', beam_shear_stiffness(b), 'N', &
+                              'shear stiffness k G A')
+            call set%add_real('beam/shear_parameter', 12.0_dp * ei / (beam_shear_stiffness(b) &
+                              * le**2), '1', 'phi = 12 EI / (k G A le^2) of the elements')
+         end if
          call set%add_text('root/condition', trim(root%condition), &
                            'root rotation: clamped, or restrained by a spring')
          if (root%condition == 'spring') then
@@ -164,6 +175,9 @@ contains
                         'Rayleigh mass coefficient beta in C = beta M + gamma K')
       call set%add_real('damping/stiffness_coefficient', deck%damping%stiffness_coefficient, &
                         's', 'Rayleigh stiffness coefficient gamma in C = beta M + gamma K')
+      if (deck%damping%model == 'modal') call set%add_list('damping/modal_ratios', &
+         deck%damping%modal_ratios, '1', 'modal damping ratios of modes 1, 2, ... of each plane ' &
+         // '(the last one for every further mode), beside the Rayleigh terms')
       call set%add_real('forcing/frequency_hz', deck%forcing%frequency_hz, 'Hz', &
                         'forcing frequency f of the deck (a sweep varies it: /sweep)')
       call set%add_real('forcing/amplitude_pp', deck%forcing%amplitude_pp, 'm', &
