@@ -8,7 +8,7 @@ module gapbeam_jobs
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: output_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
-      modal_damping_ratio, dof_w
+      modal_damping_ratio, dof_w, modal_ratio
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -94,7 +94,14 @@ contains
             100.0_dp * modes%effective_mass(j) / modes%total_mass
          write(output_unit, '(a)') trim(line)
       end do
-      if (dk%damping%model /= 'none') then
+      if (dk%damping%model == 'modal') then
+         write(output_unit, '(a)') 'modal damping: zeta of mode 1 = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1)) // ' (+ Rayleigh beta = ' &
+            // str(dk%damping%mass_coefficient) // ' 1/s, gamma = ' &
+            // str(dk%damping%stiffness_coefficient) // ' s); zeta(f1) = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1) + modal_damping_ratio( &
+            dk%damping%mass_coefficient, dk%damping%stiffness_coefficient, modes%frequency_hz(1)))
+      else if (dk%damping%model /= 'none') then
          write(output_unit, '(a)') 'Rayleigh damping: beta = ' // str(dk%damping%mass_coefficient) &
             // ' 1/s, gamma = ' // str(dk%damping%stiffness_coefficient) // ' s; zeta(f1) = ' &
             // str(modal_damping_ratio(dk%damping%mass_coefficient, &
