@@ -14,7 +14,9 @@ program main
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
-   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal
+   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal, &
+      output_prefix_problem
+   use gapbeam_output_catalogue, only: catalogue_text, section_names, section_analyses
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
       run_stability, run_model_size
@@ -23,6 +25,7 @@ program main
    use gapbeam_sweep_output, only: merge_sweep
    use gapbeam_blas_threads, only: serial_blas
    use gapbeam_usage, only: usage_lines, help_text, version_text
+   use gapbeam_deck_help, only: deck_help
    use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
    use gapbeam_stop_signal, only: catch_stop_signal
    implicit none
@@ -54,6 +57,10 @@ program main
    case ('--version', '-V')
       write(output_unit, '(a)') version_text()
       call finish(0)
+   case ('--help-deck')
+      call help_deck(n_args)
+   case ('--help-outputs')
+      call help_outputs()
    end select
    if (path(1:min(1, len(path))) == '-') call usage_error("unknown option '" // path &
       // "' (a deck file name comes first)")
@@ -103,6 +110,8 @@ program main
 
    call read_deck(path, overrides(1:n_over), deck, err)
    if (allocated(err)) call fail(path, err%message, lock)
+   if (len(output_prefix_problem(deck%job%output)) > 0) call fail(path, 'group &job: output ' &
+      // "= '" // trim(deck%job%output) // "': " // output_prefix_problem(deck%job%output), lock)
    if ((batch%shard_count > 1 .or. batch%time_limit_s > 0.0_dp .or. &
         allocated(batch%shard_costs)) .and. deck%job%analysis /= 'sweep') &
       call fail(path, path // ": --shard, --time-limit and --shard-costs apply to " &
@@ -151,6 +160,34 @@ program main
    call finish(0)
 
 contains
+
+   !> gapbeam --help-outputs [ANALYSIS | SECTION | tsv]: the output catalogue on standard output.
+   subroutine help_outputs()
+      character(len=:), allocatable :: which
+      which = ''
+      if (n_args > 1) which = argument(2)
+      if (which == 'tsv') then
+         write(output_unit, '(a)', advance='no') catalogue_text('tsv')
+      else if (which /= '' .and. .not. any(section_names == which) .and. &
+               index(' ' // section_analyses(1) // ' ', ' ' // which // ' ') == 0) then
+         call usage_error("--help-outputs '" // which // "': expected an analysis, a section " &
+            // '(' // trim(join_words(section_names)) // ') or tsv')
+      else
+         write(output_unit, '(a)', advance='no') catalogue_text('markdown', which)
+      end if
+      call finish(0)
+   end subroutine help_outputs
+
+   !> Words joined by ', '.
+   function join_words(words) result(t)
+      character(len=*), intent(in) :: words(:)     !! words
+      character(len=:), allocatable :: t
+      integer :: k
+      t = trim(words(1))
+      do k = 2, size(words)
+         t = t // ', ' // trim(words(k))
+      end do
+   end function join_words
 
    !> Command-line argument k, whole.
    function argument(k) result(a)
@@ -330,6 +367,8 @@ contains
       if (k > 3) then
          if (out(k - 2:) == '.h5') out = out(1:k - 3)
       end if
+      if (len(output_prefix_problem(out)) > 0) call fail('merge', 'gapbeam merge: ' &
+         // output_prefix_problem(out), held)
       call take_lock('merge', out, held)
       call merge_sweep(out, args(2:), .true., e, n_failed)
       if (allocated(e)) then
@@ -364,6 +403,29 @@ contains
       if (present(status)) call finish(status)
       call finish(status_error)
    end subroutine fail
+
+   !> `gapbeam --help-deck [GROUP] [--markdown]`: the deck variables (docs/decks.md's tables).
+   subroutine help_deck(n)
+      integer, intent(in) :: n                     !! number of arguments
+      character(len=:), allocatable :: text, group
+      type(error_t), allocatable :: e
+      logical :: markdown
+      integer :: k
+      group = '';  markdown = .false.
+      do k = 2, n
+         if (argument(k) == '--markdown') then
+            markdown = .true.
+         else if (len(group) == 0) then
+            group = argument(k)
+         else
+            call usage_error("--help-deck takes one group, got '" // argument(k) // "' too")
+         end if
+      end do
+      call deck_help(group, markdown, text, e)
+      if (allocated(e)) call usage_error(e%message)
+      write(output_unit, '(a)') text
+      call finish(0)
+   end subroutine help_deck
 
    !> `text` on one line: line feeds and carriage returns become blanks.
    function one_line(text) result(s)

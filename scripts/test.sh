@@ -10,7 +10,7 @@
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
 # scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
-# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
+# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (480 mutated decks,
 # under 60 s), scripts/test_labels_cli.sh (failed sweep points: exit status 5, issue 11) and
 # scripts/test_users.sh (--help, --version, options, progress lines, figures in every format,
 # and scripts/test_docs.py: every deck variable documented, the README's length)

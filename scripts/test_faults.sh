@@ -19,7 +19,9 @@
 #                 gapbeam ignores SIGXFSZ) and, when run as root where `mount -t tmpfs` works, a
 #                 200 KB tmpfs (ENOSPC): transient, HDF5, sweep (checkpoint kept and used) and
 #                 merge; skipped with a NOTE line otherwise
-#   output sets   a file in the way of the last table: the previous .h5 untouched; /run/files
+#   output sets   a file in the way of the last table: the previous .h5 untouched; /run/files;
+#                 the same for a continuation, and a continuation on a full disk (ulimit -f);
+#                 an output prefix that names a directory refused
 #   locks         5 sweeps and 6 transients started together on one prefix (one runs, the others
 #                 exit 4, the files equal a single run's); a stale lock; another host's lock
 #   checkpoints   a sweep stopped by --time-limit, its checkpoint corrupted (bit flip, NaN,
@@ -487,10 +489,11 @@ report 'a run failing after it took the lock: exit 1, no lock file or result lef
 # `ulimit -f` works for anyone: a write past the limit fails with EFBIG (gapbeam ignores
 # SIGXFSZ), like a write to a full disk. gfortran reports neither: the sizes on disk tell.
 new_case
-# 140 KB: the .h5 (about 120 KB, with its units, long names and /parameters) fits, the history
-# table (about 160 KB) does not
-(ulimit -f 140; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
-   "${transient_big[@]}"; printf '%s' "${status}" >"${dir}/status")
+# 250 KB: the .h5 (about 205 KB, with its units, long names, /parameters and /model) fits, the
+# history table of 128 samples a period (about 320 KB) does not
+(ulimit -f 250; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
+   "${transient_big[@]}" '&output samples_per_period = 128 /'; \
+   printf '%s' "${status}" >"${dir}/status")
 status=$(<"${dir}/status"); rm -f "${dir}/status"
 why=()
 mapfile -t why < <(crash_reasons)
@@ -499,7 +502,7 @@ mapfile -t why < <(crash_reasons)
 grep -q '^error: .*is incomplete: [0-9]* of [0-9]* bytes stored' "${dir}/run.stderr" \
    || why+=('the error does not say the file is incomplete')
 [[ -z $(files_left) ]] || why+=("files left: $(files_left)")
-report 'ulimit -f 140: a transient whose tables do not fit fails, no file left' "${why[@]}"
+report 'ulimit -f 250: a transient whose tables do not fit fails, no file left' "${why[@]}"
 
 new_case
 run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" "${transient_cheap[@]}"
@@ -613,6 +616,64 @@ for f in out.h5 out.history.dat out.poincare.dat; do
 done
 grep -aq 'run/files\|files' "${dir}/out.h5" || why+=('no /run/files')
 report 'the .h5 lists its sibling files (/run/files)' "${why[@]}"
+
+# ---- the continuation's files are one output set too ---------------------------------------------
+cont=${root}/test/decks/sdof_continuation.nml
+cont_cheap=('&continuation parameter_max = 3.6 /' '&output write_text = .true. /')
+cont_files=(out.h5 out.branches.dat out.bifurcations.dat out.multipliers.dat out.curves.dat)
+new_case
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}" \
+   '&output write_text = .false. /'
+(cd "${dir}" && md5sum out.h5 >before.md5)
+mkdir "${dir}/out.curves.dat"                    # in the way of the second run's last table
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}"
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+[[ $(grep -c '' "${dir}/run.stderr") -eq 1 ]] || why+=('stderr is not one line')
+(cd "${dir}" && md5sum -c --quiet before.md5 >/dev/null 2>&1) || why+=('out.h5 changed')
+left=$(files_left ! -name before.md5 ! -name out.h5)
+[[ -z ${left} ]] || why+=("other files: ${left}")
+report 'continuation: a later file of the set fails: nothing new under final names, no .part left (was: PREFIX.h5 and tables put in place, exit 1)' "${why[@]}"
+
+new_case
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}"
+why=()
+mapfile -t why < <(ok_reasons "${dir}/out")
+for f in "${cont_files[@]}"; do
+   [[ -f ${dir}/${f} ]] || why+=("no ${f}")
+   grep -aq "${f}" "${dir}/out.h5" || why+=("out.h5 does not list ${f}")
+done
+(cd "${dir}" && md5sum "${cont_files[@]}" >before.md5)
+(ulimit -f 40; run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}" \
+   '&continuation parameter_max = 6.0 /'; printf '%s' "${status}" >"${dir}/status")
+status=$(<"${dir}/status"); rm -f "${dir}/status"
+mapfile -t more < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("second run (ulimit -f 40): exit status ${status}, want 1")
+(cd "${dir}" && md5sum -c --quiet before.md5 >/dev/null 2>&1) || why+=('the previous set changed')
+left=$(files_left ! -name before.md5 ! -name 'out.*.dat' ! -name out.h5)
+[[ -z ${left} ]] || why+=("other files left: ${left}")
+report 'continuation: its .h5 lists its four tables (/run/files); a full disk (ulimit -f 40) leaves the previous set untouched, no .part' "${why[@]}" "${more[@]}"
+
+# ---- an output prefix that names a directory is refused -----------------------------------------
+for prefix in 'results/x/' '.' '..' '/'; do
+   new_case
+   run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "&job output='${prefix}' /"
+   expect_clean_error "&job output='${prefix}' names a directory: refused, nothing made (was: hidden files such as results/x/.h5)" \
+      job output 'names a directory'
+done
+new_case
+run "${default_timeout}" "${small}" --shard 1/2 "$(out_override s)"
+status=0
+(cd "${dir}" && timeout 60 "${exe}" merge "${dir}/m/" s.shard_1_of_2.h5 </dev/null \
+   >"${dir}/run.stdout" 2>"${dir}/run.stderr") || status=$?
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+grep -q "^error: gapbeam merge: .*names a directory" "${dir}/run.stderr" \
+   || why+=('no one-line error naming the directory')
+[[ ! -e ${dir}/m ]] || why+=('the directory m/ was made')
+report 'merge into an output that names a directory (m/): refused' "${why[@]}"
 
 # ---- item 3: one writer per output prefix -------------------------------------------------------
 # N runs started together (a barrier file), on one prefix: one runs, the others exit 4 at once

@@ -24,7 +24,7 @@ module gapbeam_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
-   use gapbeam_parameters, only: run_parameters
+   use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_kinds, only: pi
    use gapbeam_clock, only: process_cpu_seconds
    use gapbeam_shards, only: shard_deal_t, deal_shards, shard_items, deal_signature, deal_summary
@@ -203,6 +203,7 @@ contains
       sf%points = pts
       sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
                                      base%omega_max / (2.0_dp * pi), base%n)
+      sf%model = base;  sf%stiffness_units = stiffness_units(deck)
       sf%cpu_seconds = process_cpu_seconds() - cpu0   ! inside the wall-time window
       call system_clock(c1)
       sf%wall_seconds = real(c1 - c0, dp) / real(rate, dp)

@@ -17,7 +17,8 @@ contains
       t = 'usage: gapbeam DECK [--shard I/N] [--shard-costs FILE.h5] [--time-limit S] [--quiet] ' &
          // '[--progress S] [OVERRIDE ...]' // nl &
          // '       gapbeam merge [--quiet] OUT.h5 SHARD.h5 ...' // nl &
-         // '       gapbeam --help | --version'
+         // '       gapbeam --help | --version | --help-deck [GROUP]' // nl &
+         // '       gapbeam --help-outputs [ANALYSIS | tsv]'
    end function usage_lines
 
    !> The whole help text.
@@ -42,7 +43,12 @@ contains
          // 'where the' // nl &
          // '                    line is rewritten in place; 10 otherwise, one line each)' // nl &
          // '  merge             join the shard files of a sweep into OUT.h5' // nl &
-         // '  --help, -h        this text;  --version, -V  version and build' // nl // nl &
+         // '  --help, -h        this text;  --version, -V  version and build' // nl &
+         // '  --help-deck [GROUP]  every deck variable (of one group): unit, default, what ' &
+         // 'is allowed' // nl &
+         // '  --help-outputs    every dataset the program writes: path, shape, units, ' &
+         // 'meaning' // nl // '                    (of one analysis; tsv: one line each, ' &
+         // 'tab-separated)' // nl // nl &
          // 'Results: PREFIX.h5 (HDF5, every dataset with units and long_name), gnuplot-ready ' &
          // 'PREFIX.*.dat' // nl &
          // 'tables, PREFIX.xdmf for ParaView (with &output state_history); PREFIX from &job ' &
