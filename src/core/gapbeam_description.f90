@@ -41,7 +41,7 @@ module gapbeam_description
 
    character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
    character(len=*), parameter :: stop_law_words = "'bilinear', 'hertz'"
-   character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios'"
+   character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios', 'modal'"
    character(len=*), parameter :: stop_shape_words = "'flat', 'circular'"
    !> support conditions of the root (node 1)
    character(len=*), parameter :: end_condition_words = "'clamped', 'spring', 'pinned'"
