@@ -18,14 +18,17 @@ program test_modal_damping
    use gapbeam_state, only: state_t
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state
    use gapbeam_lapack, only: dsygv
+   use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
+      set_deck_value, get_deck_value
    implicit none
    real(dp), parameter :: ratios(3) = [0.01_dp, 0.03_dp, 0.002_dp]
    real(dp), parameter :: beta = 0.5_dp, gamma = 2.0e-6_dp
    type(deck_t) :: deck
    type(error_t), allocatable :: err
    character(len=200) :: ov(0)
+   character(len=*), parameter :: ref_deck = 'inputs/moon_shaw_10p5hz.nml'
 
-   call read_deck('inputs/moon_shaw_10p5hz.nml', ov, deck, err)
+   call read_deck(ref_deck, ov, deck, err)
    if (allocated(err)) then
       call check('read the reference deck', .false., err%message)
       call finish('test_modal_damping')
@@ -44,6 +47,8 @@ program test_modal_damping
    deck%reduction%static_correction = .true.
    call free_decay(deck, 'exact', 1.0e-9_dp, 'reduced model (4 modes + static correction)')
    call free_decay(deck, 'newmark', 1.0e-5_dp, 'reduced model (4 modes + static correction)')
+   call bad_input()
+   call design_variable()
    call finish('test_modal_damping')
 
 contains
@@ -218,4 +223,85 @@ contains
       call check_le('free decay of modes 1-4, ' // method // ', ' // what // ': zeta from the ' &
          // 'logarithmic decrement (relative error)', worst, tol)
    end subroutine free_decay
+
+   !> Bad &damping modal input: one line naming deck, group, variable, value, rule.
+   subroutine bad_input()
+      call expect_refused('unknown damping model refused', "&damping model = 'modl' /", &
+         [character(len=60) :: 'group &damping: model', "'modl'", "'modal'"])
+      call expect_refused('modal damping without ratios refused', &
+         "&damping model = 'modal' /", [character(len=60) :: 'group &damping:', &
+         "model = 'modal' needs modal_ratios"])
+      call expect_refused('a negative modal ratio refused', &
+         "&damping model = 'modal', modal_ratios = 0.01, -0.1 /", [character(len=60) :: &
+         'group &damping: modal_ratios(2)', '= -0.1', '[0, 100]'])
+      call expect_refused('modal ratios with another model refused', &
+         "&damping model = 'rayleigh', modal_ratios = 0.01 /", [character(len=60) :: &
+         'group &damping: modal_ratios', "model = 'rayleigh'", "needs model = 'modal'"])
+      call expect_refused('modal damping with the banded solver refused', &
+         "&damping model = 'modal', modal_ratios = 0.01 / &solver linear_solver = 'banded' /", &
+         [character(len=60) :: 'group &solver: linear_solver', "'banded'", 'modal damping', &
+          "'auto' or 'dense'"])
+   end subroutine bad_input
+
+   !> &damping modal_ratios(i) as a design variable: parse, check, set, get; and the damping
+   !> of the model built from the deck follows it.
+   subroutine design_variable()
+      type(deck_t) :: d
+      type(deck_variable_t) :: var
+      type(model_t) :: model
+      type(modes_t) :: modes
+      real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: w
+      d = deck
+      d%damping = modal_damping([0.01_dp, 0.02_dp])
+      call parse_deck_variable('&damping modal_ratios(2)', var, err)
+      if (.not. allocated(err)) call check_deck_variable(d, var, err)
+      if (.not. allocated(err)) call set_deck_value(d, var, 0.05_dp, err)
+      if (allocated(err)) then
+         call check('design variable &damping modal_ratios(2)', .false., err%message);  return
+      end if
+      call check_close('design variable &damping modal_ratios(2): set and read back', &
+         get_deck_value(d, var), 0.05_dp, rtol=0.0_dp)
+      call build_model(d, model, u0, v0, err)
+      call solve_modes(model%sys, modes, err)
+      w = sqrt(modes%omega2(3))
+      call check_close('design variable modal_ratios(2) = 0.05 damps mode 3 (the last ratio ' &
+         // 'repeated)', dot_product(modes%shapes(:, 3), matmul(model%c, modes%shapes(:, 3))) &
+         / (2 * w), 0.05_dp + beta / (2 * w) + gamma * w / 2, rtol=1.0e-10_dp)
+      call set_deck_value(d, var, -0.5_dp, err)
+      call check('design variable modal_ratios(2) = -0.5 refused', allocated(err))
+      call parse_deck_variable('&damping modal_ratios(3)', var, err)
+      if (.not. allocated(err)) call check_deck_variable(d, var, err)
+      call check('design variable modal_ratios(3) refused when the deck gives 2', &
+         allocated(err))
+      d%damping%model = 'rayleigh'
+      call parse_deck_variable('&damping modal_ratios(1)', var, err)
+      if (.not. allocated(err)) call check_deck_variable(d, var, err)
+      call check('design variable modal_ratios(1) refused without modal damping', &
+         allocated(err))
+   end subroutine design_variable
+
+   !> Read the reference deck with an override and expect the one-line error to start with
+   !> the deck and hold every fragment (group, variable, value, what is allowed).
+   subroutine expect_refused(name, override, fragments)
+      character(len=*), intent(in) :: name, override, fragments(:)
+      type(deck_t) :: d
+      type(error_t), allocatable :: e
+      character(len=200) :: ov(1)
+      character(len=:), allocatable :: missing
+      integer :: i
+      ov(1) = override
+      call read_deck(ref_deck, ov, d, e)
+      if (.not. allocated(e)) then
+         call check(name, .false., 'the deck was accepted');  return
+      end if
+      missing = ''
+      if (index(e%message, ref_deck // ': ') /= 1) missing = ' [the deck name first]'
+      do i = 1, size(fragments)
+         if (index(e%message, trim(fragments(i))) == 0) missing = missing // ' [' &
+            // trim(fragments(i)) // ']'
+      end do
+      call check(name // ': ' // e%message, len(missing) == 0 .and. &
+         index(e%message, new_line('a')) == 0, 'missing:' // missing)
+   end subroutine expect_refused
 end program test_modal_damping

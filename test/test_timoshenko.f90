@@ -18,11 +18,14 @@ program test_timoshenko
    use gapbeam_description, only: stop_t, damping_t, forcing_t
    use gapbeam_model_builder, only: build_full_model
    use gapbeam_reduction, only: reduce_model
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
    implicit none
    ! a thick steel beam: L/h = 5
    real(dp), parameter :: e_mod = 200.0e9_dp, g_mod = e_mod / 2.6_dp, rho = 7850.0_dp
    real(dp), parameter :: len_ = 1.0_dp, b = 0.1_dp, h = 0.2_dp, k_shear = 5.0_dp / 6.0_dp
    type(structure_t) :: st
+   character(len=*), parameter :: ref_deck = 'inputs/moon_shaw_10p5hz.nml'
 
    call element_checks()
    st = thick_beam(4, 'consistent')
@@ -31,6 +34,7 @@ program test_timoshenko
    call cantilever(st)
    call slender_limit(st)
    call reduced_model(st)
+   call bad_input()
    call finish('test_timoshenko')
 
 contains
@@ -424,4 +428,49 @@ contains
          dot_product(red%sys%strain_row, f(:, 1)), 0.5_dp * h * len_ / beam_ei(s%beam), &
          rtol=1.0e-10_dp)
    end subroutine reduced_model
+
+   !> Bad &beam theory and shear values: one line naming deck, group, variable, value, rule.
+   subroutine bad_input()
+      call expect_refused('unknown theory refused', "&beam theory = 'timoshenk' /", &
+         [character(len=60) :: 'group &beam: theory', "'timoshenk'", &
+          "'euler_bernoulli', 'timoshenko'"])
+      call expect_refused('Timoshenko without a shear modulus refused', &
+         "&beam theory = 'timoshenko' /", [character(len=60) :: 'group &beam: shear_modulus', &
+         '= 0', 'must be > 0', "theory = 'timoshenko'"])
+      call expect_refused('negative shear modulus refused', &
+         "&beam theory = 'timoshenko', shear_modulus = -1.0 /", [character(len=60) :: &
+         'group &beam: shear_modulus', '= -1', '>= 0'])
+      call expect_refused('shear coefficient above 1 refused', &
+         "&beam theory = 'timoshenko', shear_modulus = 8e10, shear_coefficient = 1.5 /", &
+         [character(len=60) :: 'group &beam: shear_coefficient', '= 1.5', '[0, 1]'])
+      call expect_refused('general section without a shear coefficient refused', &
+         "&beam theory = 'timoshenko', shear_modulus = 8e10, width = 0, thickness = 0, " &
+         // 'area = 1e-6, second_moment = 1e-12, fibre_distance = 1e-3 /', &
+         [character(len=60) :: 'group &beam: shear_coefficient', '= 0', 'must be > 0', &
+          'general section'])
+   end subroutine bad_input
+
+   !> Read the reference deck with an override and expect the one-line error to start with
+   !> the deck and hold every fragment (group, variable, value, what is allowed).
+   subroutine expect_refused(name, override, fragments)
+      character(len=*), intent(in) :: name, override, fragments(:)
+      type(deck_t) :: d
+      type(error_t), allocatable :: e
+      character(len=200) :: ov(1)
+      character(len=:), allocatable :: missing
+      integer :: i
+      ov(1) = override
+      call read_deck(ref_deck, ov, d, e)
+      if (.not. allocated(e)) then
+         call check(name, .false., 'the deck was accepted');  return
+      end if
+      missing = ''
+      if (index(e%message, ref_deck // ': ') /= 1) missing = ' [the deck name first]'
+      do i = 1, size(fragments)
+         if (index(e%message, trim(fragments(i))) == 0) missing = missing // ' [' &
+            // trim(fragments(i)) // ']'
+      end do
+      call check(name // ': ' // e%message, len(missing) == 0 .and. &
+         index(e%message, new_line('a')) == 0, 'missing:' // missing)
+   end subroutine expect_refused
 end program test_timoshenko
