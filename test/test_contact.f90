@@ -11,8 +11,9 @@ program test_contact
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_contact_law, only: contact_force, solve_scalar_contact
-   use gapbeam_description, only: law_bilinear, law_hertz, law_code
+   use gapbeam_description, only: law_bilinear, law_hertz, law_code, stop_law_words
+   use gapbeam_law, only: law_slot_t, law_caps_t
+   use gapbeam_laws, only: builtin_laws, law_words_of => law_words, law_index
    implicit none
    real(dp), parameter :: tol = 1.0e-12_dp          ! implicit relation, relative
    real(dp), parameter :: kh_range(6) = [1.0e-6_dp, 1.0e-3_dp, 1.0_dp, 1.0e3_dp, 1.0e6_dp, &
@@ -32,8 +33,40 @@ program test_contact
 
 contains
 
-   !> law_code maps the deck words to the law codes.
+   !> The law of a code from the registry: its force (the test's shorthand).
+   elemental real(dp) function contact_force(law, k, c, p, d, dd) result(f)
+      integer, intent(in) :: law                  !! law code
+      real(dp), intent(in) :: k, c, p, d, dd      !! parameters, penetration, rate
+      type(law_slot_t), allocatable :: laws(:)
+      laws = builtin_laws()
+      f = laws(law)%law%force(k, c, p, d, dd)
+   end function contact_force
+
+   !> The law of a code from the registry: its exact condensed solve.
+   real(dp) function solve_scalar_contact(law, k, c, p, d_star, v_star, h, kappa) result(f)
+      integer, intent(in) :: law                  !! law code
+      real(dp), intent(in) :: k, c, p             !! parameters
+      real(dp), intent(in) :: d_star, v_star, h, kappa   !! see contact_law_t%solve
+      type(law_slot_t), allocatable :: laws(:)
+      laws = builtin_laws()
+      f = laws(law)%law%solve(k, c, p, d_star, v_star, h, kappa)
+   end function solve_scalar_contact
+
+   !> law_code maps the deck words to the law codes: the positions in the registry.
    subroutine law_words()
+      type(law_slot_t), allocatable :: laws(:)
+      type(law_caps_t) :: cb, ch
+      laws = builtin_laws()
+      cb = laws(law_bilinear)%law%caps();  ch = laws(law_hertz)%law%caps()
+      call check("the registry's law law_bilinear is 'bilinear', law_hertz 'hertz'", &
+         cb%name == 'bilinear' .and. ch%name == 'hertz')
+      call check('stop_law_words (the deck reader''s list) = the registry''s names: ' &
+         // law_words_of(), stop_law_words == law_words_of())
+      call check('bilinear caps: piecewise linear, damper, rings; Hertz: exponent in [1, 10], ' &
+         // 'no damper, not piecewise linear', cb%piecewise_linear .and. cb%uses_damping .and. &
+         cb%rings .and. .not. ch%piecewise_linear .and. .not. ch%uses_damping .and. &
+         ch%uses_exponent .and. ch%exponent_min == 1.0_dp .and. ch%exponent_max == 10.0_dp)
+      call check("law_index('nonesuch') = 0", law_index('nonesuch') == 0)
       call check("law_code('bilinear') = law_bilinear", law_code('bilinear') == law_bilinear)
       call check("law_code('hertz') = law_hertz", law_code('hertz') == law_hertz)
       call check("law_code('Hertz') = 0 (words are lower case)", law_code('Hertz') == 0)

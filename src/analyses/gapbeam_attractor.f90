@@ -34,6 +34,7 @@ module gapbeam_attractor
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
    use gapbeam_diagnostics, only: period_search, classify, window_difference, repeat_distance
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
+   use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_transient, only: integrate
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_progress, only: monitor_t
@@ -306,26 +307,28 @@ contains
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
    end subroutine copy_statistics
 
-   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for the
+   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for an
    !> exact integrator and for fixed steps (a periodic orbit of a deterministic map repeats to
-   !> round-off), 10 x the tolerance for error control (rk_rtol for rk45), 1e-3 for the
-   !> paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
+   !> round-off), 10 x the tolerance for error control (rk_rtol for an embedded pair, rk45),
+   !> 1e-3 for the paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
    real(dp) function auto_period_tolerance(model, cfg, diag) result(tol)
       type(model_t), intent(in) :: model                 !! model (its stop laws)
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
       type(solver_settings_t) :: eff
+      type(method_caps_t) :: c
       character(len=:), allocatable :: reason
       if (diag%period_tolerance > 0.0_dp) then
          tol = diag%period_tolerance
          return
       end if
       call resolve_method(model, cfg, eff, reason)
-      if (eff%method == 'exact' .or. eff%step_control == 'fixed') then
+      c = method_caps(eff%method)
+      if (c%exact .or. eff%step_control == 'fixed') then
          tol = 1.0e-6_dp
       else if (eff%step_control == 'half_step') then
          tol = 1.0e-3_dp
-      else if (eff%method == 'rk45') then
+      else if (c%estimator == 'embedded') then
          tol = 10.0_dp * eff%rk_rtol
       else
          tol = 10.0_dp * eff%tolerance
@@ -447,18 +450,20 @@ contains
       u_end = ua;  v_end = va
    end subroutine largest_lyapunov
 
-   !> The settings of the two trajectories: fixed steps with events; the explicit methods are
-   !> only conditionally stable at T/steps_per_period, so the exponent (a property of the model)
-   !> is then taken with the trapezoidal rule.
+   !> The settings of the two trajectories: fixed steps with events; a method whose registry
+   !> entry names another for the exponent (the explicit methods, only conditionally stable at
+   !> T/steps_per_period) hands it to that one, with the trapezoidal rule's parameters (the
+   !> exponent is a property of the model).
    pure function lyapunov_settings(cfg) result(one)
       type(solver_settings_t), intent(in) :: cfg   !! the run's settings
       type(solver_settings_t) :: one
+      type(method_caps_t) :: c
       one = cfg
-      select case (cfg%method)
-      case ('rk4', 'rk45', 'central_difference')
-         one%method = 'newmark';  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
+      c = method_caps(cfg%method)
+      if (len_trim(c%lyapunov_with) > 0) then
+         one%method = c%lyapunov_with;  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
          one%stop_solution = 'condensed'
-      end select
+      end if
       one%step_control = 'fixed'
       one%locate_events = .true.
    end function lyapunov_settings

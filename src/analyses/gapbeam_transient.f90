@@ -13,7 +13,7 @@ module gapbeam_transient
    use gapbeam_settings, only: solver_settings_t, output_settings_t
    use gapbeam_results, only: transient_result_t
    use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method, &
-      tube_refusal
+      refusal
    use gapbeam_recorder, only: recorder_t
    use gapbeam_observer, only: piece_t
    use gapbeam_progress, only: monitor_t
@@ -65,7 +65,7 @@ contains
       cpu0 = thread_cpu_seconds();  wall0 = wall_seconds()
       if (present(integrator)) then
          call resolve_method(model, cfg, eff, reason)
-         why = tube_refusal(model, eff%method, eff%step_control, eff%stop_solution)
+         why = refusal(model, eff)
          if (len(why) > 0) then
             call fatal_error(err, 'gapbeam_integrator: ' // why)
             return

@@ -49,7 +49,8 @@
 !> factorizations = configurations built; dt_smallest / dt_largest = shortest / longest
 !> segment.
 !>
-!> Limits: bilinear stops only (the Hertz law is not piecewise linear: rejected with an error);
+!> Limits: piecewise-linear stop laws only (the bilinear law; a law whose caps say otherwise,
+!> such as Hertz, is rejected with an error);
 !> Rayleigh damping C = beta M + gamma K (as every deck builds it); forcing exactly at an
 !> undamped natural frequency of a configuration (no periodic particular solution) is
 !> rejected; at most 62 one-sided contacts.
@@ -60,7 +61,7 @@ module gapbeam_exact
    use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
-   use gapbeam_description, only: law_bilinear
+   use gapbeam_law, only: law_caps_t
    use gapbeam_contact_law, only: contact_force
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_integrator, only: integrator_t, contact_forces_at
@@ -178,6 +179,7 @@ contains
       type(solver_settings_t), intent(in) :: cfg         !! settings (unused)
       type(error_t), allocatable, intent(out) :: err     !! unsupported model, LAPACK failure
       integer :: c, nc, nb, nr
+      type(law_caps_t) :: lc
       self%method = 'exact'
       nc = model%n_contacts
       if (.not. (model%omega > 0.0_dp)) then
@@ -186,11 +188,12 @@ contains
          return
       end if
       do c = 1, nc
-         if (model%c_law(c) /= law_bilinear) then
+         lc = model%laws(model%c_law(c))%law%caps()
+         if (.not. lc%piecewise_linear) then
             call fatal_error(err, 'gapbeam_exact: the exact event-driven integrator needs ' &
-               // 'piecewise-linear stops; stop ' // str(model%c_stop(c)) // ' uses the Hertz ' &
-               // 'law (f = k d^p), which is not piecewise linear: use the Newmark integrator ' &
-               // 'for it')
+               // 'piecewise-linear stops; stop ' // str(model%c_stop(c)) // " uses the law '" &
+               // trim(lc%name) // "' (" // trim(lc%force_text) // '), which is not piecewise ' &
+               // 'linear: use the Newmark integrator for it')
             return
          end if
       end do
@@ -315,8 +318,7 @@ contains
          i = self%model%c_dof(c)
          d = self%model%c_sign(c) * state%u(i) - self%model%c_gap(c)
          dd = self%model%c_sign(c) * state%v(i)
-         if (contact_force(self%model%c_law(c), self%model%c_k(c), self%model%c_c(c), &
-             self%model%c_p(c), d, dd) > 0.0_dp) self%mask = ibset(self%mask, c - 1)
+         if (contact_force(self%model, c, d, dd) > 0.0_dp) self%mask = ibset(self%mask, c - 1)
       end do
    end subroutine begin_advance
 

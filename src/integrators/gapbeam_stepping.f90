@@ -21,8 +21,8 @@ module gapbeam_stepping
    use gapbeam_model, only: model_t, has_tube_physics
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
-   use gapbeam_description, only: law_bilinear
-   use gapbeam_contact_law, only: contact_force
+   use gapbeam_capabilities, only: method_caps
+   use gapbeam_contact_law, only: contact_force, contact_releases_early, contact_jumps
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, &
       make_stepper, dof_label, ring_load
@@ -53,6 +53,9 @@ module gapbeam_stepping
 
    !> A one-step method with step control and event location.
    type, extends(integrator_t) :: stepping_integrator_t
+      !> the method's stepper, unprepared (set by the registry before init; else init asks
+      !> the registry for the settings' method)
+      class(stepper_t), allocatable :: proto
       type(model_t) :: model                          !! the model (own copy)
       type(solver_settings_t) :: cfg                  !! settings
       class(stepper_t), allocatable :: ops(:)         !! one stepper per step level 0..kmax
@@ -98,6 +101,9 @@ module gapbeam_stepping
       real(dp) :: block_sum = 0.0_dp                  !! local errors accepted in it [-]
       !> the root strain rate is watched (not with ring contacts, see init_control)
       logical :: watch_rate = .true.
+      !> per contact: its force can vanish while it penetrates (located where the force does)
+      logical, allocatable :: early(:)
+      logical, allocatable :: jumps(:)                !! per contact: its force jumps at onset
    contains
       procedure :: init => stepping_init
       procedure :: advance => stepping_advance
@@ -115,10 +121,12 @@ contains
       type(model_t), intent(in) :: model                    !! model
       type(solver_settings_t), intent(in) :: cfg            !! settings
       type(error_t), allocatable, intent(out) :: err        !! no such stepper
-      class(stepper_t), allocatable :: proto
       integer :: k, j
-      call make_stepper(cfg%method, proto, err)
-      if (allocated(err)) return
+      if (.not. allocated(self%proto)) then
+         call make_stepper(cfg%method, self%proto, err)
+         if (allocated(err)) return
+      end if
+      if (len_trim(self%caps%name) == 0) self%caps = method_caps(cfg%method)
       self%method = trim(cfg%method)
       self%model = model
       self%cfg = cfg
@@ -130,17 +138,19 @@ contains
       self%embedded = cfg%step_control == 'embedded'
       self%dense = use_dense(model, cfg%linear_solver)
       self%controlled = cfg%step_control == 'error'
+      self%early = [(contact_releases_early(model, j), j = 1, model%n_contacts)]
+      self%jumps = [(contact_jumps(model, j), j = 1, model%n_contacts)]
       self%si = pack([(j, j = 1, model%n)], model%sys%strain_row /= 0.0_dp)
       self%sw = model%sys%strain_row(self%si)
       if (self%controlled) then
          call self%init_control(model, cfg, err)
          if (allocated(err)) return
-         allocate(self%ops(0:self%n_levels - 1), mold=proto)
+         allocate(self%ops(0:self%n_levels - 1), source=self%proto)
       else
-         allocate(self%ops(0:self%kmax), mold=proto)
+         allocate(self%ops(0:self%kmax), source=self%proto)
       end if
-      allocate(self%scratch, mold=proto)
-      allocate(self%scratch_half, mold=proto)
+      allocate(self%scratch, source=self%proto)
+      allocate(self%scratch_half, source=self%proto)
       allocate(self%sub(0:max_sub))
       self%ix = [(k, k = 0, max_sub)]
       do k = 0, max_sub
@@ -325,8 +335,8 @@ contains
                self%sub(self%ix(nsub))%t = t_cur + theta * dt_r
                t_cur = self%sub(self%ix(nsub))%t
                self%events = self%events + 1
-               ! only a damper makes the force jump at a switch
-               if (self%model%c_c(self%ev_contact) > 0.0_dp) call self%restart_after_event(nsub)
+               ! only a force that jumps (a damper) needs the right limit at a switch
+               if (self%jumps(self%ev_contact)) call self%restart_after_event(nsub)
                cycle
             end if
          end if
@@ -506,7 +516,7 @@ contains
                  v1 => self%sub(self%ix(k + 1))%v)
          do cc = 1, md%n_contacts
             i = md%c_dof(cc);  s = md%c_sign(cc);  g = md%c_gap(cc)
-            damped = md%c_law(cc) == law_bilinear .and. md%c_c(cc) > 0.0_dp
+            damped = self%early(cc)
             closed0 = contact_active(md, cc, 0.0_dp, h, u0(i), v0(i), u1(i), v1(i), damped)
             if (.not. damped) then
                ! Bernstein coefficients of the cubic bound it: no sign change, no event
@@ -652,10 +662,11 @@ contains
                                     s%mode(r), s%sigma(r), s%anchor(r))
                   onset_mode = s%mode(r);  onset_sigma = s%sigma(r)
                end if
-               jump = .not. self%ev_friction .and. md%r_c(r) > 0.0_dp
+               jump = .not. self%ev_friction .and. md%laws(md%r_law(r))%law%jumps(md%r_k(r), &
+                                                                      md%r_c(r), md%r_p(r))
             else
                c = self%ev_contact
-               jump = md%c_c(c) > 0.0_dp
+               jump = self%jumps(c)
             end if
          end if
          call update_ring_modes(md, s%u, s%v, s%a, s%mode, s%sigma, s%anchor, forced)
@@ -689,13 +700,12 @@ contains
             dd = md%c_sign(c) * s%v(i)
             if (c == self%ev_contact) then
                if (self%ev_onset) then
-                  s%f(c) = contact_force(md%c_law(c), md%c_k(c), md%c_c(c), md%c_p(c), &
-                                         max(d, tiny(1.0_dp)), dd)
+                  s%f(c) = contact_force(md, c, max(d, tiny(1.0_dp)), dd)
                else
                   s%f(c) = 0.0_dp
                end if
             else
-               s%f(c) = contact_force(md%c_law(c), md%c_k(c), md%c_c(c), md%c_p(c), d, dd)
+               s%f(c) = contact_force(md, c, d, dd)
             end if
          end do
          if (md%n_rings > 0) then
@@ -727,21 +737,21 @@ contains
    end subroutine restart_rings
 
    !> Is contact c active at fraction x of a sub-step of length h (cubic Hermite interpolant
-   !> of its dof from (u0, v0) to (u1, v1))? Penetration > 0, and for a bilinear law with a
-   !> damper also k d + c d' > 0 (the release).
+   !> of its dof from (u0, v0) to (u1, v1))? Penetration > 0, and for a law whose force can
+   !> vanish earlier (a damper) also a positive force (the release: k d + c d' > 0).
    pure logical function contact_active(model, c, x, h, u0, v0, u1, v1, damped) result(active)
       type(model_t), intent(in) :: model     !! model
       integer, intent(in) :: c               !! contact
       real(dp), intent(in) :: x, h           !! fraction [-], sub-step [s]
       real(dp), intent(in) :: u0, v0, u1, v1 !! the contact dof at the ends
-      logical, intent(in) :: damped          !! bilinear with a damper
+      logical, intent(in) :: damped          !! the force can vanish before the penetration
       real(dp) :: d, dd, h00, h10, h01, h11, g00, g10, g01, g11
       call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
       d = model%c_sign(c) * (h00 * u0 + h10 * h * v0 + h01 * u1 + h11 * h * v1) - model%c_gap(c)
       active = d > 0.0_dp
       if (active .and. damped) then
          dd = model%c_sign(c) * (g00 * u0 + g10 * h * v0 + g01 * u1 + g11 * h * v1) / h
-         active = model%c_k(c) * d + model%c_c(c) * dd > 0.0_dp
+         active = contact_force(model, c, d, dd) > 0.0_dp
       end if
    end function contact_active
 
@@ -778,7 +788,8 @@ contains
       real(dp), allocatable :: kf(:, :), uqs(:)
       integer :: info, c, n_out
       self%tolerance = cfg%tolerance
-      self%order = merge(4, 2, cfg%method == 'rk45')
+      ! the order the controller assumes for the method's error estimate (its registry entry)
+      self%order = max(1, self%caps%control_order)
       ! with ring contacts the watched outputs are the supports' (w, v) and their velocities,
       ! the tip and the root strain: the root strain rate carries the high modes every
       ! impact excites, and resolving them to the tolerance of its range cost twice the steps
@@ -815,7 +826,7 @@ contains
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
       if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out)
-      if (cfg%method == 'rk45') then
+      if (self%caps%estimator == 'embedded') then
          ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
          self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
          self%out_floor(n_out + 2:) = max(self%out_floor(n_out + 2:), cfg%rk_atol / cfg%tolerance)
@@ -1097,7 +1108,7 @@ contains
          call self%ring_switches(1, event)
       else if (event) then
          self%events = self%events + 1
-         if (self%model%c_c(self%ev_contact) > 0.0_dp) call self%restart_after_event(1)
+         if (self%jumps(self%ev_contact)) call self%restart_after_event(1)
       end if
       if (present(obs)) call self%emit_pieces(1, obs)
       call self%track_outputs(self%sub(self%ix(1)), .false.)
@@ -1281,8 +1292,7 @@ contains
                  + w(5) * sb%v(i) + w(6) * sb%a(i)
             vi = g(1) * sa%u(i) + g(2) * sa%v(i) + g(3) * sa%a(i) + g(4) * sb%u(i) &
                  + g(5) * sb%v(i) + g(6) * sb%a(i)
-            force(c) = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), &
-                                     m%c_sign(c) * ui - m%c_gap(c), m%c_sign(c) * vi)
+            force(c) = contact_force(m, c, m%c_sign(c) * ui - m%c_gap(c), m%c_sign(c) * vi)
          end do
       end associate
    end subroutine hermite_sample

@@ -10,14 +10,16 @@ module gapbeam_input
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_capabilities, only: solver_refusal
+   use gapbeam_laws, only: stop_law_refusal
    use gapbeam_deck_text, only: source_t, load_file, make_source, group_names, group_block, &
       split_assignments, lower, basename_stem, null_value, longest_text_value, assigned_name, &
       quote_left_open
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, structure_t, &
-      stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, law_code, stop_side_words, &
+      stop_t, damping_t, forcing_t, dof_code, dof_w, dof_theta, stop_side_words, &
       stop_law_words, damping_words, rotary_inertia_words, rayleigh_from_ratios, beam_ei, &
       beam_rho_a, dof_v, dof_theta_v, point_force_t, stop_shape_words, end_condition_words, &
-      tip_condition_words, law_hertz, stop_is_ring
+      tip_condition_words, stop_is_ring
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
@@ -1144,7 +1146,7 @@ contains
          rule_f1_ratio, rule_f1_hz, offset_w, offset_v, friction, tangential_stiffness, &
          wear_coefficient
       character(len=16) :: shape(nmax)
-      character(len=:), allocatable :: ix
+      character(len=:), allocatable :: ix, why
       type(stop_t) :: d
       character(len=*), parameter :: stop_vars = 'node() dof():8 side():16 law():16 gap() ' &
          // 'stiffness() damping() exponent() rule_factor() rule_f1_ratio() rule_f1_hz() ' &
@@ -1199,12 +1201,10 @@ contains
             if (allocated(err)) err%message = err%message // ' (or rule_factor' // ix &
                // ' > 0: the stiffness from the rule)'
          end if
-         if (law_code(law(i)) == 2) then
-            call require_range('stops', 'exponent' // ix, exponent(i), 1.0_dp, 10.0_dp, err)
-            if (damping(i) > 0.0_dp .and. .not. allocated(err)) call fatal_error(err, &
-               'group &stops: damping' // ix // ' = ' // str(damping(i)) // ": a contact " &
-               // "damper is only available with law='bilinear'")
-         end if
+         ! what the law takes (its registry entry, gapbeam_laws): exponent, damper, ring
+         why = stop_law_refusal(law(i), ix, damping(i), exponent(i), shape(i) == 'circular' &
+            .or. friction(i) > 0.0_dp, friction(i), tangential_stiffness(i))
+         if (len(why) > 0) call fatal_error(err, 'group &stops: ' // why)
          if (allocated(err)) return
          list(i) = stop_t(node=node(i), dof=code, side=side(i), law=law(i), gap=gap(i), &
             stiffness=stiffness(i), damping=damping(i), exponent=exponent(i), &
@@ -1351,10 +1351,6 @@ contains
          else if (code == dof_theta .or. code == dof_theta_v) then
             call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
                // " on a rotation dof: friction acts on the translations ('w' or 'v')")
-         else if (law_code(law) == law_hertz .and. .not. (k_t > 0.0_dp)) then
-            call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
-               // " with law = 'hertz' needs tangential_stiffness" // ix // ' > 0 [N/m] (the ' &
-               // 'stick stiffness; with the bilinear law it defaults to the normal stiffness)')
          else if (rule_factor > 0.0_dp) then
             call fatal_error(err, 'group &stops: friction' // ix // ' = ' // str(friction) &
                // ' with rule_factor' // ix // ': give stiffness (and tangential_stiffness) ' &
@@ -1540,6 +1536,7 @@ contains
       integer :: fp_max_iterations, steps_per_period, max_halvings, grow_after, &
          transient_periods, record_periods
       logical :: locate_events
+      character(len=:), allocatable :: why
       namelist /solver/ method, tolerance, newmark_delta, newmark_alpha, hht_alpha, &
          rho_infinity, rk_rtol, rk_atol, energy_bound, stop_solution, fp_tolerance, &
          fp_max_iterations, step_control, steps_per_period, half_step_tolerance, &
@@ -1591,29 +1588,10 @@ contains
       call require_int('solver', 'record_periods', record_periods, 1, max_periods, err, &
          'every recorded period keeps its Poincare point')
       if (allocated(err)) return
-      ! combinations of method and step control
-      select case (method)
-      case ('auto', 'newmark', 'hht', 'generalized_alpha')
-         if (step_control == 'embedded') call fatal_error(err, "group &solver: step_control = " &
-            // "'embedded' needs method = 'rk45' (the implicit methods use 'auto', 'error', " &
-            // "'fixed' or 'half_step')")
-         if (method /= 'newmark' .and. method /= 'auto' .and. step_control == 'half_step') &
-            call fatal_error(err, &
-            "group &solver: step_control = 'half_step' is the Newmark residual rule (method = " &
-            // "'newmark'); method = '" // trim(method) // "' uses 'auto', 'error' or 'fixed'")
-         if (method /= 'newmark' .and. method /= 'auto' .and. stop_solution == 'fixed_point') &
-            call fatal_error(err, &
-            "group &solver: stop_solution = 'fixed_point' is the Newmark solver's (method = " &
-            // "'newmark'); method = '" // trim(method) // "' uses the condensed solution")
-      case ('rk45')
-         if (step_control == 'fixed' .or. step_control == 'half_step') call fatal_error(err, &
-            "group &solver: method = 'rk45' runs with its own error estimate (step_control = " &
-            // "'auto', 'error' or 'embedded'), got '" // trim(step_control) // "'")
-      case ('central_difference', 'rk4')
-         if (step_control /= 'fixed' .and. step_control /= 'auto') call fatal_error(err, &
-            "group &solver: method = '" // trim(method) // "' runs with step_control = " &
-            // "'fixed' (or 'auto'), got '" // trim(step_control) // "'")
-      end select
+      ! combinations of method, step control and stop solution: what the method's registry
+      ! entry takes (gapbeam_capabilities)
+      why = solver_refusal(method, step_control, stop_solution)
+      if (len(why) > 0) call fatal_error(err, 'group &solver: ' // why)
       if (allocated(err)) return
       ! time is counted in integer ticks of T / (steps_per_period 2^max_halvings); the sum is
       ! taken in real arithmetic, as two periods near huge(1) overflow an integer

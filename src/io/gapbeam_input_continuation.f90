@@ -3,6 +3,7 @@
 !> others). Every message names the deck, the group, the variable, the value and what is
 !> allowed, on one line.
 submodule (gapbeam_input) gapbeam_input_continuation
+   use gapbeam_capabilities, only: method_caps, method_caps_t
    use gapbeam_continuation_types, only: continuation_settings_t, max_curve_kinds, &
       continuation_direction_words, continuation_start_words, jacobian_words, curve_kind_words
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
@@ -17,6 +18,7 @@ contains
       logical, intent(in) :: present_group            !! the deck has &continuation
       type(error_t), allocatable, intent(out) :: err  !! first problem found
       type(continuation_settings_t) :: c
+      type(method_caps_t) :: mc
       character(len=64) :: parameter, parameter2
       character(len=8) :: direction
       character(len=16) :: start
@@ -88,8 +90,9 @@ contains
             // ': must be < step_max = ' // str(step_max))
          return
       end if
-      if (jacobian == 'exact' .and. deck%solver%method /= 'exact' .and. &
-          deck%solver%method /= 'auto') then
+      ! the exact Jacobian needs a method whose registry entry gives one
+      mc = method_caps(deck%solver%method)
+      if (jacobian == 'exact' .and. .not. mc%jacobian .and. deck%solver%method /= 'auto') then
          call fatal_error(err, "group &continuation: jacobian = 'exact' needs &solver " &
             // "method = 'exact' (or 'auto' with piecewise-linear stops; the deck has '" &
             // trim(deck%solver%method) // "'); use jacobian = 'finite_difference' with " &

@@ -6,7 +6,7 @@ module gapbeam_jobs
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
-   use gapbeam_settings, only: output_settings_t
+   use gapbeam_settings, only: output_settings_t, solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
@@ -23,7 +23,8 @@ module gapbeam_jobs
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters, parameter_set_t
-   use gapbeam_studies, only: work_precision, stability_study
+   use gapbeam_studies, only: work_precision, stability_study, stability_series
+   use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
    use gapbeam_study_output, only: write_work_precision, write_stability, &
@@ -109,23 +110,52 @@ contains
       call write_modes(dk, sys, modes, k_stop, e)
    end subroutine run_modes
 
+   !> The method and the &solver parameters its registry entry says it reads:
+   !> 'newmark (delta 0.5, alpha 0.25), stop force condensed'.
    function method_text(dk) result(t)
       type(deck_t), intent(in) :: dk
       character(len=:), allocatable :: t
-      select case (dk%solver%method)
-      case ('newmark')
-         t = 'newmark (delta ' // str(dk%solver%newmark_delta) // ', alpha ' &
-             // str(dk%solver%newmark_alpha) // '), stop force ' // trim(dk%solver%stop_solution)
-      case ('hht')
-         t = 'hht (alpha ' // str(dk%solver%hht_alpha) // ')'
-      case ('generalized_alpha')
-         t = 'generalized_alpha (rho_inf ' // str(dk%solver%rho_infinity) // ')'
-      case ('rk45')
-         t = 'rk45 (rtol ' // str(dk%solver%rk_rtol) // ', atol ' // str(dk%solver%rk_atol) // ')'
-      case default
-         t = trim(dk%solver%method)
-      end select
+      type(method_caps_t) :: c
+      character(len=:), allocatable :: rest, pair
+      integer :: eq, sp, n
+      c = method_caps(dk%solver%method)
+      t = trim(dk%solver%method)
+      rest = trim(adjustl(c%parameters))
+      n = 0
+      do while (len(rest) > 0)
+         sp = index(rest, ' ')
+         if (sp == 0) sp = len(rest) + 1
+         pair = rest(:sp - 1)
+         rest = trim(adjustl(rest(min(sp, len(rest)) + 1:)))
+         eq = index(pair, '=')
+         n = n + 1
+         if (n == 1) then
+            t = t // ' ('
+         else
+            t = t // ', '
+         end if
+         t = t // pair(:eq - 1) // ' ' // str(solver_value(dk%solver, pair(eq + 1:)))
+      end do
+      if (n > 0) t = t // ')'
+      if (c%fixed_point) t = t // ', stop force ' // trim(dk%solver%stop_solution)
    end function method_text
+
+   !> A numeric &solver variable by name.
+   real(dp) function solver_value(cfg, name) result(x)
+      type(solver_settings_t), intent(in) :: cfg       !! settings
+      character(len=*), intent(in) :: name             !! variable
+      select case (name)
+      case ('newmark_delta');  x = cfg%newmark_delta
+      case ('newmark_alpha');  x = cfg%newmark_alpha
+      case ('hht_alpha');  x = cfg%hht_alpha
+      case ('rho_infinity');  x = cfg%rho_infinity
+      case ('rk_rtol');  x = cfg%rk_rtol
+      case ('rk_atol');  x = cfg%rk_atol
+      case default
+         error stop 'gapbeam_jobs:solver_value: a registry entry names an unknown &solver ' &
+            // 'variable'
+      end select
+   end function solver_value
 
    !> The run's parameters with what the built model resolved.
    function model_parameters(dk, model) result(p)
@@ -232,7 +262,7 @@ contains
       call describe_structure(dk%structure)
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
-      methods = pack(dk%study%series, dk%study%series /= 'exact')
+      methods = stability_series(dk%study%series)
       call stability_study(model, dk%study, methods, omega_dt, rho, steps, e)
       if (allocated(e)) return
       do k = 1, size(steps)
