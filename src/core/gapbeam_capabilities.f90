@@ -79,6 +79,8 @@ module gapbeam_capabilities
       logical :: friction = .false.            !! friction
       logical :: dampers = .false.             !! a contact damper
       character(len=16) :: nonlinear_law = ''  !! a law that is not piecewise linear ('')
+      !> a law on a ring support that cannot be a ring's normal law ('')
+      character(len=16) :: unfit_ring_law = ''
       logical :: massless = .false.            !! dofs without mass
    end type needs_t
 
@@ -246,6 +248,7 @@ contains
       do c = 1, model%n_rings
          if (.not. laws(model%r_law(c))%piecewise_linear .and. len_trim(nd%nonlinear_law) &
              == 0) nd%nonlinear_law = laws(model%r_law(c))%name
+         if (.not. laws(model%r_law(c))%rings) nd%unfit_ring_law = laws(model%r_law(c))%name
       end do
       if (allocated(model%sys%m)) then
          nd%massless = any([(model%sys%m(i, i) == 0.0_dp, i = 1, model%n)])
@@ -265,6 +268,12 @@ contains
       character(len=:), allocatable :: lacks
       why = ''
       lacks = ''
+      if (len_trim(nd%unfit_ring_law) > 0) then
+         why = "law '" // trim(nd%unfit_ring_law) // "' cannot be the normal law of a support " &
+            // 'with a circular clearance or friction (its registry entry says so): no method ' &
+            // 'integrates this model'
+         return
+      end if
       if (nd%massless .and. .not. c%massless) then
          why = "method '" // trim(c%name) // "' cannot integrate this model: it has dofs " &
             // 'without mass (lumped mass without rotary inertia); explicit methods need a ' &
@@ -280,7 +289,7 @@ contains
       if (nd%dampers .and. .not. c%dampers) lacks = join(lacks, 'a contact damper')
       if (len_trim(nd%nonlinear_law) > 0 .and. .not. c%nonlinear_laws) lacks = join(lacks, &
          "a stop law that is not piecewise linear (law = '" // trim(nd%nonlinear_law) &
-         // "', Hertz-like)")
+         // "')")
       if (len(lacks) > 0) then
          why = "method '" // trim(c%name) // "' cannot integrate this model: it has " // lacks &
             // '; ' // trim(c%name) // ' handles ' // features_text(c) // ': use ' &
