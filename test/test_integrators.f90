@@ -13,6 +13,7 @@ program test_integrators
    use gapbeam_transient, only: integrate
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_stability, only: spectral_radius, largest_stable_step
+   use gapbeam_studies, only: stability_series
    use gapbeam_test_runs, only: run_deck, load_deck
    use gapbeam_state, only: state_t
    use gapbeam_integrator, only: integrator_t, method_registry_t, method_registry, &
@@ -21,6 +22,7 @@ program test_integrators
    use gapbeam_capabilities, only: method_table, method_caps_t, method_word_list, method_caps
    use gapbeam_settings, only: method_words
    use gapbeam_test_method, only: rk43_stepper_t, rk43_caps
+   use gapbeam_capability_text, only: capability_markdown
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: linear = "&stops rule_factor = 0.0, stiffness = 1.0, " &
@@ -33,8 +35,10 @@ program test_integrators
    call stable_steps()
    call divergence_is_reported()
    call registry_is_the_one_place()
+   call capability_tables_documented()
    call a_method_from_the_tests()
    call explicit_methods_need_mass()
+   call stability_needs_methods()
    call finish('test_integrators')
 
 contains
@@ -216,6 +220,51 @@ contains
          controller_order('hht') == 2)
    end subroutine registry_is_the_one_place
 
+   !> docs/methods.md carries the capability tables generated from the registries, verbatim
+   !> between its two markers; on a difference the current tables go to
+   !> test_integrators.capabilities.md.
+   subroutine capability_tables_documented()
+      character(len=*), parameter :: doc = 'docs/methods.md', &
+         first = '<!-- capability tables: generated from the registries, do not edit by hand -->', &
+         last = '<!-- end of the capability tables -->', out = 'test_integrators.capabilities.md'
+      character(len=:), allocatable :: text, want, got
+      integer :: u, i1, i2, ios
+      logical :: same
+      want = capability_markdown()
+      open(newunit=u, file=doc, access='stream', form='unformatted', status='old', iostat=ios)
+      if (ios /= 0) then
+         call check('read ' // doc, .false.);  return
+      end if
+      allocate(character(len=0) :: text)
+      block
+         integer(8) :: n
+         inquire(unit=u, size=n)
+         deallocate(text);  allocate(character(len=n) :: text)
+         read(u, iostat=ios) text
+      end block
+      close(u)
+      i1 = index(text, first);  i2 = index(text, last)
+      same = .false.
+      got = ''
+      if (i1 > 0 .and. i2 > i1) then
+         got = text(i1 + len(first) + 1:i2 - 1)
+         same = got == want
+      end if
+      call check('docs/methods.md carries the capability tables of the registries', same, &
+         'document ' // str(len(got)) // ' bytes, registry ' // str(len(want)) // ' bytes')
+      if (same) then
+         open(newunit=u, file=out, status='old', iostat=ios)
+         if (ios == 0) close(u, status='delete')
+      else
+         open(newunit=u, file=out, status='replace', action='write', iostat=ios)
+         if (ios == 0) then
+            write(u, '(a)') want(:len(want) - 1)
+            close(u)
+            call note('the current tables are in ' // out)
+         end if
+      end if
+   end subroutine capability_tables_documented
+
    !> The order the stepping integrator's controller uses for method `name` (-1: none).
    integer function controller_order(name, reg) result(q)
       character(len=*), intent(in) :: name
@@ -364,4 +413,22 @@ contains
             index(msg, 'diverged') == 0)
       end do
    end subroutine explicit_methods_need_mass
+
+   !> analysis = 'stability' on the default series (which start with 'auto') is refused with
+   !> one line naming &study series and the value (it stopped with an internal message); an
+   !> exact method is left out as before.
+   subroutine stability_needs_methods()
+      character(len=32), allocatable :: methods(:)
+      type(error_t), allocatable :: err
+      call stability_series([character(len=32) :: 'auto', 'newmark_error', 'exact'], methods, &
+                            err)
+      call check("stability with series 'auto' is refused", allocated(err))
+      if (allocated(err)) call check('... naming the group, variable and value: ' &
+         // err%message, index(err%message, 'group &study') > 0 .and. index(err%message, &
+         "series(1) = 'auto'") > 0)
+      call stability_series([character(len=32) :: 'newmark_fixed', 'exact', 'hht_error'], &
+                            methods, err)
+      call check("the series of one-step methods are charted, 'exact' left out", &
+         .not. allocated(err) .and. size(methods) == 2)
+   end subroutine stability_needs_methods
 end program test_integrators

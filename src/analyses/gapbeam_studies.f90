@@ -251,11 +251,33 @@ contains
       end do
    end subroutine stability_study
 
-   !> The series of `series` that have an amplification matrix (not an exact method).
-   function stability_series(series) result(methods)
-      character(len=*), intent(in) :: series(:)          !! the deck's series words
-      character(len=32), allocatable :: methods(:)
+   !> The series of the stability study: every one of `series` that names a one-step method
+   !> (its fixed-step amplification matrix; an exact method has none and is left out), or an
+   !> error naming the first series that names no method ('auto' chooses one per model).
+   subroutine stability_series(series, methods, err)
+      character(len=*), intent(in) :: series(:)                !! the deck's series words
+      character(len=32), allocatable, intent(out) :: methods(:) !! those charted
+      type(error_t), allocatable, intent(out) :: err           !! a series without a method
+      type(study_settings_t) :: st
+      type(solver_settings_t) :: cfg, base
+      real(dp) :: param
+      character(len=:), allocatable :: pname
+      logical :: keep(size(series))
       integer :: j
-      methods = pack(series, [(.not. is_exact(series(j)), j = 1, size(series))])
-   end function stability_series
+      do j = 1, size(series)
+         keep(j) = series_setting(trim(series(j)), 1, st, base, cfg, param, pname)
+         if (keep(j)) keep(j) = method_exists(cfg%method)
+         if (.not. keep(j)) then
+            call fatal_error(err, 'group &study: series(' // str(j) // ") = '" &
+               // trim(series(j)) // "': analysis = 'stability' charts the amplification " &
+               // 'matrix of one method, and this series names none (' &
+               // "'auto' chooses one per model): give &study series, e.g. 'newmark_fixed', " &
+               // "'hht', 'generalized_alpha', 'central_difference', 'rk4' (without &study " &
+               // 'series the list is the work-precision study''s, which starts with ''auto'')')
+            return
+         end if
+         keep(j) = .not. is_exact(cfg%method)
+      end do
+      methods = pack(series, keep)
+   end subroutine stability_series
 end module gapbeam_studies

@@ -201,16 +201,21 @@ contains
          call self%advance_controlled(state, t_target, obs, err)
          return
       end if
+      call fit_grid(self, max(abs(t_target), abs(state%t)))
       tick = nint(state%t / self%tick_dt, int64)
       end_tick = nint(t_target / self%tick_dt, int64)
       if (abs(real(tick, dp) * self%tick_dt - state%t) > 0.01_dp * self%tick_dt .or. &
-          abs(real(end_tick, dp) * self%tick_dt - t_target) > 0.01_dp * self%tick_dt) &
-         error stop 'gapbeam_stepping:advance: times must lie on the step grid'
+          abs(real(end_tick, dp) * self%tick_dt - t_target) > 0.01_dp * self%tick_dt) then
+         call fatal_error(err, 'gapbeam_stepping:advance: the times ' // str(state%t) &
+            // ' s and ' // str(t_target) // ' s are not on the step grid of T / (' &
+            // str(self%cfg%steps_per_period) // ' x 2^' // str(self%kmax) // ')')
+         return
+      end if
       watch_tick = -1
       if (present(obs)) watch_tick = nint(obs%t_watch / self%tick_dt, int64)
       call copy_state(state, self%sub(self%ix(0)))
       if (self%sub(self%ix(0))%dt_prev == 0.0_dp) self%sub(self%ix(0))%dt_prev = self%dt_max
-      level = state%level;  comfortable = state%comfortable
+      level = min(state%level, self%kmax);  comfortable = state%comfortable
       self%piece%model => self%model
       self%piece%sub => self%sub
       self%t_begin = state%t;  self%n_since = 0
@@ -272,8 +277,35 @@ contains
       state%t = t_target
       state%level = level;  state%comfortable = comfortable
       self%fp_iterations = self%scratch%iterations + sum([(self%ops(level)%iterations, &
-                                                          level = 0, self%kmax)])
+                                      level = lbound(self%ops, 1), ubound(self%ops, 1))])
    end subroutine stepping_advance
+
+   !> The time grid of an advance to t_end: ticks of dt_max / 2^kmax with kmax = max_halvings,
+   !> lowered (never below 0) until t_end is below 2^45 ticks, so that every grid time is
+   !> resolved to 1/128 of a tick in double precision: a tick finer than the resolution of the
+   !> time itself cannot be stepped on (steps of zero length). Only extreme settings are
+   !> affected: the default T/256 with 20 halvings keeps its grid for 1.3e5 forcing periods;
+   !> T/1e8 over 1300 periods keeps 8 halvings (steps down to 4e-12 of a period).
+   subroutine fit_grid(self, t_end)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      real(dp), intent(in) :: t_end                         !! latest time of the advance [s]
+      integer :: k
+      k = self%cfg%max_halvings
+      do while (k > 0 .and. t_end / (self%dt_max / 2.0_dp**k) >= 2.0_dp**45)
+         k = k - 1
+      end do
+      self%kmax = k
+      self%tick_dt = self%dt_max / 2.0_dp**k
+   end subroutine fit_grid
+
+   !> ' (lowered to fit the time grid)' when fit_grid lowered max_halvings, else ''.
+   function lowered_text(self) result(t)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator
+      character(len=:), allocatable :: t
+      t = ''
+      if (self%kmax < self%cfg%max_halvings) t = ' (lowered from ' &
+         // str(self%cfg%max_halvings) // ' to fit the time grid of the horizon)'
+   end function lowered_text
 
    !> The error of a step that fails at the smallest step size.
    subroutine step_failure(self, ok, t0, t1, ratio, worst, err)
@@ -293,7 +325,7 @@ contains
             // str(t0) // ' s the half-step residual at ' // dof_label(self%model, worst) &
             // ' is ' // str(ratio) // ' times the tolerance with the smallest step dt = ' &
             // str(t1 - t0) // ' s (steps_per_period = ' // str(self%cfg%steps_per_period) &
-            // ', max_halvings = ' // str(self%kmax) // ')')
+            // ', max_halvings = ' // str(self%kmax) // lowered_text(self) // ')')
       end if
    end subroutine step_failure
 
@@ -414,7 +446,13 @@ contains
             return
          end if
          self%n_since = self%n_since + 1
-         if (self%n_since < 64) return
+         ! every 64 steps; in the first forcing period at least 8 times (its largest energy
+         ! is the reference)
+         if (t1 - self%t_begin <= self%period) then
+            if (self%n_since < max(1, min(64, self%cfg%steps_per_period / 8))) return
+         else if (self%n_since < 64) then
+            return
+         end if
          self%n_since = 0
          energy = 0.5_dp * dot_product(u, matmul(self%model%sys%k, u)) &
                   + 0.5_dp * dot_product(v, matmul(self%model%sys%m, v))

@@ -262,7 +262,8 @@ contains
       call describe_structure(dk%structure)
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
-      methods = stability_series(dk%study%series)
+      call stability_series(dk%study%series, methods, e)
+      if (allocated(e)) return
       call stability_study(model, dk%study, methods, omega_dt, rho, steps, e)
       if (allocated(e)) return
       do k = 1, size(steps)
