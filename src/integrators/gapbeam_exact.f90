@@ -250,9 +250,10 @@ contains
       class(observer_t), intent(inout), optional :: obs   !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err      !! configuration failure
       real(dp), allocatable :: x0(:), dummy(:)
-      integer :: outcome, flips, n
+      integer :: outcome, flips, n, ncfg0
       integer(int64) :: new_mask
       real(dp) :: tau_end, rem
+      ncfg0 = self%ncfg
       call self%begin_advance(state, t_target, obs, x0)
       flips = 0
       do
@@ -285,7 +286,7 @@ contains
       call contact_forces_at(self%model, state%u, state%v, state%f)
       state%f_prev = state%f
       state%dt_prev = 0.0_dp
-      self%factorizations = self%ncfg
+      self%factorizations = self%factorizations + (self%ncfg - ncfg0)
    end subroutine exact_advance
 
    !> Anchor the time, the horizon and the watch instant; the initial contact activity.

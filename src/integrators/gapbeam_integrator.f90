@@ -33,7 +33,7 @@ module gapbeam_integrator
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
       dof_label, resolve_method, refusal, tube_physics_text, ring_load
-   public :: method_entry_t, method_registry_t, method_registry
+   public :: method_entry_t, method_registry_t, method_registry, zero_counters
 
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t
@@ -54,6 +54,7 @@ module gapbeam_integrator
       !     (the exact integrator overrides it); the default says there is none
       procedure :: advance_jacobian => advance_jacobian_none
       ! --- end of the continuation hook
+      procedure :: reset_counters => zero_counters       !! counters to zero (a new record)
    end type integrator_t
 
    !> One step of a one-step method at one step size.
@@ -343,6 +344,15 @@ contains
       fda = 0.0_dp;  ev = 0.0_dp;  coef = 0.0_dp
       has = .false.
    end subroutine no_local_error
+
+   !> The counters to zero: what a record reports is then the work of that record (an
+   !> integrator reused for the next run of the same model keeps its factorisations).
+   subroutine zero_counters(self)
+      class(integrator_t), intent(inout) :: self   !! integrator
+      self%steps_accepted = 0;  self%steps_rejected = 0;  self%events = 0
+      self%factorizations = 0;  self%fp_iterations = 0
+      self%dt_smallest = huge(1.0_dp);  self%dt_largest = 0.0_dp
+   end subroutine zero_counters
 
    ! --- continuation hook (issue 14)
    !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with

@@ -24,7 +24,7 @@ module gapbeam_stepping
    use gapbeam_capabilities, only: method_caps
    use gapbeam_contact_law, only: contact_force, contact_releases_early, contact_jumps
    use gapbeam_observer, only: piece_t, observer_t
-   use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, &
+   use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, zero_counters, &
       make_stepper, dof_label, ring_load
    use gapbeam_ring_contact, only: ring_open, ring_stick, ring_indicators, ring_geometry, &
       update_ring_modes, ring_force, onset_regime
@@ -107,6 +107,7 @@ module gapbeam_stepping
    contains
       procedure :: init => stepping_init
       procedure :: advance => stepping_advance
+      procedure :: reset_counters => stepping_reset_counters
       procedure, private :: attempt_step, control_ratio, check_divergence, emit_pieces, &
          first_event, restart_after_event, one_step, advance_controlled, controlled_step, &
          error_ratio, output_ratio, richardson, track_outputs, init_control, ring_switches, &
@@ -182,6 +183,19 @@ contains
          allocate(p%r_onset(nr), source=.false.)
       end associate
    end subroutine stepping_init
+
+   !> The counters to zero, the steppers' iteration counts included.
+   subroutine stepping_reset_counters(self)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer :: k
+      call zero_counters(self)
+      if (allocated(self%ops)) then
+         do k = lbound(self%ops, 1), ubound(self%ops, 1)
+            self%ops(k)%iterations = 0
+         end do
+      end if
+      if (allocated(self%scratch)) self%scratch%iterations = 0
+   end subroutine stepping_reset_counters
 
    !> Carry `state` to t_target (see integrator_t%advance). The times must lie on the tick
    !> grid of the step control (any multiple of dt_max / 2^max_halvings, e.g. any forcing

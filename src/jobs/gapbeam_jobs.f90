@@ -6,7 +6,7 @@ module gapbeam_jobs
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
-   use gapbeam_settings, only: output_settings_t, solver_settings_t
+   use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
@@ -17,9 +17,7 @@ module gapbeam_jobs
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
    use gapbeam_clock, only: thread_cpu_seconds
-   use gapbeam_attractor, only: diagnose
-   use gapbeam_certify, only: certify_point
-   use gapbeam_starts, only: start_list, random_state, group_attractors
+   use gapbeam_point, only: label_point
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters, parameter_set_t
@@ -359,52 +357,6 @@ contains
       if (allocated(diag%certificate_reason)) t = diag%certificate_reason
    end function cert_reason
 
-   !> The deck's other starts (&diagnostics starts after the first): each diagnosed, then all
-   !> grouped into distinct attractors (into `diag`).
-   subroutine other_starts(dk, model, u0, v0, diag, e)
-      type(deck_t), intent(in) :: dk                   !! deck
-      type(model_t), intent(in) :: model               !! model
-      real(dp), intent(in) :: u0(:), v0(:)             !! the deck's initial state
-      type(point_result_t), intent(inout) :: diag      !! the first start; summary added
-      type(error_t), allocatable, intent(out) :: e     !! a start could not be made
-      type(point_result_t), allocatable :: runs(:)
-      type(transient_result_t) :: res
-      type(output_settings_t) :: o
-      character(len=8), allocatable :: kinds(:)
-      integer, allocatable :: ridx(:)
-      real(dp), allocatable :: u(:), v(:)
-      real(dp) :: amplitude
-      integer :: k
-      type(error_t), allocatable :: run_err
-      call start_list(dk%diagnostics, 'deck', kinds, ridx)
-      allocate(runs(size(kinds)))
-      runs(1) = diag
-      o = dk%output
-      o%history_periods = 0
-      do k = 2, size(kinds)
-         select case (kinds(k))
-         case ('rest')
-            allocate(u(size(u0)), v(size(v0)), source=0.0_dp)
-         case ('random')
-            amplitude = dk%diagnostics%random_amplitude
-            if (.not. (amplitude > 0.0_dp)) amplitude = 2.0_dp * model%half_amplitude
-            call random_state(model, dk%diagnostics%random_seed, 1000000 + k, amplitude, u, v, e)
-            if (allocated(e)) return
-         case default
-            u = u0;  v = v0
-         end select
-         call diagnose(model, dk%solver, o, dk%diagnostics, u, v, res, runs(k), run_err)
-         if (allocated(run_err)) then
-            runs(k)%status = 1
-            write(output_unit, '(a)') 'start ' // str(k) // " ('" // trim(kinds(k)) &
-               // "') failed: " // run_err%message
-            deallocate(run_err)
-         end if
-         deallocate(u, v)
-      end do
-      call group_attractors(runs, dk%diagnostics, diag)
-   end subroutine other_starts
-
    !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)
    !> count the forcing periods integrated: the run's, then the exponent's two trajectories.
    subroutine run_transient_analysis(dk, e, batch)
@@ -416,8 +368,8 @@ contains
       real(dp) :: n_run
       type(model_t) :: model
       type(transient_result_t) :: res
-      type(output_settings_t) :: quiet
       type(point_result_t) :: diag
+      character(len=:), allocatable :: failures(:)
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
       integer :: j
@@ -447,7 +399,9 @@ contains
       call meter%start('transient', 'periods', &
          n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
          .not. opt%quiet, opt%progress_interval_s)
-      call diagnose(model, dk%solver, dk%output, dk%diagnostics, u0, v0, res, diag, e, meter)
+      ! the point pipeline: every start labelled, the first certified, attractors grouped
+      call label_point(model, dk%solver, dk%output, dk%diagnostics, u0, v0, 1, res, diag, e, &
+                       failures, meter)
       ! settling, convergence and an adaptive exponent may have run more than the estimate
       meter%total = max(meter%total, meter%done)
       call meter%finish(meter%done)
@@ -484,12 +438,9 @@ contains
          // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation &
          - res%stored_energy_change) // ' J'
-      quiet = dk%output
-      quiet%history_periods = 0
-      if (dk%diagnostics%certify) &
-         call certify_point(model, dk%solver, quiet, dk%diagnostics, u0, v0, 0, diag)
-      call other_starts(dk, model, u0, v0, diag, e)
-      if (allocated(e)) return
+      do j = 1, size(failures)
+         write(output_unit, '(a)') trim(failures(j))
+      end do
       call print_label(diag)
       call write_transient(dk, model, res, diag, e)
       if (allocated(e)) return
