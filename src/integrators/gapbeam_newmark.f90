@@ -73,6 +73,19 @@ contains
       type(solver_settings_t), intent(in) :: cfg       !! settings
       real(dp), intent(in) :: dt                       !! step [s]
       type(error_t), allocatable, intent(out) :: err   !! factorization failure
+      integer :: i
+      ! a conditionally stable member (linear acceleration, Fox-Goodwin, ...) has no stable step
+      ! for a dof without mass (omega = infinity); the unconditionally stable ones run it
+      if (cfg%newmark_alpha < 0.25_dp * (cfg%newmark_delta + 0.5_dp)**2 - 1.0e-12_dp) then
+         do i = 1, model%n
+            if (model%sys%m(i, i) > 0.0_dp) cycle
+            call fatal_error(err, "method 'newmark' with newmark_alpha = " &
+               // str(cfg%newmark_alpha) // ' is only conditionally stable and dof ' // str(i) &
+               // " has no mass (no stable step): use newmark_alpha >= (newmark_delta + 1/2)^2/4" &
+               // " or &beam rotary_inertia = 'half_element' or 'hrz'")
+            return
+         end do
+      end if
       call build_step_op(model, cfg%newmark_delta, cfg%newmark_alpha, dt, &
                          use_dense(model, cfg%linear_solver), self%op, err)
       if (allocated(err)) return
