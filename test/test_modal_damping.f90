@@ -26,7 +26,7 @@ program test_modal_damping
    type(deck_t) :: deck
    type(error_t), allocatable :: err
    character(len=200) :: ov(0)
-   character(len=*), parameter :: ref_deck = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref_deck = 'test/decks/moon_shaw_10p5hz_half_element.nml'
 
    call read_deck(ref_deck, ov, deck, err)
    if (allocated(err)) then
