@@ -4,6 +4,11 @@
 !>   depth of /wear/depth holds the Archard volume V' t by an independent quadrature of the
 !>   scar's cross-section, the depth grows with time, and the time to a wall fraction is the
 !>   quadrature's volume at that depth over V'.
+!> * fluid-elastic instability of the linear cantilever tube (Connors' damping per mode): the
+!>   critical velocity of mode 1 is Connors' value; started in mode 1, the free vibration
+!>   decays below it and grows above it at the rate the net modal damping predicts (the ratio
+!>   of the tip at successive Poincare samples one damped period apart, e^(-zeta_net omega
+!>   T_d)), within 1 %; the reduced model has the same rate.
 !> * turbulence on a linear cantilever tube (test/decks/tube_turbulence.nml): over one period
 !>   of the record, the tip's mean square and its amplitude at every harmonic against the
 !>   analytic modal frequency response (fully correlated: exact for every draw, within the
@@ -23,13 +28,17 @@ program test_flow
    use gapbeam_wear_geometry, only: seconds_per_year
    use gapbeam_test_runs, only: load_deck
    use gapbeam_model_builder, only: build_model
+   use gapbeam_reduction, only: reduce_model, project
    use gapbeam_transient, only: integrate
    use gapbeam_eigen, only: solve_modes
    use gapbeam_results, only: modes_t
    use gapbeam_model, only: global_dof
-   use gapbeam_description, only: dof_w
+   use gapbeam_description, only: dof_w, beam_mass_per_length
    use gapbeam_turbulence, only: load_shapes, turbulence_psd
    use gapbeam_fft, only: fft
+   use gapbeam_flow_results, only: flow_modes_t
+   use gapbeam_flow_load, only: deck_flow_modes
+   use gapbeam_fluid_elastic, only: connors_velocity
    use gapbeam_draw_statistics, only: mean_half_width, student_t_quantile
    implicit none
    character(len=*), parameter :: buffet = 'test/decks/tube_turbulence.nml'
@@ -37,6 +46,7 @@ program test_flow
 
    call wear_depth_over_years()
    call turbulence_linear_tube()
+   call connors_instability()
    call finish('test_flow')
 
 contains
@@ -294,4 +304,120 @@ contains
       if (allocated(err)) return
       same = all(m1%turbulence%x == m2%turbulence%x)
    end function same_record
+
+   !> The linear cantilever tube in cross flow, mode 1 at 0.5, 1 and 1.5 U_c.
+   subroutine connors_instability()
+      character(len=160), parameter :: flow = "&flow fluid_density = 1000.0, tube_diameter " &
+         // "= 0.019, connors_constant = 3.0, velocity = 1.0 /"
+      character(len=160), parameter :: plain = "&turbulence spectrum = 'none' /"
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(flow_modes_t) :: fm
+      type(error_t), allocatable :: err
+      real(dp) :: uc, want, zeta_s, zeta_net, f1, w1, growth, factor(3), m
+      real(dp), allocatable :: u0(:), v0(:)
+      integer :: k
+      character(len=12) :: tag
+      call read_deck(buffet, [character(len=160) :: flow, plain], deck, err)
+      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      call check('connors: the tube in cross flow builds', .not. allocated(err))
+      if (allocated(err)) return
+      call deck_flow_modes(deck, model%sys, model%beta, model%gamma, fm, err)
+      call check('connors: the flow modes are solved', .not. allocated(err))
+      if (allocated(err)) return
+      f1 = fm%frequency_hz(1);  zeta_s = fm%structural_ratio(1)
+      m = beam_mass_per_length(deck%structure%beam)
+      want = 3.0_dp * f1 * 0.019_dp * sqrt(m * 2.0_dp * pi * zeta_s / (1000.0_dp * 0.019_dp**2))
+      uc = fm%critical_velocity(1)
+      call check_close('connors: critical velocity of mode 1 = K f D (m delta / (rho D^2))^(1/2)', &
+                       uc, want, 1.0e-12_dp)
+      call check_close('connors: the library''s connors_velocity agrees', uc, &
+                       connors_velocity(3.0_dp, f1, 0.019_dp, m, 2.0_dp * pi * zeta_s, &
+                                        1000.0_dp), 1.0e-12_dp)
+      call note('connors: mode 1 at ' // str(f1) // ' Hz, zeta_s = ' // str(zeta_s) &
+                // ', U_c = ' // str(uc) // ' m/s')
+      factor = [0.5_dp, 1.0_dp, 1.5_dp]
+      do k = 1, 3
+         write(tag, '(f4.2)') factor(k)
+         zeta_net = zeta_s * (1.0_dp - factor(k)**2)
+         w1 = 2.0_dp * pi * f1
+         growth = free_decay_rate(deck, factor(k) * uc, w1, zeta_net, .false.)
+         if (k == 2) then
+            call check_le('connors: at U_c the free vibration neither grows nor decays ' &
+                          // '(|rate| / (zeta_s omega))', abs(growth) / (zeta_s * w1), 1.0e-3_dp)
+         else
+            call check_close('connors: U = ' // trim(tag) // ' U_c: decay rate = zeta_net ' &
+                             // 'omega_1', growth, zeta_net * w1, 1.0e-2_dp)
+         end if
+      end do
+      growth = free_decay_rate(deck, 1.5_dp * uc, w1, zeta_s * (1.0_dp - 2.25_dp), .true.)
+      call check_close('connors: reduced model (3 modes), U = 1.5 U_c: growth rate = zeta_net ' &
+                       // 'omega_1', growth, zeta_s * (1.0_dp - 2.25_dp) * w1, 1.0e-2_dp)
+   end subroutine connors_instability
+
+   !> The decay rate sigma of the tube started in mode 1 at flow velocity u: the tip at the
+   !> Poincare samples one damped period T_d apart is a geometric sequence of ratio
+   !> e^(-sigma T_d); sigma from its first and last samples.
+   real(dp) function free_decay_rate(deck0, u, w1, zeta_net, reduced) result(sigma)
+      type(deck_t), intent(in) :: deck0
+      real(dp), intent(in) :: u, w1, zeta_net
+      logical, intent(in) :: reduced
+      type(deck_t) :: deck
+      type(model_t) :: model, full
+      type(flow_modes_t) :: fm
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:), phi(:), p(:)
+      real(dp) :: wd
+      integer :: n
+      sigma = huge(1.0_dp)
+      deck = deck0
+      deck%flow%velocity = u
+      wd = w1 * sqrt(1.0_dp - zeta_net**2)
+      deck%forcing%frequency_hz = wd / (2.0_dp * pi)
+      deck%forcing%amplitude_pp = 0.0_dp
+      deck%solver%method = 'newmark'
+      deck%solver%step_control = 'fixed'            ! no forcing: no scale for error control
+      deck%solver%steps_per_period = 1000           ! omega h = 6.3e-3
+      deck%solver%transient_periods = 0
+      deck%solver%record_periods = 20
+      call build_model(deck, full, u0, v0, err)
+      if (allocated(err)) return
+      call deck_flow_modes(deck, full%sys, full%beta, full%gamma, fm, err)
+      if (allocated(err)) return
+      phi = 1.0e-3_dp * fm%shapes(:, 1) / fm%shapes(full%sys%tip_dof, 1)   ! tip 1 mm
+      if (reduced) then
+         deck%reduction%kind = 'modal';  deck%reduction%n_modes = 3
+         call build_model(deck, model, u0, v0, err)
+         if (allocated(err)) return
+         ! the reduced coordinates of mode 1: the tip (a pinned coordinate) and the modes
+         u0 = reduced_coordinates(deck, full, phi, err)
+         if (allocated(err)) return
+      else
+         model = full
+         u0 = phi
+      end if
+      v0 = 0.0_dp * u0
+      call integrate(model, deck%solver, deck%output, u0, v0, res, err)
+      if (allocated(err)) then
+         call check('connors: the free vibration runs', .false., err%message)
+         return
+      end if
+      p = res%p_tip
+      n = size(p)
+      sigma = -log(p(n) / p(1)) / (real(n - 1, dp) * 2.0_dp * pi / wd)
+   end function free_decay_rate
+
+   !> The coordinates of the physical vector x in the reduced basis of the deck.
+   function reduced_coordinates(deck, full, x, err) result(z)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: full
+      real(dp), intent(in) :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      real(dp), allocatable :: z(:), basis(:, :)
+      type(model_t) :: red
+      call reduce_model(full, deck%reduction%n_modes, deck%reduction%static_correction, red, &
+                        basis, err)
+      if (.not. allocated(err)) call project(full, basis, x, z, err)
+   end function reduced_coordinates
 end program test_flow

@@ -466,6 +466,53 @@ module gapbeam_output_catalogue
       dataset_t('/wear/wall_fraction', '1', '', 'fraction of the wall of ' &
                 // 'years_to_wall_fraction (&wear wall_fraction)'), &
       dataset_t('/wear/wall_thickness', 'm', '', 'tube wall thickness (&wear wall_thickness)'), &
+      dataset_t('/statistics/draws', '1', '', 'random draws (&turbulence draws) the ' &
+                // 'statistics are taken over'), &
+      dataset_t('/statistics/impact_rate', 's-1', 'n_stops', '' &
+                // 'impacts per second of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/impact_rate_ci', 's-1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/impact_rate (Student t)'), &
+      dataset_t('/statistics/peak_force', 'N', 'n_stops', '' &
+                // 'peak contact force of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/peak_force_ci', 'N', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/peak_force (Student t)'), &
+      dataset_t('/statistics/rms_force', 'N', 'n_stops', '' &
+                // 'RMS contact force of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/rms_force_ci', 'N', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/rms_force (Student t)'), &
+      dataset_t('/statistics/contact_fraction', '1', 'n_stops', '' &
+                // 'fraction of the record each stop is in contact: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/contact_fraction_ci', '1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/contact_fraction (Student t)'), &
+      dataset_t('/statistics/work_rate', 'W', 'n_stops', '' &
+                // 'impact work rate of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/work_rate (Student t)'), &
+      dataset_t('/statistics/normal_work_rate', 'W', 'n_stops', '' &
+                // 'normal work rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/normal_work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/normal_work_rate (Student t)'), &
+      dataset_t('/statistics/friction_work_rate', 'W', 'n_stops', '' &
+                // 'friction work rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/friction_work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/friction_work_rate (Student t)'), &
+      dataset_t('/statistics/wear_volume_rate', 'm3 s-1', 'n_stops', '' &
+                // 'Archard wear volume rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/wear_volume_rate_ci', 'm3 s-1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/wear_volume_rate (Student t)'), &
+      dataset_t('/statistics/tip_rms_displacement', 'm', '', '' &
+                // 'RMS tip displacement over the history samples: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/tip_rms_displacement_ci', 'm', '', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/tip_rms_displacement (Student t)'), &
       dataset_t('/orbit/w', 'm', 'sample=n_hist stop=n_stops', 'displacement w of each ' &
                 // 'support''s node at the history samples'), &
       dataset_t('/orbit/v', 'm', 'sample=n_hist stop=n_stops', 'displacement v of each ' &

@@ -21,7 +21,7 @@ module gapbeam_report
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
-   use gapbeam_flow_results, only: wear_depth_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t
    use gapbeam_input_flow, only: deck_wear_depth
    implicit none
    private
@@ -146,12 +146,13 @@ contains
    !> Transient results: PREFIX.h5; with &output write_text PREFIX.history.dat and
    !> .poincare.dat (two planes: .orbit.dat, .supports.dat); with the state history PREFIX.xdmf
    !> (and .shape.dat).
-   subroutine write_transient(deck, model, res, diag, err)
+   subroutine write_transient(deck, model, res, diag, err, stats)
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results (the final record)
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
       type(output_set_t) :: set
       type(transient_result_t) :: r
       character(len=14), allocatable :: suffixes(:)
@@ -168,7 +169,7 @@ contains
       r = on_trajectory_clock(res, diag%transient_periods, deck%solver%record_periods, &
                               2.0_dp * pi / model%omega)
       call set%begin(deck%job%output, suffixes)
-      call write_transient_h5(set, deck, model, r, diag)
+      call write_transient_h5(set, deck, model, r, diag, stats)
       if (text) call write_transient_tables(set, deck, model, r)
       if (text .and. planes) call write_orbit_tables(set, deck, model, r)
       if (with_state) call write_xdmf(set, deck, model, r)
@@ -199,12 +200,14 @@ contains
    end function on_trajectory_clock
 
    !> PREFIX.h5 of a transient run, under the set's temporary name.
-   subroutine write_transient_h5(set, deck, model, res, diag)
+   subroutine write_transient_h5(set, deck, model, res, diag, stats)
       type(output_set_t), intent(inout) :: set         !! the set
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
+      type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
+      integer :: k
       type(h5_writer_t) :: h5
       character(len=:), allocatable :: filtered
       filtered = trim(merge(' (low-pass filtered)', '                    ', &
@@ -223,6 +226,18 @@ contains
       call write_impacts(h5, res)
       call write_wear_h5(h5, deck, model, res)
       call write_diagnostics(h5, diag)
+      if (present(stats)) then
+         call h5%put('/statistics/draws', stats(1)%n_draws)
+         do k = 1, size(stats)
+            if (stats(k)%name == 'tip_rms_displacement') then
+               call h5%put('/statistics/' // stats(k)%name, stats(k)%mean(1))
+               call h5%put('/statistics/' // stats(k)%name // '_ci', stats(k)%half_width(1))
+            else
+               call h5%put('/statistics/' // stats(k)%name, stats(k)%mean)
+               call h5%put('/statistics/' // stats(k)%name // '_ci', stats(k)%half_width)
+            end if
+         end do
+      end if
       call h5%put('/final/u', res%u)
       call h5%put('/final/v', res%v)
       call h5%put('/final/time', res%t_end)

@@ -27,7 +27,8 @@ module gapbeam_jobs
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
    use gapbeam_input_flow, only: deck_wear_depth
-   use gapbeam_flow_results, only: wear_depth_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t
+   use gapbeam_draws_job, only: run_draws
    use gapbeam_study_output, only: write_work_precision, write_stability, &
       work_precision_summary, write_model_size
    implicit none
@@ -385,6 +386,7 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
       integer :: j
+      type(draw_statistics_t), allocatable :: stats(:)
       call describe_structure(dk%structure)
       setup = thread_cpu_seconds()
       call build_model(dk, model, u0, v0, e)
@@ -454,7 +456,14 @@ contains
          write(output_unit, '(a)') trim(failures(j))
       end do
       call print_label(diag)
-      call write_transient(dk, model, res, diag, e)
+      if (dk%turbulence%spectrum /= 'none') then
+         call run_draws(dk, res, stats, e)
+         if (allocated(e)) return
+         call print_draws(stats)
+         call write_transient(dk, model, res, diag, e, stats)
+      else
+         call write_transient(dk, model, res, diag, e)
+      end if
       if (allocated(e)) return
       block
          character(len=:), allocatable :: files
@@ -483,4 +492,20 @@ contains
          // ' years; ' // str(100.0_dp * dk%wear%wall_fraction) // ' % of the wall ' &
          // str(dk%wear%wall_thickness) // ' m in ' // when
    end subroutine print_wear_depth
+
+   !> Each output over the draws: its mean and the half-width of its 95 % interval per stop.
+   subroutine print_draws(stats)
+      type(draw_statistics_t), intent(in) :: stats(:)   !! over the draws
+      integer :: k, j
+      character(len=:), allocatable :: line
+      write(output_unit, '(a)') 'statistics over ' // str(stats(1)%n_draws) // ' draws ' &
+         // '(mean +- 95 % half-width; per stop):'
+      do k = 1, size(stats)
+         line = '  ' // stats(k)%name // ':'
+         do j = 1, size(stats(k)%mean)
+            line = line // ' ' // str(stats(k)%mean(j)) // ' +- ' // str(stats(k)%half_width(j))
+         end do
+         write(output_unit, '(a)') line
+      end do
+   end subroutine print_draws
 end module gapbeam_jobs

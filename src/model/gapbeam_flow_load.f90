@@ -9,13 +9,15 @@ module gapbeam_flow_load
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck, only: deck_t
-   use gapbeam_model, only: system_t
-   use gapbeam_description, only: forcing_omega
+   use gapbeam_model, only: system_t, model_t
+   use gapbeam_description, only: forcing_omega, beam_mass_per_length
+   use gapbeam_flow_results, only: flow_modes_t
+   use gapbeam_fluid_elastic, only: flow_modes, fluid_elastic_damping
    use gapbeam_random_load, only: random_load_t
    use gapbeam_turbulence, only: load_shapes, spectrum_band, turbulence_psd, generate_record
    implicit none
    private
-   public :: turbulence_record, record_resolution
+   public :: turbulence_record, record_resolution, deck_flow_modes, add_fluid_elastic
 
    !> substreams: plane p, component m of that plane -> p * plane_stride + m
    integer, parameter :: plane_stride = 1048576
@@ -63,4 +65,45 @@ contains
          deck%turbulence%points_per_cycle, deck%turbulence%seed, draw, rl, err)
       if (allocated(err)) err%message = 'group &turbulence: ' // err%message
    end subroutine turbulence_record
+
+   !> The modes of the deck's open structure `sys` (the full model's) with their fluid-elastic
+   !> data at &flow velocity: structural damping from the Rayleigh coefficients (beta, gamma)
+   !> and, with &damping model = 'modal', the modal ratios.
+   subroutine deck_flow_modes(deck, sys, beta, gamma, fm, err)
+      type(deck_t), intent(in) :: deck                 !! deck
+      type(system_t), intent(in) :: sys                !! the full structure
+      real(dp), intent(in) :: beta, gamma              !! resolved Rayleigh coefficients
+      type(flow_modes_t), intent(out) :: fm            !! modes with U_c, zeta_fe
+      type(error_t), allocatable, intent(out) :: err   !! eigen failure
+      if (deck%damping%model == 'modal' .and. allocated(deck%damping%modal_ratios)) then
+         call flow_modes(sys, deck%flow, beam_mass_per_length(deck%structure%beam), beta, &
+                         gamma, fm, err, deck%damping%modal_ratios)
+      else
+         call flow_modes(sys, deck%flow, beam_mass_per_length(deck%structure%beam), beta, &
+                         gamma, fm, err)
+      end if
+      if (allocated(err)) err%message = 'group &flow: ' // err%message
+   end subroutine deck_flow_modes
+
+   !> Add the fluid-elastic damping of &flow (Connors: a negative damping ratio per mode of
+   !> the open structure) to the model's dense damping: C = beta M + gamma K + c_modal with
+   !> c_modal += C_fe (B' C_fe B on a reduced model). Nothing without flow or with
+   !> fluid_elastic = 'none'.
+   subroutine add_fluid_elastic(deck, full, model, err, basis)
+      type(deck_t), intent(in) :: deck                 !! deck
+      type(model_t), intent(in) :: full                !! the finite element model
+      type(model_t), intent(inout) :: model            !! the model integrated (may be full)
+      type(error_t), allocatable, intent(out) :: err   !! eigen failure
+      real(dp), intent(in), optional :: basis(:, :)    !! reduced basis (u = basis z)
+      type(flow_modes_t) :: fm
+      real(dp), allocatable :: cfe(:, :)
+      if (.not. (deck%flow%velocity > 0.0_dp .and. deck%flow%fluid_elastic == 'connors')) return
+      call deck_flow_modes(deck, full%sys, full%beta, full%gamma, fm, err)
+      if (allocated(err)) return
+      cfe = fluid_elastic_damping(full%sys, fm)
+      if (present(basis)) cfe = matmul(transpose(basis), matmul(cfe, basis))
+      if (.not. allocated(model%c_modal)) allocate(model%c_modal(model%n, model%n), source=0.0_dp)
+      model%c_modal = model%c_modal + cfe
+      model%c = model%beta * model%sys%m + model%gamma * model%sys%k + model%c_modal
+   end subroutine add_fluid_elastic
 end module gapbeam_flow_load

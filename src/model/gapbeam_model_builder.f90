@@ -14,7 +14,7 @@ module gapbeam_model_builder
    use gapbeam_eigen, only: band_frequencies
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
-   use gapbeam_flow_load, only: turbulence_record
+   use gapbeam_flow_load, only: turbulence_record, add_fluid_elastic
    use gapbeam_modal_damping, only: apply_modal_damping, first_plane_mass
    implicit none
    private
@@ -40,6 +40,8 @@ contains
       call initial_vectors(full, deck%initial, uf, vf)
       if (deck%reduction%kind /= 'modal') then
          model = full;  u0 = uf;  v0 = vf
+         call add_fluid_elastic(deck, full, model, err)
+         if (allocated(err)) return
          if (deck%turbulence%spectrum /= 'none') then
             call turbulence_record(deck, full%sys, d, model%turbulence, err)
             model%extra_load = .true.
@@ -66,6 +68,8 @@ contains
          err%message = 'group &reduction: ' // err%message
          return
       end if
+      call add_fluid_elastic(deck, full, model, err, basis)
+      if (allocated(err)) return
       if (deck%turbulence%spectrum /= 'none') then
          call turbulence_record(deck, full%sys, d, model%turbulence, err, basis)
          model%extra_load = .true.
