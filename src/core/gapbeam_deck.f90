@@ -7,7 +7,7 @@ module gapbeam_deck
    use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, flow_t, turbulence_t
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, sweep_settings_t, reduction_settings_t, &
-      study_settings_t, model_size_settings_t, statistics_settings_t, wear_settings_t
+      study_settings_t, model_size_settings_t, wear_settings_t
    use gapbeam_continuation_types, only: continuation_settings_t
    implicit none
    private
@@ -35,7 +35,6 @@ module gapbeam_deck
       type(study_settings_t) :: study                !! &study
       type(model_size_settings_t) :: model_size      !! &model_size
       type(continuation_settings_t) :: continuation  !! &continuation
-      type(statistics_settings_t) :: statistics      !! &statistics
       type(wear_settings_t) :: wear                  !! &wear
    end type deck_t
 end module gapbeam_deck

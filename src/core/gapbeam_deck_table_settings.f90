@@ -5,7 +5,7 @@ submodule (gapbeam_deck_table) gapbeam_deck_table_settings
    use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
       initial_value_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
-      statistics_settings_t, wear_settings_t, target_output_words, &
+      wear_settings_t, &
       linear_solver_words, method_words, initial_state_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words, start_words, default_series, &
       default_elements, default_modes
@@ -36,32 +36,8 @@ contains
       call walk_study(v, deck%study)
       call walk_model_size(v, deck%model_size)
       call walk_continuation(v, deck%continuation)
-      call walk_statistics(v, deck%statistics)
       call walk_wear(v, deck%wear)
    end subroutine walk_settings
-
-   subroutine walk_statistics(v, s)
-      class(deck_visitor_t), intent(inout) :: v
-      type(statistics_settings_t), intent(inout) :: s
-      call v%begin_group('statistics', 'outputs of random draws: means with 95 % ' &
-         // 'confidence half-widths, RMS displacements and response PSDs (docs/flow.md)')
-      call v%int_list('nodes', s%nodes, 64, [integer ::], lo=1, note='at most n_elem+1', &
-         meaning="nodes of the RMS displacement " &
-         // "and the response PSD (none: every stop's node)")
-      call v%real('sample_rate_hz', s%sample_rate_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
-         meaning="response samples per second for the PSD (0: 4 x the turbulence cut-off)")
-      call v%real('psd_resolution_hz', s%psd_resolution_hz, 'Hz', lo=0.0_dp, &
-         hi=max_frequency_hz, meaning='frequency resolution of the Welch segments (0: 8 ' &
-         // 'segments of the record)')
-      call v%real('target_relative_ci', s%target_relative_ci, '1', lo=0.0_dp, hi=1.0_dp, &
-         meaning='add draws until the 95 % half-width of target_output is below this ' &
-         // 'fraction of its mean at every support (0: no more than &turbulence draws)')
-      call v%word('target_output', s%target_output, target_output_words, &
-         meaning='the output the target watches')
-      call v%int('max_draws', s%max_draws, lo=1, hi=100000, &
-         meaning='most draws with a target')
-      call v%end_group()
-   end subroutine walk_statistics
 
    subroutine walk_wear(v, w)
       class(deck_visitor_t), intent(inout) :: v

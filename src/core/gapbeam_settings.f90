@@ -8,12 +8,12 @@ module gapbeam_settings
    private
    public :: job_t, calibrate_t, solver_settings_t, output_settings_t, initial_state_t, &
       diagnostics_settings_t, reduction_settings_t, model_size_settings_t, sweep_settings_t, &
-      study_settings_t, batch_options_t, starts_given, initial_value_t, statistics_settings_t, &
+      study_settings_t, batch_options_t, starts_given, initial_value_t, &
       wear_settings_t
    public :: default_series, default_elements, default_modes
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
-      sweep_direction_words, sweep_axis_words, series_words, start_words, target_output_words
+      sweep_direction_words, sweep_axis_words, series_words, start_words
 
    !> the method words: 'auto' and every method of the registry (gapbeam_capabilities'
    !> method_table, in its order; a test checks that they agree)
@@ -36,10 +36,6 @@ module gapbeam_settings
       // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
       // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact', 'newmark_error', " &
       // "'hht_error', 'generalized_alpha_error', 'auto'"
-
-   !> the outputs whose confidence interval a target of &statistics may watch
-   character(len=*), parameter :: target_output_words = "'normal_work_rate', " &
-      // "'friction_work_rate', 'impact_rate', 'rms_displacement', 'peak_force', 'rms_force'"
 
    !> &study series when the deck gives none.
    character(len=32), parameter :: default_series(10) = [character(len=32) :: 'auto', &
@@ -215,19 +211,6 @@ module gapbeam_settings
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come
    end type sweep_settings_t
-
-   !> &statistics: what a run with random draws reports beside the means over its draws.
-   type :: statistics_settings_t
-      !> nodes of the RMS displacement and the response PSD (none given: every stop's node)
-      integer, allocatable :: nodes(:)
-      real(dp) :: sample_rate_hz = 0.0_dp   !! response samples for the PSD (0: 4 x cut-off) [Hz]
-      real(dp) :: psd_resolution_hz = 0.0_dp  !! Welch segment resolution (0: 8 segments) [Hz]
-      !> add draws until the 95 % half-width of target_output is below this fraction of its
-      !> mean at every support (0: the deck's draws, no more)
-      real(dp) :: target_relative_ci = 0.0_dp
-      character(len=24) :: target_output = 'normal_work_rate'   !! see target_output_words
-      integer :: max_draws = 64                 !! most draws with a target [-]
-   end type statistics_settings_t
 
    !> &wear: the wear depth in the tube wall over years of operation (the scar geometry is per
    !> support, in &stops).

@@ -1,4 +1,4 @@
-!> The deck rules of the flow excitation (&flow, &turbulence, &statistics, &wear and the support
+!> The deck rules of the flow excitation (&flow, &turbulence, &wear and the support
 !> geometry of &stops) that tie variables together; the ranges of single values are the deck
 !> table's (core/gapbeam_deck_table). Called by read_deck after the stops and the loads.
 module gapbeam_input_flow
@@ -52,7 +52,6 @@ contains
       if (allocated(err)) return
       call check_flow_group(deck, err);  if (allocated(err)) return
       call check_turbulence(deck, err);  if (allocated(err)) return
-      call check_statistics(deck, err);  if (allocated(err)) return
       call check_wear(deck, err);  if (allocated(err)) return
       call check_flow_analysis(deck, err)
    end subroutine check_flow
@@ -157,34 +156,6 @@ contains
       end associate
    end subroutine check_turbulence
 
-   subroutine check_statistics(deck, err)
-      type(deck_t), intent(in) :: deck
-      type(error_t), allocatable, intent(inout) :: err
-      integer :: i
-      associate (s => deck%statistics)
-         if (allocated(s%nodes)) then
-            do i = 1, size(s%nodes)
-               if (s%nodes(i) > deck%structure%beam%n_elem + 1) then
-                  call fatal_error(err, 'group &statistics: nodes(' // str(i) // ') = ' &
-                     // str(s%nodes(i)) // ': the mesh has nodes 1..' &
-                     // str(deck%structure%beam%n_elem + 1))
-                  return
-               end if
-            end do
-         end if
-         if (s%target_relative_ci > 0.0_dp .and. deck%turbulence%spectrum == 'none') then
-            call fatal_error(err, 'group &statistics: target_relative_ci = ' &
-               // str(s%target_relative_ci) // ': a confidence target needs random draws ' &
-               // "(&turbulence spectrum = 'table' or 'reduced')")
-         else if (s%target_relative_ci > 0.0_dp .and. s%max_draws < max(2, &
-                  deck%turbulence%draws)) then
-            call fatal_error(err, 'group &statistics: max_draws = ' // str(s%max_draws) &
-               // ': must be at least 2 and at least &turbulence draws = ' &
-               // str(deck%turbulence%draws) // ' with a confidence target')
-         end if
-      end associate
-   end subroutine check_statistics
-
    subroutine check_wear(deck, err)
       type(deck_t), intent(in) :: deck
       type(error_t), allocatable, intent(inout) :: err
@@ -230,7 +201,12 @@ contains
              deck%flow%fluid_elastic /= 'none')
       if (.not. flow) return
       select case (deck%job%analysis)
-      case ('modes', 'calibrate', 'transient', 'sweep')
+      case ('modes', 'calibrate', 'transient')
+      case ('sweep')
+         if (deck%turbulence%draws > 1) call fatal_error(err, 'group &turbulence: draws = ' &
+            // str(deck%turbulence%draws) // " with analysis = 'sweep': a sweep point runs " &
+            // "draw 1 only (statistics over draws are made by analysis = 'transient'); " &
+            // 'give draws = 1, or vary &turbulence seed between sweeps')
       case default
          call fatal_error(err, "group &job: analysis = '" // trim(deck%job%analysis) &
             // "' does not take flow excitation (&flow velocity > 0 with fluid_elastic, or a " &

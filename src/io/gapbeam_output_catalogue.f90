@@ -243,6 +243,21 @@ module gapbeam_output_catalogue
                 // 'stiffness of each ring contact')]
 
    type(dataset_t), parameter :: modes_sets(*) = [ &
+      dataset_t('/flow/frequency_hz', 'Hz', 'n_flow_modes', 'natural frequency of every mode ' &
+                // 'of the open structure, ascending (both planes; written with &flow ' &
+                // 'fluid_density and tube_diameter > 0)'), &
+      dataset_t('/flow/plane', '1', 'n_flow_modes', 'plane of each mode: 1 w, 2 v'), &
+      dataset_t('/flow/structural_ratio', '1', 'n_flow_modes', 'structural damping ratio ' &
+                // 'of each mode (Rayleigh and modal)'), &
+      dataset_t('/flow/velocity_ratio', '1', 'n_flow_modes', '(U_e/U)^2 of each mode: the ' &
+                // 'mode-shape-squared weighted square of the flow profile'), &
+      dataset_t('/flow/critical_velocity', 'm s-1', 'n_flow_modes', 'Connors critical ' &
+                // 'velocity of each mode, the reference velocity at which its net damping ' &
+                // 'vanishes (1.8e308: no flow on the mode)'), &
+      dataset_t('/flow/fluid_ratio', '1', 'n_flow_modes', 'fluid-elastic damping ratio of ' &
+                // 'each mode at &flow velocity (negative)'), &
+      dataset_t('/flow/velocity', 'm s-1', '', 'the reference flow velocity U (&flow ' &
+                // 'velocity)'), &
       dataset_t('/modes/frequency_hz', 'Hz', 'n_modes', 'natural frequency of each mode ' &
                 // '(stops open)'), &
       dataset_t('/modes/shapes', 'kg-1/2', 'mode=n_modes dof=n_dof', 'mass-normalised mode ' &
@@ -461,7 +476,8 @@ module gapbeam_output_catalogue
                 // 'support''s scar in the tube wall after that time at the wear volume rate ' &
                 // '(flat bar or drilled hole geometry, docs/flow.md; at most the wall)'), &
       dataset_t('/wear/years_to_wall_fraction', '31557600 s', 'n_stops', 'operating time ' &
-                // '(Julian years) until the scar of each support reaches wall_fraction of the wall (1.8e308: ' &
+                // '(Julian years) until the scar of each support reaches wall_fraction of ' &
+                // 'the wall (1.8e308: ' &
                 // 'never)'), &
       dataset_t('/wear/wall_fraction', '1', '', 'fraction of the wall of ' &
                 // 'years_to_wall_fraction (&wear wall_fraction)'), &

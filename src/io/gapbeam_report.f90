@@ -21,7 +21,7 @@ module gapbeam_report
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
-   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
    use gapbeam_input_flow, only: deck_wear_depth
    implicit none
    private
@@ -33,12 +33,13 @@ module gapbeam_report
 contains
 
    !> Modal analysis results: PREFIX.h5, PREFIX.modes.dat, .shapes.dat, .shape_curves.dat.
-   subroutine write_modes(deck, sys, modes, stop_stiffness, err)
+   subroutine write_modes(deck, sys, modes, stop_stiffness, err, fm)
       type(deck_t), intent(in) :: deck                 !! the deck (output prefix, text)
       type(system_t), intent(in) :: sys                !! assembled structure
       type(modes_t), intent(in) :: modes               !! modes
       real(dp), intent(in) :: stop_stiffness(:)        !! resolved stop stiffness (may be empty)
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(flow_modes_t), intent(in), optional :: fm   !! fluid-elastic data (&flow)
       type(output_set_t) :: set
       type(h5_writer_t) :: h5
       real(dp), allocatable :: cols(:, :), tab(:, :), curves(:, :)
@@ -62,6 +63,15 @@ contains
       call h5%put('/modes/shape_w', curves(:, 2:))
       call write_structure(h5, sys)
       call h5%put('/model/stop_stiffness', stop_stiffness, units=stiffness_units(deck))
+      if (present(fm)) then
+         call h5%put('/flow/frequency_hz', fm%frequency_hz)
+         call h5%put('/flow/plane', fm%plane)
+         call h5%put('/flow/structural_ratio', fm%structural_ratio)
+         call h5%put('/flow/velocity_ratio', fm%velocity_ratio)
+         call h5%put('/flow/critical_velocity', fm%critical_velocity)
+         call h5%put('/flow/fluid_ratio', fm%fluid_ratio)
+         call h5%put('/flow/velocity', deck%flow%velocity)
+      end if
       call set%close_h5(h5)
 
       allocate(cols(modes%n_modes, 5))

@@ -27,7 +27,8 @@ module gapbeam_jobs
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
    use gapbeam_input_flow, only: deck_wear_depth
-   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
+   use gapbeam_flow_load, only: deck_flow_modes
    use gapbeam_draws_job, only: run_draws
    use gapbeam_study_output, only: write_work_precision, write_stability, &
       work_precision_summary, write_model_size
@@ -86,6 +87,7 @@ contains
       real(dp) :: f1_open
       integer :: j, n_print
       character(len=120) :: line
+      type(flow_modes_t) :: fm
       call describe_structure(dk%structure)
       call assemble(dk%structure, sys)
       call solve_modes(sys, modes, e)
@@ -121,8 +123,38 @@ contains
          write(output_unit, '(a)') 'stop ' // str(j) // ' at node ' // str(dk%stops(j)%node) &
             // ': stiffness ' // str(k_stop(j)) // ' N/m' // rule_text(dk%stops(j)%rule_factor)
       end do
-      call write_modes(dk, sys, modes, k_stop, e)
+      if (dk%flow%fluid_elastic == 'connors' .and. dk%flow%fluid_density > 0.0_dp .and. &
+          dk%flow%tube_diameter > 0.0_dp) then
+         call deck_flow_modes(dk, sys, dk%damping%mass_coefficient, &
+                              dk%damping%stiffness_coefficient, fm, e)
+         if (allocated(e)) return
+         call print_flow_modes(dk, fm, n_print)
+         call write_modes(dk, sys, modes, k_stop, e, fm)
+      else
+         call write_modes(dk, sys, modes, k_stop, e)
+      end if
    end subroutine run_modes
+
+   !> The fluid-elastic data of the first n modes of the open structure (Connors).
+   subroutine print_flow_modes(dk, fm, n)
+      type(deck_t), intent(in) :: dk            !! deck
+      type(flow_modes_t), intent(in) :: fm      !! flow modes
+      integer, intent(in) :: n                  !! modes printed (at most)
+      character(len=120) :: line
+      integer :: j
+      write(output_unit, '(a)') 'cross flow (Connors, K = ' // str(dk%flow%connors_constant) &
+         // ', rho = ' // str(dk%flow%fluid_density) // ' kg/m^3, D = ' &
+         // str(dk%flow%tube_diameter) // ' m) at U = ' // str(dk%flow%velocity) // ' m/s:'
+      write(output_unit, '(a)') ' mode plane  frequency [Hz]   zeta_s     (U_e/U)^2   ' &
+         // 'U_c [m/s]    zeta_fe at U'
+      do j = 1, min(n, fm%n_modes)
+         write(line, '(i5, a6, f16.4, es11.3, es13.4, es13.5, es14.4)') j, &
+            trim(merge('w', 'v', fm%plane(j) == 1)), fm%frequency_hz(j), &
+            fm%structural_ratio(j), fm%velocity_ratio(j), &
+            min(fm%critical_velocity(j), 9.99e99_dp), fm%fluid_ratio(j)
+         write(output_unit, '(a)') trim(line)
+      end do
+   end subroutine print_flow_modes
 
    !> The method and the &solver parameters its registry entry says it reads:
    !> 'newmark (delta 0.5, alpha 0.25), stop force condensed'.
