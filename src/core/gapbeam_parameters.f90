@@ -6,7 +6,7 @@
 !> offsets, wear coefficients, the forcing's direction and phase, point forces), so that a
 !> file says which model produced it without its deck being parsed.
 !>
-!> Units and long names are those of the output catalogue (io/gapbeam_output_catalogue, under
+!> Units and long names are those of the output catalogue (core/gapbeam_output_catalogue, under
 !> /parameters); a value carries its units only where the deck decides them (a stop's gap in
 !> m or rad), and the part of its long name that depends on the deck (`fill`).
 module gapbeam_parameters
