@@ -9,6 +9,8 @@
 !>   decays below it and grows above it at the rate the net modal damping predicts (the ratio
 !>   of the tip at successive Poincare samples one damped period apart, e^(-zeta_net omega
 !>   T_d)), within 1 %; the reduced model has the same rate.
+!> * the flow velocity as a design variable: a sweep point's model at U (&sweep x_variable =
+!>   '&flow velocity') is the deck's model with that velocity.
 !> * turbulence on a linear cantilever tube (test/decks/tube_turbulence.nml): over one period
 !>   of the record, the tip's mean square and its amplitude at every harmonic against the
 !>   analytic modal frequency response (fully correlated: exact for every draw, within the
@@ -29,6 +31,8 @@ program test_flow
    use gapbeam_test_runs, only: load_deck
    use gapbeam_model_builder, only: build_model
    use gapbeam_reduction, only: reduce_model, project
+   use gapbeam_sweep, only: sweep_plan_t, make_plan
+   use gapbeam_deck_parameter, only: model_with_values
    use gapbeam_transient, only: integrate
    use gapbeam_eigen, only: solve_modes
    use gapbeam_results, only: modes_t
@@ -47,6 +51,7 @@ program test_flow
    call wear_depth_over_years()
    call turbulence_linear_tube()
    call connors_instability()
+   call velocity_design_variable()
    call finish('test_flow')
 
 contains
@@ -420,4 +425,33 @@ contains
                         basis, err)
       if (.not. allocated(err)) call project(full, basis, x, z, err)
    end function reduced_coordinates
+
+   !> A sweep over &flow velocity: each point's model is the deck's at that velocity.
+   subroutine velocity_design_variable()
+      type(deck_t) :: deck, d2
+      type(model_t) :: m, ref
+      type(sweep_plan_t) :: plan
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:)
+      call read_deck(buffet, [character(len=160) :: "&job analysis = 'sweep' /", &
+         "&turbulence spectrum = 'none' /", "&flow fluid_density = 1000.0, tube_diameter = " &
+         // "0.019, velocity = 1.0 /", "&sweep x_variable = '&flow velocity', x_values = " &
+         // "0.5, 2.5, amplitude_pp = 0.0 /"], deck, err)
+      call check('velocity sweep: the deck reads', .not. allocated(err))
+      if (allocated(err)) return
+      call make_plan(deck, plan, err)
+      if (.not. allocated(err)) call model_with_values(deck, plan%set, [2.5_dp, 0.0_dp], m, err)
+      call check('velocity sweep: the point''s model builds', .not. allocated(err))
+      if (allocated(err)) return
+      d2 = deck
+      d2%flow%velocity = 2.5_dp
+      call build_model(d2, ref, u0, v0, err)
+      if (allocated(err)) return
+      call check_le('velocity sweep: the point''s damping = the deck''s at U = 2.5 m/s', &
+                    maxval(abs(m%c - ref%c)), 1.0e-12_dp * maxval(abs(ref%c)))
+      call build_model(deck, ref, u0, v0, err)
+      if (allocated(err)) return
+      call check_close('velocity sweep: its fluid-elastic damping is (2.5)^2 the one at 1 m/s', &
+                       maxval(abs(m%c_modal)), 6.25_dp * maxval(abs(ref%c_modal)), 1.0e-12_dp)
+   end subroutine velocity_design_variable
 end program test_flow
