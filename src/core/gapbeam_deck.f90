@@ -11,7 +11,7 @@ module gapbeam_deck
    use gapbeam_continuation_types, only: continuation_settings_t
    implicit none
    private
-   public :: deck_t
+   public :: deck_t, add_warning
 
    !> A validated deck.
    type :: deck_t
@@ -33,5 +33,32 @@ module gapbeam_deck
       type(study_settings_t) :: study                !! &study
       type(model_size_settings_t) :: model_size      !! &model_size
       type(continuation_settings_t) :: continuation  !! &continuation
+      !> warnings about the deck and its run, one line each (analyses/gapbeam_warnings): the
+      !> program prints them on standard error, the writers store them in /run/warnings
+      character(len=:), allocatable :: warnings(:)
    end type deck_t
+
+contains
+
+   !> Add one warning line to the deck's list (kept in the order given, each once).
+   pure subroutine add_warning(deck, text)
+      type(deck_t), intent(inout) :: deck            !! deck
+      character(len=*), intent(in) :: text           !! the warning, one line
+      character(len=:), allocatable :: list(:)
+      integer :: k, n, width
+      n = 0;  width = len(text)
+      if (allocated(deck%warnings)) then
+         n = size(deck%warnings)
+         width = max(width, len(deck%warnings))
+         do k = 1, n
+            if (deck%warnings(k) == text) return
+         end do
+      end if
+      allocate(character(len=width) :: list(n + 1))
+      do k = 1, n
+         list(k) = deck%warnings(k)
+      end do
+      list(n + 1) = text
+      call move_alloc(list, deck%warnings)
+   end subroutine add_warning
 end module gapbeam_deck

@@ -21,7 +21,8 @@ module gapbeam_sweep_job
       group_of_item, group_points, slot_index, combine_point
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
-   use gapbeam_sweep_output, only: sweep_file_t, write_sweep
+   use gapbeam_sweep_output, only: sweep_file_t, write_sweep, sweep_warnings
+   use gapbeam_warning_text, only: warning_length, warning_prefix
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters, stiffness_units
@@ -188,6 +189,7 @@ contains
          end do
       end do
       sf%deck_text = deck%text
+      if (allocated(deck%warnings)) sf%warnings = deck%warnings
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
@@ -210,6 +212,7 @@ contains
       sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
+      call print_new_warnings(sf, results)
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
       call summary(results(pts), n_failed, plan%ns)
       write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
@@ -225,6 +228,21 @@ contains
       complete = .true.
 
    end subroutine run_sweep_job
+
+   !> The warnings the sweep's points add to the deck's (stops never touched), on standard
+   !> error.
+   subroutine print_new_warnings(sf, results)
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      character(len=warning_length), allocatable :: lines(:)
+      integer :: k, k0
+      lines = sweep_warnings(sf, results)
+      k0 = 0
+      if (allocated(sf%warnings)) k0 = size(sf%warnings)
+      do k = k0 + 1, size(lines)
+         write(error_unit, '(a)') warning_prefix // trim(lines(k))
+      end do
+   end subroutine print_new_warnings
 
    !> The starts of a plan, comma separated ('random' counted once with its number).
    function start_names(plan) result(t)
