@@ -400,6 +400,10 @@ contains
       if (n_failed > 0) then
          write(output_unit, '(a)') 'merge: ' // str(n_failed) // ' failed run(s) in the shards ' &
             // "(status 1, label 'failed' in the files)"
+         flush(output_unit)
+         write(error_unit, '(a)') 'gapbeam merge: ' // str(n_failed) // ' failed run(s) in ' &
+            // 'the shards: marked in ' // out // ".h5 (/sweep/status 1, label 'failed'); " &
+            // 'the sweeps that ran them listed why on their standard error'
          call finish(status_failed_points)
       end if
    end subroutine run_merge

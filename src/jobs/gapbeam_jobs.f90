@@ -490,6 +490,7 @@ contains
       call other_starts(dk, model, u0, v0, diag, e)
       if (allocated(e)) return
       call untouched_stops(dk, res, diag, dw)
+      if (allocated(meter%warning)) call add_warning(dw, meter%warning)
       call print_label(diag)
       call write_transient(dw, model, res, diag, e)
       if (allocated(e)) return

@@ -11,7 +11,7 @@ module gapbeam_sweep_job
    !$ use omp_lib, only: omp_get_max_threads
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_deck, only: deck_t
+   use gapbeam_deck, only: deck_t, add_warning
    use gapbeam_settings, only: sweep_settings_t, batch_options_t
    use gapbeam_model, only: model_t
    use gapbeam_results, only: point_result_t, label_chaotic, label_undecided, label_unsettled, &
@@ -71,6 +71,7 @@ contains
       integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_pos, &
          n_round, j1
       type(meter_t) :: meter
+      type(deck_t) :: notes                            !! the warnings the file stores
       integer(int64) :: c0, c1, rate
       real(dp) :: elapsed, cpu0
       character(len=:), allocatable :: prefix, report
@@ -189,7 +190,9 @@ contains
          end do
       end do
       sf%deck_text = deck%text
-      if (allocated(deck%warnings)) sf%warnings = deck%warnings
+      if (allocated(deck%warnings)) notes%warnings = deck%warnings
+      if (allocated(meter%warning)) call add_warning(notes, meter%warning)
+      if (allocated(notes%warnings)) sf%warnings = notes%warnings
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
