@@ -161,11 +161,29 @@ contains
       call h5%put('/run/files', names)
       call h5%attr('/run/files', 'description', description)
       if (present(warnings)) then
-         call h5%put('/run/warnings', warnings)
+         call put_lines(h5, '/run/warnings', warnings)
       else
          call h5%put('/run/warnings', none)
       end if
    end subroutine set_open_h5
+
+   !> Lines as a string dataset as wide as the longest of them (trailing blanks dropped).
+   subroutine put_lines(h5, path, lines)
+      type(h5_writer_t), intent(inout) :: h5             !! open writer
+      character(len=*), intent(in) :: path               !! dataset
+      character(len=*), intent(in) :: lines(:)           !! one line each
+      character(len=:), allocatable :: cut(:)
+      integer :: k, width
+      width = 1
+      do k = 1, size(lines)
+         width = max(width, len_trim(lines(k)))
+      end do
+      allocate(character(len=width) :: cut(size(lines)))
+      do k = 1, size(lines)
+         cut(k) = lines(k)
+      end do
+      call h5%put(path, cut)
+   end subroutine put_lines
 
    !> Close the set's HDF5 file; its failure (of any of its calls) becomes the set's.
    subroutine set_close_h5(self, h5)

@@ -38,7 +38,7 @@ module gapbeam_sweep_output
       character(len=:), allocatable :: deck_text     !! effective deck text
       !> the deck's warnings; write_sweep adds those about stops never touched, from the points
       !> of the file (read_sweep leaves them out, so that a merge remakes them for the grid)
-      character(len=:), allocatable :: warnings(:)
+      character(len=warning_length), allocatable :: warnings(:)
       character(len=:), allocatable :: title         !! job title
       real(dp), allocatable :: grid_frequency_hz(:)  !! frequency axis [Hz] (or the one value)
       real(dp), allocatable :: grid_amplitude_pp(:)  !! amplitude axis [m] (or the one value)
@@ -155,13 +155,13 @@ contains
       type(sweep_file_t), intent(inout) :: sf            !! description
       character(len=:), allocatable :: all(:)
       integer :: k, n
-      allocate(character(len=1) :: sf%warnings(0))
+      allocate(sf%warnings(0))
       if (.not. h5%exists('/run/warnings')) return
       call h5%read('/run/warnings', all)
       if (h5%failed()) return
       n = count([(.not. is_untouched_warning(all(k)), k = 1, size(all))])
       deallocate(sf%warnings)
-      allocate(character(len=max(1, len(all))) :: sf%warnings(n))
+      allocate(sf%warnings(n))
       n = 0
       do k = 1, size(all)
          if (is_untouched_warning(all(k))) cycle
