@@ -772,7 +772,7 @@ contains
       call run(sdof, [character(len=300) :: "&stops law = 'hertz', stiffness = 1.0e6 /"], &
          model, r, message=msg)
       call check('Hertz stop rejected, naming the method and the law: ' // msg, &
-         index(msg, 'exact') > 0 .and. index(msg, 'Hertz') > 0 .and. &
+         index(msg, 'exact') > 0 .and. index(msg, "'hertz'") > 0 .and. &
          index(msg, 'piecewise') > 0)
       call run(sdof, [character(len=300) :: "&stops dof = 'theta', gap = 0.01 /"], model, r, &
          message=msg)

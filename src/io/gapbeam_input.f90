@@ -22,8 +22,11 @@ module gapbeam_input
    use gapbeam_deck_apply, only: apply_visitor_t, source_where
    use gapbeam_deck_check, only: check_deck_values, deck_names_t, deck_names, group_variables
    use gapbeam_deck_table, only: walk_deck
+   use gapbeam_capabilities, only: solver_refusal, method_caps, method_caps_t
+   use gapbeam_laws, only: stop_law_refusal
    use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v, &
-      law_code, law_hertz, rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name
+      rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name, &
+      beam_is_timoshenko, beam_shear_stiffness, beam_shear_coefficient
    use gapbeam_deck, only: deck_t
    implicit none
    private
@@ -252,6 +255,18 @@ contains
             // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
          return
       end if
+      if (beam_is_timoshenko(b)) then
+         if (.not. (usable(beam_shear_stiffness(b)) .and. usable(12.0_dp * (ei / le / le) &
+             / beam_shear_stiffness(b)))) then
+            call fatal_error(err, "group &beam: theory = 'timoshenko' with shear_modulus = " &
+               // str(b%shear_modulus) // ' and shear coefficient ' &
+               // str(beam_shear_coefficient(b)) // ' gives k G A = ' &
+               // str(beam_shear_stiffness(b)) // ' N and phi = 12 EI/(k G A le^2) = ' &
+               // str(12.0_dp * (ei / le / le) / beam_shear_stiffness(b)) // ': each must be ' &
+               // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
+            return
+         end if
+      end if
       if (b%added_mass > 0.0_dp .and. .not. usable((rho_a + b%added_mass) * b%length)) then
          call fatal_error(err, 'group &beam: added_mass = ' // str(b%added_mass) &
             // ' kg/m gives a beam mass of ' // str((rho_a + b%added_mass) * b%length) &
@@ -422,9 +437,21 @@ contains
       type(error_t), allocatable, intent(inout) :: err
       integer :: i, j
       associate (d => deck%damping, st => deck%structure)
+         if (allocated(d%modal_ratios) .and. d%model /= 'modal') then
+            call fatal_error(err, "group &damping: modal_ratios is given with model = '" &
+               // trim(d%model) // "': modal_ratios needs model = 'modal'")
+            return
+         end if
          select case (d%model)
          case ('none')
             d%mass_coefficient = 0.0_dp;  d%stiffness_coefficient = 0.0_dp
+         case ('modal')
+            if (.not. allocated(d%modal_ratios)) then
+               call fatal_error(err, "group &damping: model = 'modal' needs modal_ratios " &
+                  // '(one value for every mode, or the values of modes 1, 2, ..., the last ' &
+                  // 'one for every further mode)')
+               return
+            end if
          case ('ratios')
             if (d%frequency2_hz <= d%frequency1_hz) then
                call fatal_error(err, 'group &damping: frequency2_hz = ' // str(d%frequency2_hz) &
@@ -553,51 +580,29 @@ contains
       end associate
    end subroutine check_settings
 
-   !> What the methods and the contact laws can do: the combinations the reader refuses.
-   !> (One place, so that a registry of capabilities can take it over.)
+   !> What the methods and the contact laws can do: the combinations the reader refuses, as
+   !> their registry entries say (gapbeam_capabilities, gapbeam_laws).
    subroutine check_capabilities(deck, err)
       type(deck_t), intent(in) :: deck
       type(error_t), allocatable, intent(inout) :: err
       integer :: i
-      character(len=:), allocatable :: ix
+      character(len=:), allocatable :: why
+      type(method_caps_t) :: mc
       if (allocated(err)) return
-      associate (s => deck%solver)
-         select case (s%method)
-         case ('auto', 'newmark', 'hht', 'generalized_alpha')
-            if (s%step_control == 'embedded') call fatal_error(err, "group &solver: " &
-               // "step_control = 'embedded' needs method = 'rk45' (the implicit methods use " &
-               // "'auto', 'error', 'fixed' or 'half_step')")
-            if (s%method /= 'newmark' .and. s%method /= 'auto' .and. s%step_control == &
-                'half_step') call fatal_error(err, "group &solver: step_control = 'half_step' " &
-               // "is the Newmark residual rule (method = 'newmark'); method = '" &
-               // trim(s%method) // "' uses 'auto', 'error' or 'fixed'")
-            if (s%method /= 'newmark' .and. s%method /= 'auto' .and. s%stop_solution == &
-                'fixed_point') call fatal_error(err, "group &solver: stop_solution = " &
-               // "'fixed_point' is the Newmark solver's (method = 'newmark'); method = '" &
-               // trim(s%method) // "' uses the condensed solution")
-         case ('rk45')
-            if (s%step_control == 'fixed' .or. s%step_control == 'half_step') &
-               call fatal_error(err, "group &solver: method = 'rk45' runs with its own error " &
-               // "estimate (step_control = 'auto', 'error' or 'embedded'), got '" &
-               // trim(s%step_control) // "'")
-         case ('central_difference', 'rk4')
-            if (s%step_control /= 'fixed' .and. s%step_control /= 'auto') &
-               call fatal_error(err, "group &solver: method = '" // trim(s%method) // "' runs " &
-               // "with step_control = 'fixed' (or 'auto'), got '" // trim(s%step_control) // "'")
-         end select
-      end associate
+      ! combinations of method, step control and stop solution: what the method's registry
+      ! entry takes (gapbeam_capabilities)
+      why = solver_refusal(deck%solver%method, deck%solver%step_control, &
+                           deck%solver%stop_solution)
+      if (len(why) > 0) call fatal_error(err, 'group &solver: ' // why)
+      ! what each stop's law takes (its registry entry, gapbeam_laws): exponent, damper, ring
       do i = 1, size(deck%stops)
-         ix = '(' // str(i) // ')'
+         if (allocated(err)) exit
          associate (s => deck%stops(i))
-            if (law_code(s%law) == law_hertz .and. s%damping > 0.0_dp) &
-               call fatal_error(err, 'group &stops: damping' // ix // ' = ' // str(s%damping) &
-               // ": a contact damper is only available with law='bilinear'")
-            if (law_code(s%law) == law_hertz .and. s%friction > 0.0_dp .and. &
-                .not. (s%tangential_stiffness > 0.0_dp)) call fatal_error(err, 'group &stops: ' &
-               // 'friction' // ix // ' = ' // str(s%friction) // " with law = 'hertz' needs " &
-               // 'tangential_stiffness' // ix // ' > 0 [N/m] (the stick stiffness; with the ' &
-               // 'bilinear law it defaults to the normal stiffness)')
+            why = stop_law_refusal(s%law, '(' // str(i) // ')', s%damping, s%exponent, &
+               s%shape == 'circular' .or. s%friction > 0.0_dp, s%friction, &
+               s%tangential_stiffness)
          end associate
+         if (len(why) > 0) call fatal_error(err, 'group &stops: ' // why)
       end do
       if (allocated(err)) return
       if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
@@ -612,7 +617,15 @@ contains
             // 'from the period detection alone)')
          return
       end if
-      if (deck%continuation%jacobian == 'exact' .and. deck%solver%method /= 'exact' .and. &
+      if (deck%damping%model == 'modal' .and. deck%solver%linear_solver == 'banded') then
+         call fatal_error(err, "group &solver: linear_solver = 'banded': modal damping " &
+            // "(&damping model = 'modal') makes the damping matrix dense; use 'auto' or " &
+            // "'dense'")
+         return
+      end if
+      ! the exact Jacobian needs a method whose registry entry gives one
+      mc = method_caps(deck%solver%method)
+      if (deck%continuation%jacobian == 'exact' .and. .not. mc%jacobian .and. &
           deck%solver%method /= 'auto' .and. deck%job%analysis == 'continuation') then
          call fatal_error(err, "group &continuation: jacobian = 'exact' needs &solver " &
             // "method = 'exact' (or 'auto' with piecewise-linear stops; the deck has '" &

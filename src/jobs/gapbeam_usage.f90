@@ -3,6 +3,7 @@
 module gapbeam_usage
    use gapbeam_settings, only: analysis_words
    use gapbeam_version, only: program_version, compiler_text, git_commit
+   use gapbeam_capability_text, only: capability_help
    implicit none
    private
    public :: usage_lines, help_text, version_text
