@@ -542,6 +542,11 @@ contains
             if (abs(ft) > model%r_mu(r) * fn .or. (r == event_ring .and. ft /= 0.0_dp)) then
                mode(r) = ring_slip
                sigma(r) = -sign(1.0_dp, ft)
+            else if (r == event_ring .and. dot_product(t, xd) /= 0.0_dp) then
+               ! a switch located at the very start of a stick whose spring is not yet
+               ! stretched: it slips along the node's motion
+               mode(r) = ring_slip
+               sigma(r) = sign(1.0_dp, dot_product(t, xd))
             end if
          else
             if (sigma(r) * slider_rate(model, r, sigma(r), x, xd, xdd) < 0.0_dp .or. &
