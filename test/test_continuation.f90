@@ -18,10 +18,10 @@ program test_continuation
    use gapbeam_state, only: state_t
    use gapbeam_transition, only: reduce_state
    use gapbeam_continuation_output, only: write_continuation
-   use gapbeam_hdf5_output, only: h5_reader_t
+   use gapbeam_hdf5_input, only: h5_reader_t
    use gapbeam_files, only: remove_file, file_exists
    implicit none
-   character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'
+   character(len=*), parameter :: ref = 'test/decks/sweep_line_4mm_half_element.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_continuation.nml'
    ! the single dof of sdof_continuation.nml: k = 3 EI / L^3, m = rho A L / 2, c = gamma k
    real(dp), parameter :: ei1 = 200.0e9_dp * 0.01_dp * 5.0e-4_dp**3 / 12
@@ -49,8 +49,8 @@ contains
       character(len=*), parameter :: ex = "&solver method = 'exact' /"
       call bad('unknown variable name', [character(len=200) :: job, ex, &
          "&continuation parameter = '&forcing freq', parameter_min = 8, parameter_max = 11 /"], &
-         [character(len=40) :: 'sweep_line_4mm.nml', '&continuation', 'parameter', 'freq', &
-         'frequency_hz'])
+         [character(len=40) :: 'sweep_line_4mm_half_element.nml', '&continuation', 'parameter', &
+         'freq', 'frequency_hz'])
       call bad('empty range', [character(len=200) :: job, ex, &
          "&continuation parameter_min = 11.0, parameter_max = 8.0 /"], &
          [character(len=40) :: '&continuation', 'parameter_min', 'parameter_max', '11', '8'])

@@ -24,7 +24,7 @@ program test_integrators
    use gapbeam_test_method, only: rk43_stepper_t, rk43_caps
    use gapbeam_capability_text, only: capability_markdown
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    character(len=*), parameter :: linear = "&stops rule_factor = 0.0, stiffness = 1.0, " &
       // "gap = 10.0 / &damping model = 'ratios', frequency1_hz = 4.3, ratio1 = 0.02, " &
       // "frequency2_hz = 26.0, ratio2 = 0.02 /"

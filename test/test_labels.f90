@@ -219,7 +219,8 @@ contains
          ! (a local first: gfortran mishandles deferred-length results in array constructors)
          solver = "&solver method = 'newmark', step_control = 'fixed', steps_per_period = " &
             // str(steps(k)) // ', transient_periods = 200, record_periods = 100 /'
-         call load_or_stop('test_labels', 'inputs/moon_shaw_10p5hz.nml', [character(len=200) :: solver, &
+         call load_or_stop('test_labels', 'test/decks/moon_shaw_10p5hz_half_element.nml', &
+            [character(len=200) :: solver, &
             '&diagnostics lyapunov_periods = 50, lyapunov_max_periods = 50 /'], &
             deck, model, u0, v0)
          pr = point_result_t()

@@ -13,7 +13,7 @@ program test_newmark
    use gapbeam_lapack, only: dgesv
    use gapbeam_test_runs, only: run_deck
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_bilinear.nml'
    character(len=*), parameter :: nostop = "&stops rule_factor = 0.0, stiffness = 1.0, " &
       // "gap = 10.0 /"

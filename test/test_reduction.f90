@@ -13,7 +13,7 @@ program test_reduction
    use gapbeam_lapack, only: dpotrf, dpotrs
    use gapbeam_test_runs, only: run_deck
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    character(len=*), parameter :: short = "&solver step_control = 'fixed', " &
       // 'transient_periods = 0, record_periods = 5 /'
    type(model_t) :: pf, pr

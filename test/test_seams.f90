@@ -18,7 +18,7 @@ program test_seams
    use gapbeam_test_seam, only: oscillator_model, closed_form_t, closed_form_integrator_t, &
       seam_observer_t
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
 
    call a_foreign_integrator_feeds_the_recorder()
    call every_method_feeds_an_observer()

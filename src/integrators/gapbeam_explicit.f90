@@ -111,6 +111,16 @@ contains
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
+      integer :: i
+      ! M + dt/2 C is regular even where M is not, but a dof without mass has omega = infinity:
+      ! no step is stable
+      do i = 1, model%n
+         if (model%sys%m(i, i) > 0.0_dp) cycle
+         call fatal_error(err, "method 'central_difference': the mass matrix is singular (dof " &
+            // str(i) // ' has no mass); explicit methods need a mass at every dof: use &beam ' &
+            // "rotary_inertia = 'half_element' or 'hrz', or an implicit method")
+         return
+      end do
       call factor_spd('central_difference', model%sys%m + 0.5_dp * dt * model%c, self%fac, err)
       if (allocated(err)) return
       if (.not. allocated(self%w)) allocate(self%w(model%n), self%r(model%n))

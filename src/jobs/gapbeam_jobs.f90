@@ -8,7 +8,8 @@ module gapbeam_jobs
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
-      modal_damping_ratio, dof_w
+      modal_damping_ratio, dof_w, modal_ratio, beam_is_timoshenko, beam_shear_coefficient, &
+      beam_shear_stiffness
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -20,7 +21,7 @@ module gapbeam_jobs
    use gapbeam_point, only: label_point
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
-   use gapbeam_parameters, only: run_parameters, parameter_set_t
+   use gapbeam_parameters, only: forcing_text
    use gapbeam_studies, only: work_precision, stability_study, stability_series
    use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_model_size, only: model_size_study
@@ -41,6 +42,11 @@ contains
          // ' N m^2, rho A = ' // str(beam_rho_a(st%beam)) // ' kg/m, mass = ' &
          // str(beam_mass(st%beam)) // ' kg, ' // trim(st%beam%mass_matrix) // ' mass' &
          // rotary_text(st)
+      if (beam_is_timoshenko(st%beam)) write(output_unit, '(a)') 'Timoshenko beam: G = ' &
+         // str(st%beam%shear_modulus) // ' Pa, k = ' // str(beam_shear_coefficient(st%beam)) &
+         // ', k G A = ' // str(beam_shear_stiffness(st%beam)) // ' N, phi = 12 EI/(k G A le^2) = ' &
+         // str(12.0_dp * beam_ei(st%beam) / (beam_shear_stiffness(st%beam) &
+         * (st%beam%length / real(st%beam%n_elem, dp))**2))
       if (st%root%condition == 'spring') then
          write(output_unit, '(a)') 'root: rotational spring k_theta = ' // str(st%root%k_theta) &
             // ' N m/rad (kappa = k_theta L / EI = ' &
@@ -93,7 +99,14 @@ contains
             100.0_dp * modes%effective_mass(j) / modes%total_mass
          write(output_unit, '(a)') trim(line)
       end do
-      if (dk%damping%model /= 'none') then
+      if (dk%damping%model == 'modal') then
+         write(output_unit, '(a)') 'modal damping: zeta of mode 1 = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1)) // ' (+ Rayleigh beta = ' &
+            // str(dk%damping%mass_coefficient) // ' 1/s, gamma = ' &
+            // str(dk%damping%stiffness_coefficient) // ' s); zeta(f1) = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1) + modal_damping_ratio( &
+            dk%damping%mass_coefficient, dk%damping%stiffness_coefficient, modes%frequency_hz(1)))
+      else if (dk%damping%model /= 'none') then
          write(output_unit, '(a)') 'Rayleigh damping: beta = ' // str(dk%damping%mass_coefficient) &
             // ' 1/s, gamma = ' // str(dk%damping%stiffness_coefficient) // ' s; zeta(f1) = ' &
             // str(modal_damping_ratio(dk%damping%mass_coefficient, &
@@ -155,15 +168,6 @@ contains
       end select
    end function solver_value
 
-   !> The run's parameters with what the built model resolved.
-   function model_parameters(dk, model) result(p)
-      type(deck_t), intent(in) :: dk                   !! deck
-      type(model_t), intent(in) :: model               !! the model built from it
-      type(parameter_set_t) :: p
-      p = run_parameters(dk, model%stop_stiffness, model%f1_open_hz, &
-                         model%omega_max / (2.0_dp * pi), model%n)
-   end function model_parameters
-
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
       character(len=:), allocatable :: t
@@ -177,6 +181,7 @@ contains
       type(error_t), allocatable, intent(out) :: e
       real(dp) :: value, f1
       type(structure_t) :: st
+      type(system_t) :: sys
       character(len=:), allocatable :: units
       call describe_structure(dk%structure)
       call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
@@ -204,7 +209,8 @@ contains
       write(output_unit, '(a)') 'calibrated ' // trim(dk%calibrate%parameter) // ' = ' &
          // str(value) // ' ' // units // ' gives f1 = ' // str(f1) // ' Hz (target ' &
          // str(dk%calibrate%target_f1_hz) // ' Hz)'
-      call write_calibration(dk, value, units, f1, e)
+      call assemble(st, sys)
+      call write_calibration(dk, sys, value, units, f1, e)
    end subroutine run_calibrate
 
    !> The deck variable a calibration starts from, with its value ('&beam width = 0.01').
@@ -245,8 +251,7 @@ contains
       ref = trim(dk%study%series(1))
       if (any(dk%study%series == 'auto')) ref = 'auto'
       write(output_unit, '(a)') work_precision_summary(results, ref)
-      call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                ref, e, model_parameters(dk, model))
+      call write_work_precision(dk, model, results, ref, e)
    end subroutine run_work_precision
 
    subroutine run_stability(dk, e)
@@ -270,16 +275,19 @@ contains
             // ' s theory (' // str(steps(k)%limit) // '/omega_max), ratio ' &
             // str(steps(k)%measured / steps(k)%theory)
       end do
-      call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
-                           rho, steps, model%omega_max, e, model_parameters(dk, model))
+      call write_stability(dk, model, methods, omega_dt, rho, steps, e)
    end subroutine run_stability
 
    subroutine run_model_size(dk, e)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
       type(candidate_t), allocatable :: cands(:)
+      type(model_t) :: model
+      real(dp), allocatable :: u0(:), v0(:)
       integer :: best, k
       call describe_structure(dk%structure)
+      call build_model(dk, model, u0, v0, e)          ! the deck's model, for the file
+      if (allocated(e)) return
       write(output_unit, '(a)') 'model size: ' // str(size(dk%model_size%elements)) &
          // ' meshes and ' // str(2 * size(dk%model_size%modes)) // ' modal models against ' &
          // 'the ' // str(maxval(dk%model_size%elements)) // '-element model'
@@ -303,24 +311,26 @@ contains
       else
          write(output_unit, '(a)') 'recommended: none meets every tolerance'
       end if
-      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e, &
-                            run_parameters(dk))
+      call write_model_size(dk, model, cands, best, e)
    end subroutine run_model_size
 
    !> The label of a transient run, its evidence and its certificate, on standard output.
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
       integer :: k
-      character(len=:), allocatable :: lambda
+      character(len=:), allocatable :: lambda, found
+      ! 'period 3 found' or 'no period found', up to the largest period tried
+      found = 'no period found'
+      if (diag%period > 0) found = 'period ' // str(diag%period) // ' found'
       ! no exponent asked for (lyapunov_periods = 0; the default with ring supports): say so
       if (diag%lyapunov_periods == 0) then
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; no ' &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) // '; no ' &
             // 'Lyapunov exponent: lyapunov_periods = 0)'
          lambda = 'no exponent'
       else
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) &
             // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
             // str(diag%lyapunov_error) // ' 1/s over ' // str(diag%lyapunov_periods) &
             // ' periods)'
@@ -382,8 +392,7 @@ contains
          // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
          '                    ', dk%reduction%static_correction)) // ': ' // str(model%n) &
          // ' coordinates'
-      write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
-         // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
+      write(output_unit, '(a)') 'forcing: ' // forcing_text(dk) // '; f1 (stops open) = ' &
          // str(model%f1_open_hz) // ' Hz; highest mode ' &
          // str(model%omega_max / (2.0_dp * pi)) &
          // ' Hz'

@@ -24,9 +24,11 @@ module gapbeam_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
-   use gapbeam_parameters, only: run_parameters
+   use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_kinds, only: pi
    use gapbeam_clock, only: process_cpu_seconds
+   use gapbeam_shards, only: shard_deal_t, deal_shards, shard_items, deal_signature, deal_summary
+   use gapbeam_stop_signal, only: stop_requested
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -59,18 +61,18 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! setup, I/O or checkpoint failure
       type(model_t) :: base
       type(sweep_plan_t) :: plan
-      type(point_result_t), allocatable :: slots(:), results(:)
+      type(point_result_t), allocatable :: slots(:)
       type(checkpoint_t) :: ck
-      type(sweep_file_t) :: sf
       logical, allocatable :: done(:)
-      integer, allocatable :: mine(:), todo(:), ss(:), pts(:)
+      integer, allocatable :: mine(:), todo(:), ss(:)
       real(dp), allocatable :: u0(:), v0(:)
-      integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_pos, &
+      integer :: k, np, ni, n_loaded, chunk, first, last, threads, n_done, n_total, n_pos, &
          n_round, j1
       type(meter_t) :: meter
       integer(int64) :: c0, c1, rate
       real(dp) :: elapsed, cpu0
       character(len=:), allocatable :: prefix, report
+      type(shard_deal_t) :: deal
 
       complete = .false.
       n_failed = 0
@@ -81,8 +83,9 @@ contains
       call make_plan(deck, plan, err)
       if (allocated(err)) return
       np = n_points(plan);  ni = n_items(plan)
-      mine = pack([(k, k = 1, ni)], [(mod(group_of_item(plan, k) - 1, batch%shard_count) + 1 &
-                  == batch%shard_index, k = 1, ni)])
+      call deal_shards(plan, batch, deal, err)
+      if (allocated(err)) return
+      mine = shard_items(plan, deal, batch%shard_index)
       allocate(slots(np * plan%ns), done(np * plan%ns))
       done = .false.
       prefix = sweep_prefix(deck, batch)
@@ -93,7 +96,7 @@ contains
       if (deck%sweep%checkpoint) then
          call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
             // '! shard ' // str(batch%shard_index) // ' of ' &
-            // str(batch%shard_count), slots, done, n_loaded, report, err)
+            // str(batch%shard_count) // deal_signature(deal), slots, done, n_loaded, report, err)
          if (allocated(err)) return
          if (len(report) > 0) then
             write(error_unit, '(a)') 'sweep: checkpoint: ' // replace_new_lines(report, &
@@ -125,6 +128,8 @@ contains
          // str(batch%shard_index) // ' of ' // str(batch%shard_count) // ': ' &
          // str(n_total) // ' runs, ' // str(n_done) // ' already in the checkpoint; ' &
          // str(threads) // ' threads'
+      if (len(deal_summary(deal, batch%shard_index)) > 0) write(output_unit, '(a)') &
+         deal_summary(deal, batch%shard_index)
 
       first = 1
       call meter%start('sweep', trim(merge('points', 'runs  ', plan%ns == 1)), &
@@ -154,11 +159,12 @@ contains
          first = last + 1
          call system_clock(c1)
          elapsed = real(c1 - c0, dp) / real(rate, dp)
-         if (batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .and. &
-             first <= size(todo)) then
+         if ((batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .or. &
+              stop_requested()) .and. first <= size(todo)) then
             call meter%finish(real(n_done, dp))
             call checkpoint_close(ck, delete=.false.)
-            write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
+            write(output_unit, '(a)') 'sweep: ' // trim(merge('stopped by SIGTERM', &
+               'time limit reached', stop_requested())) // ' after ' // str(n_done) // '/' &
                // str(n_total) // ' runs; the checkpoint ' // prefix // '.checkpoint keeps ' &
                // 'them: run the same command again to finish'
             return
@@ -166,6 +172,37 @@ contains
       end do
       call meter%finish()
 
+      call write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, threads, &
+                       n_failed, err)
+      if (allocated(err)) return
+      if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
+      complete = .true.
+
+   end subroutine run_sweep_job
+
+   !> The shard's results: every point's first start with all starts' attractors, failures
+   !> listed on standard error and counted in `n_failed`, the files under `prefix`, the
+   !> summary lines.
+   subroutine write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, &
+                          threads, n_failed, err)
+      type(deck_t), intent(in) :: deck                 !! validated deck
+      type(batch_options_t), intent(in) :: batch       !! shard
+      type(sweep_plan_t), intent(in) :: plan           !! the sweep's plan
+      type(model_t), intent(in) :: base                !! the deck's model
+      type(point_result_t), intent(in) :: slots(:)     !! every run of the sweep (the shard's done)
+      integer, intent(in) :: mine(:)                   !! the shard's work items
+      character(len=*), intent(in) :: prefix           !! output prefix
+      real(dp), intent(in) :: cpu0                     !! process CPU time at the start [s]
+      integer(int64), intent(in) :: c0, rate           !! wall clock at the start, its rate
+      integer, intent(in) :: threads                   !! OpenMP threads
+      integer, intent(inout) :: n_failed               !! failed runs of the shard
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(point_result_t), allocatable :: results(:)
+      type(sweep_file_t) :: sf
+      integer, allocatable :: pts(:)
+      integer :: k, j, np
+      integer(int64) :: c1
+      np = n_points(plan)
       ! every point of the shard: its first start with all starts' attractors; failures listed
       pts = shard_points(plan, mine)
       allocate(results(np))
@@ -196,13 +233,13 @@ contains
       sf%points = pts
       sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
                                      base%omega_max / (2.0_dp * pi), base%n)
+      sf%model = base;  sf%stiffness_units = stiffness_units(deck)
       sf%cpu_seconds = process_cpu_seconds() - cpu0   ! inside the wall-time window
       call system_clock(c1)
       sf%wall_seconds = real(c1 - c0, dp) / real(rate, dp)
       sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
-      if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
       call summary(results(pts), n_failed, plan%ns)
       write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
          // str(sf%wall_seconds) // ' s, ' // str(threads) // ' thread(s)'
@@ -214,9 +251,7 @@ contains
       if (n_failed > 0) write(output_unit, '(a)') 'sweep: ' // str(n_failed) // ' failed ' &
          // 'run(s), listed above on standard error and marked in the files (status 1, label ' &
          // "'failed')"
-      complete = .true.
-
-   end subroutine run_sweep_job
+   end subroutine write_shard
 
    !> The starts of a plan, comma separated ('random' counted once with its number).
    function start_names(plan) result(t)
