@@ -21,7 +21,8 @@ program test_exponents
    character(len=*), parameter :: tube = 'test/decks/tube_planar.nml'
    character(len=*), parameter :: chaos = 'inputs/moon_shaw_9p8hz.nml'
    !> the tube's exponent to 1 % or over 600 periods
-   character(len=*), parameter :: tight = '&diagnostics lyapunov_rel_error = 0.01, lyapunov_max_periods = 600 /'
+   character(len=*), parameter :: tight = &
+      '&diagnostics lyapunov_rel_error = 0.01, lyapunov_max_periods = 600 /'
 
    call auto_exponent_is_the_exact_one_and_the_floquet_one()
    call modal_model_gives_the_same_exponent()
