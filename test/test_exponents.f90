@@ -2,7 +2,8 @@
 !> integrator is the exact integrator's (not the default method's at fixed steps); it equals
 !> the one the periodic orbit's Floquet multipliers give (the exact monodromy, saltations
 !> included); a modal model reaching the same orbit gives the same exponent; a chaotic set
-!> gives one exponent within the stated errors in physical and modal coordinates; and a label that contradicts its own exponent is disputed.
+!> gives one exponent within the stated errors in physical and modal coordinates; and a label
+!> that contradicts its own exponent is disputed.
 program test_exponents
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
@@ -156,7 +157,8 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       pr%label = 3;  pr%period = 3;  pr%lyapunov = 2.4_dp;  pr%lyapunov_error = 0.2_dp
       pr%lyapunov_periods = 100
-      call load_or_stop('test_exponents', tube, [character(len=60) :: '&solver method = ''exact'' /'], &
+      call load_or_stop('test_exponents', tube, &
+         [character(len=60) :: '&solver method = ''exact'' /'], &
                         deck, model, u0, v0)
       call check('period 3 beside lambda = 2.4 +- 0.2 is a contradiction', &
          len(contradiction(pr, deck%diagnostics)) > 0, contradiction(pr, deck%diagnostics))

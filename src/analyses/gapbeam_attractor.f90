@@ -24,8 +24,8 @@
 !> uncertainty sigma is the standard error from batch means, the largest over batch lengths
 !> doubling while there are at least 10 batches (blocking: it reaches its plateau once the
 !> batches outlast the correlation time), whole multiples of the orbit's period q when a
-!> period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to the N that sigma ~
-!> 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
+!> period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
+!> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
