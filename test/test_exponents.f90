@@ -86,8 +86,8 @@ contains
       type(point_result_t) :: auto, exact
       type(model_t) :: model
       real(dp) :: lam_f
-      call run(tube, [character(len=60) :: tight], auto, model)
-      call run(tube, [character(len=60) :: tight, "&solver method = 'exact' /"], exact)
+      call run(tube, [character(len=80) :: tight], auto, model)
+      call run(tube, [character(len=80) :: tight, "&solver method = 'exact' /"], exact)
       call check('planar tube: period 1 (auto: ' // label_text(auto%label) // ')', auto%label == 1)
       call check("planar tube: the exponent of method 'auto' is the exact integrator's, bit for " &
          // 'bit (' // str(auto%lyapunov) // ' and ' // str(exact%lyapunov) // ' 1/s)', &
@@ -108,8 +108,8 @@ contains
       type(point_result_t) :: full, red
       type(model_t) :: model
       real(dp) :: bound, lam_f
-      call run(tube, [character(len=60) :: tight], full)
-      call run(tube, [character(len=60) :: tight, "&reduction kind = 'modal', n_modes = 16 /"], &
+      call run(tube, [character(len=80) :: tight], full)
+      call run(tube, [character(len=80) :: tight, "&reduction kind = 'modal', n_modes = 16 /"], &
                red, model)
       call note('planar tube 9 Hz, 16 modes: lambda ' // str(red%lyapunov) // ' +- ' &
          // str(red%lyapunov_error) // ' 1/s; full ' // str(full%lyapunov) // ' +- ' &

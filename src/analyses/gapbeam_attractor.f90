@@ -21,10 +21,8 @@
 !> state, and rescaled to that size after every period (both states restart there in
 !> equilibrium); lambda = sum ln(d_k / d_0) / ((N - N_a) T) over the periods after the first
 !> N_a = max(q, N / 10) (the separation aligning with the most expanding direction). The
-!> uncertainty sigma is the standard error from batch means, the largest over batch lengths
-!> doubling while there are at least 10 batches (blocking: it reaches its plateau once the
-!> batches outlast the correlation time), whole multiples of the orbit's period q when a
-!> period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
+!> uncertainty sigma is the standard error from the means of 10 batches of the rest, whole
+!> multiples of the orbit's period q when a period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
 !> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
@@ -495,11 +493,8 @@ contains
    !> The first n_a = max(q, n / 10) periods are discarded: the separation starts along the
    !> state, not along the most expanding direction, and those periods would bias the mean by
    !> O(1/n) (on a stable orbit the first periods contract much faster than the orbit does).
-   !> sigma is the standard error from batch means over the rest, by blocking: the batches
-   !> are whole orbit periods (q) long, of 1, 2, 4, ... times the shortest such length while
-   !> there are at least 10 of them, and sigma is the largest of their standard errors (the
-   !> plateau reached once the batches are longer than the correlation time of the
-   !> stretchings; shorter batches would understate it).
+   !> sigma is the standard error from the means of 10 batches over the rest, each a whole
+   !> number of orbit periods q where the record allows.
    pure subroutine exponent_estimate(logs, period, q, lambda, sigma)
       real(dp), intent(in) :: logs(:)     !! ln(d_k / d_0) per period
       real(dp), intent(in) :: period      !! forcing period [s]
@@ -512,13 +507,10 @@ contains
       if (n < 2) na = 0
       m = n - na
       lambda = sum(logs(na + 1:n)) / (real(m, dp) * period)
-      len_b = q
-      if (m / len_b < 10) len_b = 1
-      sigma = batch_standard_error(logs(na + 1:n), len_b)
-      do while (m / (2 * len_b) >= 10)
-         len_b = 2 * len_b
-         sigma = max(sigma, batch_standard_error(logs(na + 1:n), len_b))
-      end do
+      ! 10 batches of whole orbit periods (fewer when the record is shorter than 10 q)
+      len_b = m / 10
+      if (q > 1 .and. len_b >= q) len_b = (len_b / q) * q
+      sigma = batch_standard_error(logs(na + 1:n), max(1, len_b))
       sigma = sigma / period
    end subroutine exponent_estimate
 
