@@ -1,0 +1,110 @@
+!> The basis rule of `&reduction kind = 'auto'`: the cut-off frequency of the modes kept,
+!> from the forcing, the contact stiffnesses and the tolerance; and what a reduction kept.
+!>
+!> (provisional: the rule is calibrated in docs/tubes.md)
+module gapbeam_reduction_rule
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_lapack, only: dpotrf, dpotrs
+   use gapbeam_model, only: model_t
+   use gapbeam_description, only: law_bilinear
+   implicit none
+   private
+   public :: reduction_info_t, auto_cutoff, contact_frequencies
+
+   !> What a reduction kept, and why.
+   type :: reduction_info_t
+      character(len=16) :: kind = 'none'          !! 'none', 'modal' or 'auto'
+      real(dp) :: cutoff_hz = 0.0_dp              !! cut-off (0: n_modes) [Hz]
+      integer :: planes = 1                       !! planes of motion
+      integer :: modes_per_plane = 0              !! modes of the open structure kept
+      integer :: n_static = 0                     !! static modes per plane
+      integer :: n_full = 0                       !! dofs of the finite element model
+      integer :: n_reduced = 0                    !! coordinates of the integrated model
+      real(dp) :: highest_mode_hz = 0.0_dp        !! highest kept mode [Hz]
+      real(dp) :: f_max_hz = 0.0_dp               !! highest frequency of the reduced model [Hz]
+      real(dp) :: contact_hz = 0.0_dp             !! highest contact frequency estimate [Hz]
+      real(dp) :: forcing_hz = 0.0_dp             !! forcing frequency [Hz]
+      real(dp) :: factor = 0.0_dp                 !! cut-off / reference frequency [-]
+   end type reduction_info_t
+
+   !> harmonics of the forcing the basis covers at least
+   integer, parameter :: forcing_harmonics = 5
+
+contains
+
+   !> The cut-off of kind 'auto' (see the module header) in info%cutoff_hz, with its inputs.
+   subroutine auto_cutoff(full, tolerance, info, err)
+      type(model_t), intent(in) :: full                !! full model
+      real(dp), intent(in) :: tolerance                !! the solver's tolerance [-]
+      type(reduction_info_t), intent(inout) :: info    !! cut-off and its inputs set
+      type(error_t), allocatable, intent(out) :: err   !! singular stiffness
+      real(dp), allocatable :: fc(:)
+      call contact_frequencies(full, fc, err);  if (allocated(err)) return
+      info%forcing_hz = full%omega / (2.0_dp * pi)
+      info%contact_hz = 0.0_dp
+      if (size(fc) > 0) info%contact_hz = maxval(fc)
+      info%factor = 2.0_dp * (tolerance / 1.0e-4_dp)**(-0.25_dp)
+      info%cutoff_hz = info%factor * max(info%contact_hz, forcing_harmonics * info%forcing_hz)
+   end subroutine auto_cutoff
+
+   !> The contact frequency of each contact dof (slot): the static deflection shape psi =
+   !> K^-1 e_j under a force there, its stiffness k_s = 1 / psi_j and mass m_s = psi' M psi /
+   !> psi_j^2 (the Rayleigh quotient), with the stiffest contact law on that dof k_c beside it:
+   !> f_j = sqrt((k_s + k_c) / m_s) / 2 pi [Hz].
+   subroutine contact_frequencies(full, fc, err)
+      type(model_t), intent(in) :: full                !! full model
+      real(dp), allocatable, intent(out) :: fc(:)      !! per slot [Hz]
+      type(error_t), allocatable, intent(out) :: err   !! singular stiffness
+      real(dp), allocatable :: kf(:, :), psi(:, :)
+      real(dp) :: ks, ms, kc
+      integer :: n, ns, j, info, c, r
+      n = full%n;  ns = full%n_slots
+      allocate(fc(ns), source=0.0_dp)
+      if (ns == 0) return
+      kf = full%sys%k
+      allocate(psi(n, ns), source=0.0_dp)
+      do j = 1, ns
+         psi(full%slot_dof(j), j) = 1.0_dp
+      end do
+      call dpotrf('U', n, kf, n, info)
+      if (info /= 0) then
+         call fatal_error(err, 'gapbeam_reduction_rule: the stiffness is not positive ' &
+            // 'definite (dpotrf info=' // str(info) // ')')
+         return
+      end if
+      call dpotrs('U', n, ns, kf, n, psi, n, info)
+      do j = 1, ns
+         ks = 1.0_dp / psi(full%slot_dof(j), j)
+         ms = dot_product(psi(:, j), matmul(full%sys%m, psi(:, j))) &
+              / psi(full%slot_dof(j), j)**2
+         kc = 0.0_dp
+         do c = 1, full%n_contacts
+            if (full%c_slot(c) == j) kc = max(kc, linear_stiffness(full%c_law(c), full%c_k(c), &
+               full%c_p(c), full%c_gap(c), ks))
+         end do
+         do r = 1, full%n_rings
+            if (any(full%r_slot(:, r) == j)) kc = max(kc, linear_stiffness(full%r_law(r), &
+               full%r_k(r), full%r_p(r), full%r_gap(r), ks), full%r_kt(r))
+         end do
+         if (ms > 0.0_dp) fc(j) = sqrt((ks + kc) / ms) / (2.0_dp * pi)
+      end do
+   end subroutine contact_frequencies
+
+   !> The stiffness of a contact law to compare with the structure's k_s: the bilinear k; for
+   !> Hertz (F = k d^p) the tangent p k d^(p-1) at the penetration d where F = k_s g (the
+   !> force that moves the structure by the gap g, at least 1 micrometre) [N/m].
+   pure real(dp) function linear_stiffness(law, k, p, gap, ks) result(kl)
+      integer, intent(in) :: law          !! law code
+      real(dp), intent(in) :: k, p        !! law stiffness and exponent
+      real(dp), intent(in) :: gap         !! gap [m]
+      real(dp), intent(in) :: ks          !! the structure's stiffness there [N/m]
+      real(dp) :: d
+      if (law == law_bilinear) then
+         kl = k
+      else
+         d = (ks * max(gap, 1.0e-6_dp) / k)**(1.0_dp / p)
+         kl = p * k * d**(p - 1.0_dp)
+      end if
+   end function linear_stiffness
+end module gapbeam_reduction_rule
