@@ -60,6 +60,18 @@ Mutation classes
                       300-character title; a 288-character output prefix; a 100-entry &stops
                       node list; the whole deck on one line (comments removed); a 5000-character
                       override (a valid override padded with blanks)
+    group_char        a character around a group name: after it ('.', '-', ':', '='), after the
+                      '&' ('-', '.', '=', '!', a blank), or its first letter replaced by '-'
+                      (`&-tops`): once dropped whole and silently (issue 25)
+    text_outside      ' junk' after a closing '/', a line of stray text between groups, a '/'
+                      after a group's first assignment (a second '/'), an assignment repeated in
+                      its group, a group's '/' removed (it runs into the next group)
+    lone_sign         a numeric value replaced by '+' or '-' (once: the old value kept)
+    extreme_value     frequency_hz = 1e308 or 1e10, amplitude_pp = 1e-300 or 1e200 (overrides),
+                      a value 1e309 or -1e309 (overflow), 1e-400 (underflow: any outcome), an
+                      &initial displacement of 1e300
+    count_2_31        a count (transient_periods, record_periods, steps_per_period, n_elem, ...,
+                      random_seed) set to 2^31 - 1, 2^31, 2^32 or -(2^31 + 1) by an override
 
 Outcomes
 --------
@@ -83,8 +95,10 @@ Outcomes
                  first issue in that order.
 Expectations: encoding-only mutations (line_*, long comment, blank padding, one-line deck, long
 override) must give `ok`; value_empty, group_misspelt, group_duplicated, a negative node, a list
-with -1 appended, a 100-entry list and an empty file must give `clean_error`; all others may give
-either.
+with -1 appended, a 100-entry list, an empty file and every deck of group_char, text_outside,
+lone_sign, extreme_value (but the underflow) and count_2_31 (but random_seed = 2^31 - 1) must give
+`clean_error`, naming the group (and the variable where the mutation targets one); all others
+may give either.
 
 --keep DIR keeps every run's directory (deck, outputs, stdout.txt, stderr.txt, case.json) under
 DIR; --json FILE writes every deck's result; --list prints the decks without running them;
@@ -108,7 +122,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SEED = 20240611
 CLASSES = ['delete_chars', 'value_string', 'value_negative', 'value_zero', 'value_nan',
            'value_inf', 'value_huge', 'value_empty', 'group_misspelt', 'group_duplicated',
-           'truncated', 'line_crlf', 'line_cr', 'line_bom', 'long_line']
+           'truncated', 'line_crlf', 'line_cr', 'line_bom', 'long_line',
+           # appended (later classes draw after the earlier ones: their decks stay the same)
+           'group_char', 'text_outside', 'lone_sign', 'extreme_value', 'count_2_31']
 KNOWN_GROUPS = ('job beam root springs masses modes calibrate stops damping forcing solver '
                 'initial output diagnostics sweep reduction study model_size').split()
 ISSUE_ORDER = ['timeout', 'signal', 'runtime_error', 'nonfinite_output', 'unexpected_ok',
@@ -432,10 +448,120 @@ def typo(rng, name):
     raise RuntimeError('no typo for ' + name)
 
 
+COUNTS = [('solver', 'transient_periods'), ('solver', 'record_periods'),
+          ('solver', 'steps_per_period'), ('diagnostics', 'lyapunov_periods'),
+          ('diagnostics', 'transient_max_periods'), ('output', 'history_periods'),
+          ('output', 'samples_per_period'), ('beam', 'n_elem'), ('diagnostics', 'period_points'),
+          ('sweep', 'n_frequency'), ('sweep', 'chunk'), ('continuation', 'max_points'),
+          ('study', 'periods'), ('diagnostics', 'random_seed')]
+
+
+def strict_case(cls, i, rng, base, text):
+    """The classes that found the reader's silent faults (issue 25): characters around group
+    names, text outside groups, lone signs, extreme magnitudes, 2^31 counts."""
+    groups = scan(text)
+    if cls == 'group_char':
+        g = rng.choice(groups)
+        name = text[g['start'] + 1:g['name_end']]
+        v = ['after_dot', 'after_dash', 'after_colon', 'after_equals', 'amp_dash', 'amp_dot',
+             'amp_equals', 'amp_bang', 'amp_blank', 'letter_dash'][i % 10]
+        if v.startswith('after_'):
+            new = '&' + name + {'after_dot': '.', 'after_dash': '-', 'after_colon': ':',
+                                'after_equals': '='}[v]
+        elif v == 'letter_dash':                       # '&stops' -> '&-tops'
+            new = '&-' + name[1:]
+        else:
+            new = '&' + {'amp_dash': '-', 'amp_dot': '.', 'amp_equals': '=', 'amp_bang': '!',
+                         'amp_blank': ' '}[v] + name
+        mutated = text[:g['start']] + new + text[g['name_end']:]
+        return Case(cls, base, v, enc(mutated), 'error',
+                    None if v == 'letter_dash' else g['name'], None,
+                    detail='&%s -> %s' % (name, new))
+    if cls == 'text_outside':
+        v = ['after_slash', 'between_groups', 'second_slash', 'repeated', 'missing_slash'][i % 5]
+        closed = [g for g in groups if g['end'] < len(text)]
+        g = rng.choice(closed or groups)
+        if v == 'after_slash':
+            mutated = text[:g['end'] + 1] + ' junk' + text[g['end'] + 1:]
+            return Case(cls, base, v, enc(mutated), 'error', g['name'], None,
+                        detail="' junk' after the '/' of &%s" % g['name'])
+        if v == 'between_groups':
+            mutated = text[:g['end'] + 1] + '\nstray text\n' + text[g['end'] + 1:]
+            return Case(cls, base, v, enc(mutated), 'error', g['name'], None,
+                        detail="a line 'stray text' after &%s" % g['name'])
+        with_values = [gg for gg in groups if len(gg['assigns']) >= 2] or groups
+        g = rng.choice(with_values)
+        if v == 'second_slash' and len(g['assigns']) >= 2:
+            a = g['assigns'][0]
+            mutated = text[:a['val_end']] + ' /' + text[a['val_end']:]
+            return Case(cls, base, v, enc(mutated), 'error', g['name'], None,
+                        detail="a '/' after the first assignment of &%s" % g['name'])
+        if v == 'missing_slash' and g is not groups[-1]:
+            mutated = text[:g['end']] + text[g['end'] + 1:]
+            return Case(cls, base, v, enc(mutated), 'error', g['name'], None,
+                        detail="the '/' of &%s removed (the next group follows)" % g['name'])
+        a = rng.choice(g['assigns'])
+        item = text[a['var_start']:a['val_end']]
+        mutated = text[:a['val_end']] + ', ' + item + text[a['val_end']:]
+        return Case(cls, base, 'repeated', enc(mutated), 'error', g['name'], a['var'],
+                    detail='&%s %s assigned twice' % (g['name'], a['var']))
+    if cls == 'lone_sign':
+        numbers = [(g, a) for g in groups for a in g['assigns']
+                   if a['val_end'] > a['val_start'] and is_numeric(text, a)]
+        g, a = rng.choice(numbers)
+        new = ['+', '-'][i % 2]
+        mutated = text[:a['val_start']] + new + text[a['val_end']:]
+        return Case(cls, base, new, enc(mutated), 'error', g['name'], a['var'],
+                    detail='&%s %s = %s (was %s)' % (g['name'], a['var'], new,
+                                                    short(text[a['val_start']:a['val_end']])))
+    if cls == 'extreme_value':
+        v = ['frequency_1e308', 'amplitude_1e-300', 'overflow_1e309', 'overflow_-1e309',
+             'initial_1e300', 'amplitude_1e200', 'underflow_1e-400', 'frequency_1e10'][i % 8]
+        if v.startswith('overflow_'):
+            numbers = [(g, a) for g in groups for a in g['assigns']
+                       if a['val_end'] > a['val_start'] and is_numeric(text, a)]
+            g, a = rng.choice(numbers)
+            new = v.split('_')[1]
+            mutated = text[:a['val_start']] + new + text[a['val_end']:]
+            return Case(cls, base, v, enc(mutated), 'error', g['name'], a['var'],
+                        detail='&%s %s = %s' % (g['name'], a['var'], new))
+        if v == 'underflow_1e-400':       # reads as 0 (or a subnormal): either outcome
+            numbers = [(g, a) for g in groups for a in g['assigns']
+                       if a['val_end'] > a['val_start'] and is_numeric(text, a)]
+            g, a = rng.choice(numbers)
+            mutated = text[:a['val_start']] + '1e-400' + text[a['val_end']:]
+            return Case(cls, base, v, enc(mutated), 'any', g['name'], None,
+                        detail='&%s %s = 1e-400' % (g['name'], a['var']))
+        if v == 'initial_1e300':
+            n_elem = int((get_value(text, 'beam', 'n_elem') or '4').strip())
+            override = ("&initial kind = 'given', node = %d, dof = 'w', displacement = 1e300 /"
+                        % (n_elem + 1))
+            return Case(cls, base, v, enc(text), 'error', 'initial', 'displacement',
+                        args=[override], detail='override ' + override)
+        group, var, new = {'frequency_1e308': ('forcing', 'frequency_hz', '1e308'),
+                           'frequency_1e10': ('forcing', 'frequency_hz', '1e10'),
+                           'amplitude_1e-300': ('forcing', 'amplitude_pp', '1e-300'),
+                           'amplitude_1e200': ('forcing', 'amplitude_pp', '1e200')}[v]
+        override = '&%s %s = %s /' % (group, var, new)
+        return Case(cls, base, v, enc(text), 'error', group, var, args=[override],
+                    detail='override ' + override)
+    if cls == 'count_2_31':
+        group, var = COUNTS[i % len(COUNTS)]
+        new = ['2147483647', '2147483648', '4294967296', '-2147483649'][(i // 2) % 4]
+        override = '&%s %s = %s /' % (group, var, new)
+        # 2^31 - 1 fits in 32 bits: refused as a count or, for a seed, any outcome
+        expect = 'any' if new == '2147483647' and var == 'random_seed' else 'error'
+        return Case(cls, base, new, enc(text), expect, group, var, args=[override],
+                    detail='override ' + override)
+    raise ValueError(cls)
+
+
 def make_case(cls, i, rng, base, text):
     """Deck i of mutation class `cls` from the cheap base deck `text`."""
     if cls.startswith('value_'):
         return value_case(cls, rng, base, text, i)
+    if cls in ('group_char', 'text_outside', 'lone_sign', 'extreme_value', 'count_2_31'):
+        return strict_case(cls, i, rng, base, text)
 
     if cls == 'delete_chars':
         groups = scan(text)

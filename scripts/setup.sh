@@ -5,6 +5,7 @@
 #   scripts/setup.sh           execute it: installs what is missing
 #   source scripts/setup.sh    source it (run.sh and test.sh do): same, and also exports PATH
 #                              so that a pip-installed `fpm` is found
+#   scripts/setup.sh --slurm   also what scripts/test_slurm.sh needs (below); only that test asks
 #
 # Checks, and installs only what is missing:
 #   gfortran                       apt: gfortran
@@ -16,6 +17,15 @@
 #   numpy and h5py for python3     pip: python3 -m pip install numpy h5py (the Python reader in
 #                                  python/ and its tests); apt: python3-numpy python3-h5py instead
 #                                  when python3 is a distribution's own, externally managed Python
+# With --slurm (or GAPBEAM_SETUP_SLURM=1), for scripts/test_slurm.sh, a single-node Slurm with
+# accounting (sacct needs slurmdbd, which needs a MySQL server):
+#   munged, munge                  apt: munge
+#   slurmctld, slurmd              apt: slurmctld slurmd
+#   sbatch, squeue, scontrol, sacct, sacctmgr   apt: slurm-client
+#   slurmdbd                       apt: slurmdbd
+#   mariadbd, mariadb-install-db   apt: mariadb-server
+# (on a machine with systemd, installing them may start their system services; the test runs its
+# own daemons on free ports and never uses those)
 # apt-get runs (with sudo when not root) only when something is missing: one `apt-get update`, then
 # one `apt-get install`. Prints nothing when everything is there, else one `setup: installing ...`
 # line per install step; the apt and pip output goes to a log file under ${TMPDIR:-/tmp}, shown when
@@ -28,10 +38,17 @@ if [[ ${BASH_SOURCE[0]} == "$0" ]]; then
 fi
 
 _gapbeam_setup_log=""
+_gapbeam_setup_slurm=${GAPBEAM_SETUP_SLURM:-0}
+if [[ ${1:-} == --slurm ]]; then _gapbeam_setup_slurm=1; fi
 
 # True if command $1 exists.
 _gapbeam_have() {
    command -v "$1" >/dev/null 2>&1
+}
+
+# True if daemon $1 exists (on PATH or in /usr/sbin, which a user's PATH may lack).
+_gapbeam_have_daemon() {
+   _gapbeam_have "$1" || [[ -x /usr/sbin/$1 ]]
 }
 
 # Print an error line on stderr.
@@ -119,6 +136,16 @@ _gapbeam_missing_apt() {
    _gapbeam_have gnuplot || printf '%s\n' gnuplot-nox
    if _gapbeam_python_is_external && ! _gapbeam_have_python_modules; then
       printf '%s\n' python3-numpy python3-h5py
+   fi
+   if [[ $_gapbeam_setup_slurm == 1 ]]; then
+      { _gapbeam_have_daemon munged && _gapbeam_have munge; } || printf '%s\n' munge
+      _gapbeam_have_daemon slurmctld || printf '%s\n' slurmctld
+      _gapbeam_have_daemon slurmd || printf '%s\n' slurmd
+      { _gapbeam_have sbatch && _gapbeam_have sacct && _gapbeam_have sacctmgr; } \
+         || printf '%s\n' slurm-client
+      _gapbeam_have_daemon slurmdbd || printf '%s\n' slurmdbd
+      { _gapbeam_have_daemon mariadbd && _gapbeam_have mariadb-install-db; } \
+         || printf '%s\n' mariadb-server
    fi
 }
 
@@ -282,8 +309,8 @@ if [[ ${BASH_SOURCE[0]} != "$0" ]]; then
    unset -f _gapbeam_have _gapbeam_setup_error _gapbeam_setup_logfile _gapbeam_setup_show_log \
       _gapbeam_have_lib _gapbeam_hdf5_pc _gapbeam_have_hdf5_fortran _gapbeam_missing_apt \
       _gapbeam_setup_apt _gapbeam_find_fpm _gapbeam_setup_fpm _gapbeam_have_python_modules \
-      _gapbeam_python_is_external _gapbeam_setup_python _gapbeam_setup_main
-   unset _gapbeam_setup_log
+      _gapbeam_python_is_external _gapbeam_setup_python _gapbeam_setup_main _gapbeam_have_daemon
+   unset _gapbeam_setup_log _gapbeam_setup_slurm
 fi
 # The status of the last command is that of the script (executed) or of `source` (sourced); a
 # subshell's exit, so that a sourcing shell is never ended here.

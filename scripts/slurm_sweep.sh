@@ -3,26 +3,28 @@
 # and merge the shards' result files.
 #
 # Usage (from the repository root, so that the deck's relative output prefix results/... lands
-# there; Slurm does not create the log folder, hence the mkdir):
+# there; Slurm does not create the log folder, hence the mkdir). The whole campaign, with its
+# settings and what to do when a task fails, is in docs/running.md ("Slurm job arrays: a
+# campaign on a cluster"), which scripts/test_slurm.sh runs as written against a real Slurm:
 #   mkdir -p logs
 #   fpm build --profile release                                          # once, before submitting
 #   export GAPBEAM=$(realpath "$(fpm run --profile release --runner echo gapbeam | tail -n 1)")
-#   jid=$(sbatch --parsable --array=1-16 scripts/slurm_sweep.sh inputs/sweep_grid_gap.nml)
+#   export GAPBEAM_AUTO_REQUEUE=1
+#   jid=$(sbatch --parsable --array=1-16%8 --time=02:00:00 scripts/slurm_sweep.sh inputs/sweep_grid_gap.nml)
 #   sbatch --dependency=afterok:${jid%%;*} --array=1 --cpus-per-task=1 --time=00:30:00 \
 #          scripts/slurm_sweep.sh --merge inputs/sweep_grid_gap.nml
-# or in one line per step without the variable:
-#   sbatch --array=1-16 scripts/slurm_sweep.sh inputs/sweep_grid_gap.nml      (prints JOBID)
-#   sbatch --dependency=afterok:JOBID --array=1 --cpus-per-task=1 scripts/slurm_sweep.sh \
-#          --merge inputs/sweep_grid_gap.nml
 #
-#   scripts/slurm_sweep.sh [--shards N] [--time-limit S] DECK [OVERRIDE ...]   (an array task)
+#   scripts/slurm_sweep.sh [--shards N] [--time-limit S] [--shard-costs FILE.h5] DECK [OVERRIDE ...]
+#                                                                          (an array task)
 #   scripts/slurm_sweep.sh --merge [--shards N] [--prefix PREFIX] DECK [OVERRIDE ...]
 #
 # Sweep (an array task): creates the directory of the output prefix (below) when missing, runs
-# `gapbeam DECK --shard I/N [--time-limit S] [OVERRIDE ...]` in the submission directory and
-# exits with the program's status. The program writes PREFIX.shard_I_of_N.h5 (and
-# .sweep.dat, .bifurcation.dat), PREFIX being the deck's `&job output`; points are dealt to the
-# shards round robin (work items: a point in mode 'independent', a whole line in mode
+# `gapbeam DECK --shard I/N [--time-limit S] [--shard-costs FILE.h5] [OVERRIDE ...]` in the
+# submission directory and exits with the program's status. The program writes
+# PREFIX.shard_I_of_N.h5 (and .sweep.dat, .bifurcation.dat), PREFIX being the deck's
+# `&job output`; points are dealt to the shards round robin, or with --shard-costs FILE.h5 (or
+# GAPBEAM_SHARD_COSTS=FILE.h5; the same file for every task) by their costs in that earlier
+# result file of the same grid (work items: a point in mode 'independent', a whole line in mode
 # 'continuation', so a continuation sweep has at most as many useful shards as lines).
 #   N = --shards N, else SLURM_ARRAY_TASK_COUNT, else SLURM_ARRAY_TASK_MAX - SLURM_ARRAY_TASK_MIN
 #       + 1, else 1 (not in an array: the whole sweep, PREFIX.h5, nothing to merge);
@@ -33,7 +35,7 @@
 # checkpoint and the merge compare (a shard run with other overrides is refused, never mixed).
 #
 # Time limit and resuming: the task runs `gapbeam ... --time-limit S`, S = the seconds left to the
-# job (SLURM_JOB_END_TIME, else `squeue -o %L`) less a margin (GAPBEAM_TIME_MARGIN, default 300 s:
+# task (SLURM_JOB_END_TIME, else `squeue -o %L` of JOBID_I) less a margin (GAPBEAM_TIME_MARGIN, default 300 s:
 # one chunk of points and the file writing must fit in it; half the time left when that is less
 # than twice the margin); `--time-limit S` here or GAPBEAM_TIME_LIMIT=S sets S, 0 switches it off
 # (also the default outside Slurm). The limit is not part of the deck text, so it may differ from
@@ -45,8 +47,15 @@
 # `sbatch --array=I ... --shards N DECK` as above. With GAPBEAM_AUTO_REQUEUE=1 in the environment
 # a task that exits with status 3 requeues itself (`scontrol requeue`), at most
 # GAPBEAM_MAX_REQUEUE times (default 10): every run that reaches the time limit has finished at
-# least one chunk, so this ends. A task stopped by status 3 and not requeued counts as failed for
+# least one chunk, so this ends. Slurm holds a requeued task for about two minutes before it
+# may start again. A task stopped by status 3 and not requeued counts as failed for
 # `--dependency=afterok`: submit the merge again once every shard has finished.
+#
+# SIGTERM (Slurm's signal at the hard time limit, on preemption and on scancel, KillWait seconds
+# before SIGKILL): the program runs as a child that the script waits for; it finishes its chunk,
+# keeps the checkpoint and exits with 3, and the script, which Slurm signals too, reports it and
+# does not requeue the task (a cancelled task stays cancelled). Outside Slurm the script passes a
+# SIGTERM (or Ctrl-C) on to the program as SIGTERM.
 #
 # Merge (--merge): runs `gapbeam merge PREFIX.h5 PREFIX.shard_1_of_N.h5 ... PREFIX.shard_N_of_N.h5`
 # and then `scripts/plot.sh sweep PREFIX` when gnuplot is there (a plotting failure is reported,
@@ -63,7 +72,8 @@
 #                         the build is out of date, so build once before submitting, or better set
 #                         GAPBEAM: sixteen tasks must not build at once), else `gapbeam` on PATH
 #                         or in ~/.local/bin (`fpm install --profile release`).
-#   GAPBEAM_TIME_LIMIT, GAPBEAM_TIME_MARGIN, GAPBEAM_AUTO_REQUEUE, GAPBEAM_MAX_REQUEUE: see above.
+#   GAPBEAM_TIME_LIMIT, GAPBEAM_TIME_MARGIN, GAPBEAM_AUTO_REQUEUE, GAPBEAM_MAX_REQUEUE,
+#   GAPBEAM_SHARD_COSTS: see above.
 #   OMP_NUM_THREADS       set to SLURM_CPUS_PER_TASK (1 if unset): threads over sweep points.
 #   OPENBLAS_NUM_THREADS  set to 1 (with threaded BLAS the results change with the thread count).
 #   GAPBEAM_GIT_COMMIT    recorded in the result files; when unset, taken from `git describe` in
@@ -74,7 +84,8 @@
 # (or the merged) file is written but some of its points failed); 2 on bad usage or when the
 # executable or shard files are missing.
 # Slurm opens the log file (--output=logs/...) before the script runs and does not create its
-# directory: make logs/ in the submission directory before sbatch.
+# directory: make logs/ in the submission directory before sbatch. The log is opened for
+# appending (--open-mode=append), so a requeued task's log keeps its earlier runs.
 #
 # Defaults of the array tasks (options given to sbatch on its command line take precedence):
 #SBATCH --job-name=gapbeam-sweep
@@ -83,6 +94,7 @@
 #SBATCH --cpus-per-task=8
 #SBATCH --time=02:00:00
 #SBATCH --requeue
+#SBATCH --open-mode=append
 #SBATCH --output=logs/%x_%A_%a.out
 set -euo pipefail
 
@@ -94,7 +106,7 @@ if [[ ${1:-} == -h || ${1:-} == --help ]]; then
 fi
 
 usage() {
-   printf 'usage: scripts/slurm_sweep.sh [--merge] [--shards N] [--time-limit S] [--prefix PREFIX] DECK [OVERRIDE ...]\n' >&2
+   printf 'usage: scripts/slurm_sweep.sh [--merge] [--shards N] [--time-limit S] [--shard-costs FILE.h5] [--prefix PREFIX] DECK [OVERRIDE ...]\n' >&2
    printf '       (scripts/slurm_sweep.sh --help for the whole story)\n' >&2
    exit 2
 }
@@ -117,6 +129,7 @@ fi
 merge=0
 shards=""
 prefix=""
+shard_costs=${GAPBEAM_SHARD_COSTS:-}
 time_limit=${GAPBEAM_TIME_LIMIT:-}
 while [[ $# -gt 0 ]]; do
    case $1 in
@@ -133,6 +146,10 @@ while [[ $# -gt 0 ]]; do
          [[ $# -ge 2 ]] || usage
          time_limit=$2; shift 2 ;;
       --time-limit=*) time_limit=${1#--time-limit=}; shift ;;
+      --shard-costs)
+         [[ $# -ge 2 ]] || usage
+         shard_costs=$2; shift 2 ;;
+      --shard-costs=*) shard_costs=${1#--shard-costs=}; shift ;;
       --) shift; break ;;
       -*) printf 'slurm_sweep: unknown option %s\n' "$1" >&2; usage ;;
       *) break ;;
@@ -148,6 +165,9 @@ if [[ -n ${shards} && ! ${shards} =~ ^[1-9][0-9]*$ ]]; then
 fi
 if [[ -n ${time_limit} && ! ${time_limit} =~ ^[0-9]+$ ]]; then
    die "--time-limit ${time_limit}: expected a whole number of seconds (0: none)"
+fi
+if [[ -n ${shard_costs} && ! -f ${shard_costs} ]]; then
+   die "--shard-costs ${shard_costs}: no such file (relative to $(pwd))"
 fi
 
 # gapbeam's executable (see GAPBEAM above).
@@ -243,7 +263,12 @@ task_time_limit() {
    if [[ ${SLURM_JOB_END_TIME:-} =~ ^[0-9]+$ ]]; then
       left=$((SLURM_JOB_END_TIME - now))
    elif command -v squeue >/dev/null 2>&1; then
-      left=$(slurm_seconds "$(squeue -h -j "${SLURM_JOB_ID}" -o %L 2>/dev/null | head -n 1)")
+      # this task's own line: `squeue -j` of the first task's job id lists the whole array
+      local job=${SLURM_JOB_ID}
+      if [[ -n ${SLURM_ARRAY_JOB_ID:-} && -n ${SLURM_ARRAY_TASK_ID:-} ]]; then
+         job=${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}
+      fi
+      left=$(slurm_seconds "$(squeue -h -j "${job}" -o %L 2>/dev/null | head -n 1)")
    fi
    [[ -n ${left} && ${left} -gt 0 ]] || return 0
    [[ ${margin} =~ ^[0-9]+$ ]] || margin=300
@@ -341,16 +366,39 @@ exe=$(find_gapbeam)
 out_dir=$(dirname -- "$(deck_prefix)")
 mkdir -p -- "${out_dir}" || die "cannot create the output directory ${out_dir}"
 args=(--shard "${index}/${count}")
+if [[ -n ${shard_costs} ]]; then args+=(--shard-costs "${shard_costs}"); fi
 limit=$(task_time_limit)
 if [[ -n ${limit} ]]; then args+=(--time-limit "${limit}"); fi
 printf 'slurm_sweep: %s on %s: shard %d of %d, OMP_NUM_THREADS=%s, time limit %s\n' \
    "$(date '+%Y-%m-%d %H:%M:%S')" "$(hostname)" "${index}" "${count}" "${OMP_NUM_THREADS}" \
    "${limit:-none}${limit:+ s}"
 printf 'slurm_sweep: %s %s %s%s\n' "${exe}" "${deck}" "${args[*]}" "${overrides[*]+ ${overrides[*]}}"
-status=0
-"${exe}" "${deck}" "${args[@]}" "${overrides[@]+"${overrides[@]}"}" || status=$?
+# The program runs as a child that the script waits for, so that a SIGTERM (Slurm's signal at
+# the time limit, on preemption and on scancel) reaches the script without ending it: the
+# program, which Slurm signals too, finishes its chunk, keeps the checkpoint and exits with 3;
+# outside Slurm the script passes the signal on (and Ctrl-C as SIGTERM: a child started in the
+# background ignores SIGINT). A task stopped so is not requeued here.
+got_term=0
+"${exe}" "${deck}" "${args[@]}" "${overrides[@]+"${overrides[@]}"}" &
+child=$!
+on_term() {
+   got_term=1
+   if [[ -z ${SLURM_JOB_ID:-} ]]; then kill -TERM "${child}" 2>/dev/null || true; fi
+}
+trap on_term TERM
+trap 'got_term=1; kill -TERM "${child}" 2>/dev/null || true' INT
+while :; do
+   status=0
+   wait "${child}" || status=$?
+   if ((status > 128)) && kill -0 "${child}" 2>/dev/null; then continue; fi   # the trap ran
+   break
+done
+trap - TERM INT
 
-if [[ ${status} -eq 3 ]]; then
+if [[ ${status} -eq 3 && ${got_term} -eq 1 ]]; then
+   printf 'slurm_sweep: shard %d of %d stopped by SIGTERM (scancel, preemption or the job time limit); its checkpoint is kept: run the same shard again to finish (not requeued here)\n' \
+      "${index}" "${count}" >&2
+elif [[ ${status} -eq 3 ]]; then
    printf 'slurm_sweep: shard %d of %d reached the time limit; its checkpoint is kept: run the same shard again to finish\n' \
       "${index}" "${count}" >&2
    if [[ ${GAPBEAM_AUTO_REQUEUE:-0} == 1 && -n ${SLURM_JOB_ID:-} ]]; then

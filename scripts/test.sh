@@ -10,11 +10,14 @@
 # same flags, which prints each test executable's path and builds nothing more); run each one on
 # its own, from the repository root, so that a failing program does not hide the others; then run
 # scripts/test_cli.sh, scripts/test_sweep_kill.sh, scripts/test_faults.sh (faults, full disks,
-# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (378 mutated decks,
+# concurrent runs, corrupted checkpoints: issue 12), scripts/test_fuzz.sh (480 mutated decks,
 # under 60 s), scripts/test_labels_cli.sh (failed sweep points: exit status 5, issue 11) and
 # scripts/test_users.sh (--help, --version, options, progress lines, figures in every format,
 # and scripts/test_docs.py: every deck variable documented, the README's length)
-# on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), and
+# on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), scripts/test_slurm.sh
+# (the Slurm campaign of docs/running.md against a real single-node Slurm that it installs and
+# starts, about 2.5 minutes; skipped with a NOTE where Slurm cannot be had, a failure under
+# CI=true), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
 # docs/outputs.md; PYTHONPATH=python, nothing is pip-installed). Everything goes to the terminal.
@@ -161,6 +164,13 @@ for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh; do
    fi
    count "${script}" "${log}" "${status}"
 done
+
+printf '\n== scripts/test_slurm.sh\n'
+log=${work}/test_slurm.log
+status=0
+GAPBEAM_SLURM_REQUIRED=${GAPBEAM_SLURM_REQUIRED:-${CI:-0}} GAPBEAM_SLURM_INSTALL_TIMEOUT=600 \
+   "${runner[@]}" bash "${root}/scripts/test_slurm.sh" </dev/null 2>&1 | tee "${log}" || status=$?
+count test_slurm.sh "${log}" "${status}"
 
 printf '\n== python/tests/test_reader.py\n'
 log=${work}/test_reader.log

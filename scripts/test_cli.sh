@@ -236,6 +236,10 @@ bad_case "step below the minimum (transient)" -r "analysis='modes'" "analysis='t
    -- 'step below the minimum' 'dt' 't ='
 bad_case "bad --shard value"                  -o '--shard' -o '4/3'                  -- '--shard' '4/3'
 bad_case "--shard on a modes deck"            -o '--shard' -o '1/2'                  -- 'sweep'
+bad_case "--shard 1//4 (was: the whole sweep)" -o '--shard' -o '1//4'                -- '--shard' "'1//4'"
+bad_case "--shard 1/4/2 (was: run as 1/4)"    -o '--shard' -o '1/4/2'                -- '--shard' "'1/4/2'"
+bad_case "--time-limit '5 junk' (was: 5 s)"   -o '--time-limit' -o '5 junk'          -- '--time-limit' "'5 junk'"
+bad_case "--shard-costs on a modes deck"      -o '--shard-costs=x.h5'                -- '--shard-costs' 'sweep'
 bad_case "sweep without &sweep"               -r "analysis='modes'" "analysis='sweep'" \
    -a '&forcing frequency_hz=10.5, amplitude_pp=3.7e-3 /'                          -- '&sweep' 'missing'
 bad_case "sweep axis list and range both"     -r "analysis='modes'" "analysis='sweep'" \

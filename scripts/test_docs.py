@@ -2,12 +2,16 @@
 """scripts/test_docs.py - the documentation against the code.
 
 Usage: python3 scripts/test_docs.py [REPOSITORY_ROOT]     (scripts/test_users.sh runs it)
+       python3 scripts/test_docs.py --write-decks GAPBEAM [REPOSITORY_ROOT]
 
 Checks (one `PASS  docs: ...` or `FAIL  docs: ...` line each):
-  * every deck variable -- every name of every `namelist /group/ ...` statement in the sources
-    (src/**/*.f90) -- is documented in docs/decks.md, in the section of its group (a heading that
-    names `&group`), written as `name` (in backquotes) in that section;
-  * no section of docs/decks.md documents a variable its group does not have (a stale name);
+  * every group of the deck table -- every `begin_group('name', ...)` of
+    src/core/gapbeam_deck_table*.f90, where each deck variable is declared once -- has a section
+    in docs/decks.md (a heading that names `&group`) holding its generated table (between the
+    lines `<!-- deck table &group: ... -->` and `<!-- end of deck table &group -->`), and no
+    section holds a table of a group the deck does not have. test/test_input.f90 checks that each
+    table is exactly what `gapbeam --help-deck --markdown` prints (the table's units, defaults,
+    ranges and meanings); `--write-decks GAPBEAM` rewrites the tables from that output;
   * the front door: README.md is at most 220 lines, shows ./scripts/run.sh and ./scripts/test.sh,
     and the command of .ci/run; every docs/*.md file README.md links to exists.
 The output datasets are checked against docs/outputs.md by python/tests/test_reader.py, on the
@@ -16,20 +20,55 @@ Exit status 1 if a check failed.
 """
 
 import re
+import subprocess
 import sys
 from pathlib import Path
 
 
-def namelists(src):
-    """{group: [variables]} of every namelist statement under src/ (continuation lines joined)."""
-    groups = {}
-    for f in sorted(src.rglob("*.f90")):
+TABLE_BEGIN = re.compile(r"^<!-- deck table &(\w+): .*-->$")
+TABLE_END = "<!-- end of deck table &{} -->"
+
+
+def table_groups(src):
+    """The groups of the deck table, in order: `begin_group('name'` in gapbeam_deck_table*.f90
+    (or `call walk_end(v, 'name'`, the walk shared by &root and &tip)."""
+    groups = []
+    for f in sorted((src / "core").glob("gapbeam_deck_table*.f90")):
         text = f.read_text(encoding="utf-8", errors="replace")
-        text = re.sub(r"&[ \t]*\n[ \t]*&?", " ", text)          # join continued lines
-        for m in re.finditer(r"^\s*namelist\s*/\s*(\w+)\s*/\s*([^\n!]*)", text, re.M | re.I):
-            names = [v.strip().lower() for v in m.group(2).split(",") if v.strip()]
-            groups.setdefault(m.group(1).lower(), []).extend(names)
+        for m in re.finditer(r"(?:begin_group|walk_end)\((?:v, )?'(\w+)'", text):
+            if m.group(1) not in groups:
+                groups.append(m.group(1))
     return groups
+
+
+def write_decks(exe, md_path):
+    """Replace every generated table of docs/decks.md by `exe --help-deck --markdown`'s."""
+    out = subprocess.run([exe, "--help-deck", "--markdown"], capture_output=True, text=True,
+                         check=True).stdout.splitlines()
+    tables, current = {}, None
+    for line in out:
+        m = TABLE_BEGIN.match(line)
+        if m:
+            current = m.group(1)
+            tables[current] = [line]
+        elif current:
+            tables[current].append(line)
+            if line == TABLE_END.format(current):
+                current = None
+    lines, result, skip = md_path.read_text(encoding="utf-8").splitlines(), [], None
+    for line in lines:
+        m = TABLE_BEGIN.match(line)
+        if m and m.group(1) in tables:
+            result.extend(tables[m.group(1)])
+            skip = m.group(1)
+            continue
+        if skip:
+            if line == TABLE_END.format(skip):
+                skip = None
+            continue
+        result.append(line)
+    md_path.write_text("\n".join(result) + "\n", encoding="utf-8")
+    return len(tables)
 
 
 def sections(md):
@@ -50,6 +89,12 @@ def sections(md):
 
 
 def main(argv):
+    if len(argv) > 2 and argv[1] == "--write-decks":
+        root = Path(argv[3]) if len(argv) > 3 else Path(__file__).resolve().parents[1]
+        n = write_decks(argv[2], root / "docs" / "decks.md")
+        print("test_docs.py: {} tables of docs/decks.md written from {} --help-deck "
+              "--markdown".format(n, argv[2]))
+        return 0
     root = Path(argv[1]) if len(argv) > 1 else Path(__file__).resolve().parents[1]
     n, failed = 0, 0
 
@@ -62,30 +107,28 @@ def main(argv):
             failed += 1
             print("FAIL  docs: {}{}".format(name, " ({})".format(why) if why else ""))
 
-    groups = namelists(root / "src")
-    check("the sources declare the deck's namelist groups ({} found)".format(len(groups)),
-          len(groups) >= 10, str(sorted(groups)))
+    groups = table_groups(root / "src")
+    check("the deck table declares the deck's groups ({} found)".format(len(groups)),
+          len(groups) >= 10, str(groups))
     decks = root / "docs" / "decks.md"
     md = decks.read_text(encoding="utf-8") if decks.exists() else ""
     check("docs/decks.md exists", bool(md))
     secs = sections(md)
-    for group in sorted(groups):
+    for group in groups:
         text = secs.get(group)
         if text is None:
             check("docs/decks.md has a section for &{}".format(group), False)
             continue
-        missing = [v for v in groups[group] if "`{}`".format(v) not in text]
-        check("docs/decks.md documents every variable of &{} ({})".format(
-            group, len(groups[group])), not missing, "missing: {}".format(", ".join(missing)))
-        # first column of the section's tables: the variables documented
-        documented = set()
-        for line in text.splitlines():
-            m = re.match(r"\|\s*((?:`\w+`(?:,\s*)?)+)\s*\|", line)
-            if m:
-                documented.update(re.findall(r"`(\w+)`", m.group(1)))
-        stale = sorted(documented - set(groups[group]))
-        check("docs/decks.md documents no variable &{} does not have".format(group), not stale,
-              "stale: {}".format(", ".join(stale)))
+        lines = text.splitlines()
+        begin = [l for l in lines if TABLE_BEGIN.match(l) and TABLE_BEGIN.match(l).group(1) == group]
+        check("docs/decks.md: the section of &{} holds its generated table".format(group),
+              len(begin) == 1 and TABLE_END.format(group) in lines,
+              "no table between '<!-- deck table &{0}: ...' and '{1}'".format(
+                  group, TABLE_END.format(group)))
+    stale = sorted(set(m.group(1) for m in map(TABLE_BEGIN.match, md.splitlines()) if m)
+                   - set(groups))
+    check("docs/decks.md holds no table of a group the deck does not have", not stale,
+          "stale: {}".format(", ".join(stale)))
 
     readme = root / "README.md"
     text = readme.read_text(encoding="utf-8") if readme.exists() else ""

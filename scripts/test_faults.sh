@@ -19,13 +19,21 @@
 #                 gapbeam ignores SIGXFSZ) and, when run as root where `mount -t tmpfs` works, a
 #                 200 KB tmpfs (ENOSPC): transient, HDF5, sweep (checkpoint kept and used) and
 #                 merge; skipped with a NOTE line otherwise
-#   output sets   a file in the way of the last table: the previous .h5 untouched; /run/files
+#   output sets   a file in the way of the last table: the previous .h5 untouched; /run/files;
+#                 the same for a continuation, and a continuation on a full disk (ulimit -f);
+#                 an output prefix that names a directory refused
 #   locks         5 sweeps and 6 transients started together on one prefix (one runs, the others
 #                 exit 4, the files equal a single run's); a stale lock; another host's lock
 #   checkpoints   a sweep stopped by --time-limit, its checkpoint corrupted (bit flip, NaN,
-#                 duplicate, conflicting valid record, torn tail, old format, damaged header),
-#                 then resumed: reported and recomputed (results equal an uninterrupted run) or
-#                 refused
+#                 duplicate, conflicting valid record, torn tail, old formats, damaged header,
+#                 a middle record's mark or length, another deck's records spliced in, a forged
+#                 'failed' record), then resumed: reported and recomputed (results equal an
+#                 uninterrupted run) or refused
+#   SIGTERM       a sweep stopped by SIGTERM: chunk finished, checkpoint kept, exit 3, resumed
+#   lock statuses exit 4 only for a lock held by another run; a lock file that cannot be
+#                 created or written, or whose name is too long, is exit 1 with the reason
+#   options       --shard, --time-limit, --progress values read whole; merge --quiet OUT
+#   shard costs   shards dealt by --shard-costs merge into the whole run's tables
 #   sweeps        a failed first point; scripts/slurm_sweep.sh into a missing directory
 #   merge         output equal to an input; an input given twice
 #   studies       a diverged work-precision run is failed, never "reached"
@@ -384,15 +392,25 @@ ckpt_tool() {
 import struct, sys, zlib
 path, mode = sys.argv[1], sys.argv[2]
 b = bytearray(open(path, 'rb').read())
-_, siglen = struct.unpack_from('<qq', b, 20)
-pos, recs = 36 + siglen, []
-while pos + 12 <= len(b):
-    m1, p, m = struct.unpack_from('<iii', b, pos)
-    end = pos + 12 + 8 * m + 12
-    if m1 != 1296253778 or end > len(b):
-        break
-    recs.append((pos, p, m, end))
-    pos = end
+deck_hash, siglen = struct.unpack_from('<qq', b, 20)
+head = 36 + siglen
+
+def records(b):
+    pos, recs = head, []
+    while pos + 12 <= len(b):
+        m1, p, m = struct.unpack_from('<iii', b, pos)
+        end = pos + 12 + 8 * m + 12
+        if m1 != 1296253778 or end > len(b):
+            break
+        recs.append((pos, p, m, end))
+        pos = end
+    return recs
+
+def seal(rec, m):                              # the checksum of a record: over the deck too
+    crc = zlib.crc32(bytes(rec[4:12 + 8 * m]), deck_hash)
+    struct.pack_into('<q', rec, 12 + 8 * m, crc)
+
+recs = records(b)
 if not recs:
     sys.exit('no records in ' + path)
 r0, p0, m0, e0 = recs[0]
@@ -408,14 +426,32 @@ elif mode == 'dup':                            # record 1 once more, at the end
 elif mode == 'conflict':                       # a well-formed record of point 1, other period
     rec = bytearray(b[r0:e0])
     struct.pack_into('<d', rec, 12 + 8, 7.0)
-    crc = zlib.crc32(bytes(rec[12:12 + 8 * m0]), zlib.crc32(bytes(rec[4:12])))
-    struct.pack_into('<q', rec, 12 + 8 * m0, crc)
+    seal(rec, m0)
     b += rec
+elif mode == 'failed':                         # record 1 forged as a failed run, checksum right
+    struct.pack_into('<d', b, x0, 1.0)
+    rec = bytearray(b[r0:e0])
+    seal(rec, m0)
+    b[r0:e0] = rec
+elif mode in ('midmark', 'midlen'):            # the begin mark or the length of record 2
+    r1 = recs[1][0]
+    if mode == 'midmark':
+        b[r1] ^= 0x01
+    else:
+        struct.pack_into('<i', b, r1 + 8, recs[1][2] + 3)
+elif mode == 'splice':                         # another deck's records after this header
+    other = bytearray(open(sys.argv[3], 'rb').read())
+    _, oslen = struct.unpack_from('<qq', other, 20)
+    b = b[:head] + other[36 + oslen:]
 elif mode == 'torn':                           # the last record cut in the middle
     r, _, _, e = recs[-1]
     b = b[:r + (e - r) // 2]
+elif mode == 'headcut':                        # killed while creating it: 30 header bytes
+    b = b[:30]
 elif mode == 'v1':
     b[0:20] = b'GAPBEAM-CHECKPOINT-1'
+elif mode == 'v4':
+    b[0:20] = b'GAPBEAM-CHECKPOINT-4'
 elif mode == 'header':                         # a byte of the deck text in the header
     b[36 + siglen // 2] ^= 0x01
 else:
@@ -453,10 +489,11 @@ report 'a run failing after it took the lock: exit 1, no lock file or result lef
 # `ulimit -f` works for anyone: a write past the limit fails with EFBIG (gapbeam ignores
 # SIGXFSZ), like a write to a full disk. gfortran reports neither: the sizes on disk tell.
 new_case
-# 140 KB: the .h5 (about 120 KB, with its units, long names and /parameters) fits, the history
-# table (about 160 KB) does not
-(ulimit -f 140; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
-   "${transient_big[@]}"; printf '%s' "${status}" >"${dir}/status")
+# 250 KB: the .h5 (about 205 KB, with its units, long names, /parameters and /model) fits, the
+# history table of 128 samples a period (about 320 KB) does not
+(ulimit -f 250; run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" \
+   "${transient_big[@]}" '&output samples_per_period = 128 /'; \
+   printf '%s' "${status}" >"${dir}/status")
 status=$(<"${dir}/status"); rm -f "${dir}/status"
 why=()
 mapfile -t why < <(crash_reasons)
@@ -465,7 +502,7 @@ mapfile -t why < <(crash_reasons)
 grep -q '^error: .*is incomplete: [0-9]* of [0-9]* bytes stored' "${dir}/run.stderr" \
    || why+=('the error does not say the file is incomplete')
 [[ -z $(files_left) ]] || why+=("files left: $(files_left)")
-report 'ulimit -f 140: a transient whose tables do not fit fails, no file left' "${why[@]}"
+report 'ulimit -f 250: a transient whose tables do not fit fails, no file left' "${why[@]}"
 
 new_case
 run "${default_timeout}" "${inputs}/moon_shaw_10p5hz.nml" "$(out_override out)" "${transient_cheap[@]}"
@@ -580,6 +617,64 @@ done
 grep -aq 'run/files\|files' "${dir}/out.h5" || why+=('no /run/files')
 report 'the .h5 lists its sibling files (/run/files)' "${why[@]}"
 
+# ---- the continuation's files are one output set too ---------------------------------------------
+cont=${root}/test/decks/sdof_continuation.nml
+cont_cheap=('&continuation parameter_max = 3.6 /' '&output write_text = .true. /')
+cont_files=(out.h5 out.branches.dat out.bifurcations.dat out.multipliers.dat out.curves.dat)
+new_case
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}" \
+   '&output write_text = .false. /'
+(cd "${dir}" && md5sum out.h5 >before.md5)
+mkdir "${dir}/out.curves.dat"                    # in the way of the second run's last table
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}"
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+[[ $(grep -c '' "${dir}/run.stderr") -eq 1 ]] || why+=('stderr is not one line')
+(cd "${dir}" && md5sum -c --quiet before.md5 >/dev/null 2>&1) || why+=('out.h5 changed')
+left=$(files_left ! -name before.md5 ! -name out.h5)
+[[ -z ${left} ]] || why+=("other files: ${left}")
+report 'continuation: a later file of the set fails: nothing new under final names, no .part left (was: PREFIX.h5 and tables put in place, exit 1)' "${why[@]}"
+
+new_case
+run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}"
+why=()
+mapfile -t why < <(ok_reasons "${dir}/out")
+for f in "${cont_files[@]}"; do
+   [[ -f ${dir}/${f} ]] || why+=("no ${f}")
+   grep -aq "${f}" "${dir}/out.h5" || why+=("out.h5 does not list ${f}")
+done
+(cd "${dir}" && md5sum "${cont_files[@]}" >before.md5)
+(ulimit -f 40; run "${default_timeout}" "${cont}" "$(out_override out)" "${cont_cheap[@]}" \
+   '&continuation parameter_max = 6.0 /'; printf '%s' "${status}" >"${dir}/status")
+status=$(<"${dir}/status"); rm -f "${dir}/status"
+mapfile -t more < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("second run (ulimit -f 40): exit status ${status}, want 1")
+(cd "${dir}" && md5sum -c --quiet before.md5 >/dev/null 2>&1) || why+=('the previous set changed')
+left=$(files_left ! -name before.md5 ! -name 'out.*.dat' ! -name out.h5)
+[[ -z ${left} ]] || why+=("other files left: ${left}")
+report 'continuation: its .h5 lists its four tables (/run/files); a full disk (ulimit -f 40) leaves the previous set untouched, no .part' "${why[@]}" "${more[@]}"
+
+# ---- an output prefix that names a directory is refused -----------------------------------------
+for prefix in 'results/x/' '.' '..' '/'; do
+   new_case
+   run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "&job output='${prefix}' /"
+   expect_clean_error "&job output='${prefix}' names a directory: refused, nothing made (was: hidden files such as results/x/.h5)" \
+      job output 'names a directory'
+done
+new_case
+run "${default_timeout}" "${small}" --shard 1/2 "$(out_override s)"
+status=0
+(cd "${dir}" && timeout 60 "${exe}" merge "${dir}/m/" s.shard_1_of_2.h5 </dev/null \
+   >"${dir}/run.stdout" 2>"${dir}/run.stderr") || status=$?
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+grep -q "^error: gapbeam merge: .*names a directory" "${dir}/run.stderr" \
+   || why+=('no one-line error naming the directory')
+[[ ! -e ${dir}/m ]] || why+=('the directory m/ was made')
+report 'merge into an output that names a directory (m/): refused' "${why[@]}"
+
 # ---- item 3: one writer per output prefix -------------------------------------------------------
 # N runs started together (a barrier file), on one prefix: one runs, the others exit 4 at once
 # naming the holder; the files are those of a single run; no lock file is left.
@@ -657,14 +752,17 @@ report 'a lock file naming another host is refused (exit 4), not taken over' "${
 # ---- item 5: checkpoints: a record is trusted only with its checksum -----------------------------
 # a sweep stopped by its time limit after a chunk of 4 of its 8 points, its checkpoint corrupted,
 # then run again: the results must equal an uninterrupted run's
-checkpoint_case() {   # checkpoint_case MODE WANT_STATUS STDERR_PATTERN NAME
-   local mode=$1 want=$2 pattern=$3 name=$4
+checkpoint_case() {   # checkpoint_case MODE WANT_STATUS STDERR_PATTERN NAME [OTHER_OVERRIDE]
+   local mode=$1 want=$2 pattern=$3 name=$4 other=${5:-}
    new_case
    run 60 "${small}" "$(out_override ref)"
+   if [[ -n ${other} ]]; then       # another deck's checkpoint, for its records
+      run 60 "${small}" "$(out_override other)" '&sweep chunk=4 /' "${other}" --time-limit 0.000001
+   fi
    run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /' --time-limit 0.000001
    why=()
    [[ ${status} -eq 3 && -f ${dir}/out.checkpoint ]] || why+=("interrupted run: exit status ${status}, want 3 and a checkpoint")
-   ckpt_tool "${dir}/out.checkpoint" "${mode}" || why+=("ckpt_tool ${mode} failed")
+   ckpt_tool "${dir}/out.checkpoint" "${mode}" "${dir}/other.checkpoint" || why+=("ckpt_tool ${mode} failed")
    run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /'
    mapfile -t more < <(crash_reasons)
    why+=("${more[@]}")
@@ -675,6 +773,7 @@ checkpoint_case() {   # checkpoint_case MODE WANT_STATUS STDERR_PATTERN NAME
    if [[ ${want} -eq 0 ]]; then
       cmp -s "${dir}/ref.sweep.dat" "${dir}/out.sweep.dat" && cmp -s "${dir}/ref.bifurcation.dat" \
          "${dir}/out.bifurcation.dat" || why+=('the results differ from an uninterrupted run')
+      grep -q -- 'full disk' "${dir}/run.stderr" && why+=("'full disk' on stderr")
    else
       [[ -f ${dir}/out.checkpoint && ! -e ${dir}/out.h5 ]] || why+=('checkpoint removed, or out.h5 written')
    fi
@@ -685,8 +784,152 @@ checkpoint_case nan 0 'fails its checksum' 'a NaN written into a checkpoint reco
 checkpoint_case dup 0 '' 'a duplicated checkpoint record: harmless, results unchanged'
 checkpoint_case conflict 0 'two different records' 'two valid records of one point that differ: neither trusted'
 checkpoint_case torn 0 'not a whole record' 'a torn last record (killed while writing): dropped, recomputed'
+checkpoint_case headcut 0 'cut short in its header' \
+   'a checkpoint cut short in its header (killed while creating it): started afresh (was: refused)'
 checkpoint_case v1 1 'older gapbeam' 'a checkpoint of the old format (no checksums): refused'
+checkpoint_case v4 1 'do not cover the deck' 'a checkpoint of format 4 (checksums without the deck): refused'
 checkpoint_case header 1 'damaged header' 'a damaged deck text in the checkpoint header: refused'
+checkpoint_case midmark 0 'a damaged mark or length' \
+   "a middle record's damaged begin mark: skipped, the rest read, the point recomputed (was: 'a full disk?')"
+checkpoint_case midlen 0 'a damaged mark or length' \
+   "a middle record's damaged length: skipped, the rest read, the point recomputed (was: 'a full disk?')"
+checkpoint_case splice 0 'another deck or shard' \
+   "another deck's records spliced after this header: refused by their checksums (was: loaded)" \
+   '&sweep amplitude_pp = 2.5e-3, 4.5e-3 /'
+checkpoint_case failed 0 'records a failed run' \
+   "a forged 'failed' record with a right checksum: recomputed (was: never recomputed, exit 5)"
+
+# the records after a damaged middle record are read, not recomputed (3 of the 4 points come
+# from the checkpoint), and the file is rewritten clean: the run after reports nothing
+new_case
+run 60 "${small}" "$(out_override ref)"
+run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /' --time-limit 0.000001
+ckpt_tool "${dir}/out.checkpoint" midmark
+run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /' --time-limit 0.000001
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 3 ]] || why+=("second run: exit status ${status}, want 3")
+grep -q ' 3 already in the checkpoint' "${dir}/run.stdout" || why+=('not 3 points from the checkpoint')
+grep -q 'a damaged mark or length' "${dir}/run.stderr" || why+=('the damage was not reported')
+run 60 "${small}" "$(out_override out)" '&sweep chunk=4 /'
+[[ ${status} -eq 0 ]] || why+=("third run: exit status ${status}, want 0")
+grep -q ' 7 already in the checkpoint' "${dir}/run.stdout" || why+=('third run: not 7 points from the checkpoint')
+grep -q 'checkpoint' "${dir}/run.stderr" && why+=('third run: the checkpoint was reported again (not rewritten clean)')
+cmp -s "${dir}/ref.sweep.dat" "${dir}/out.sweep.dat" || why+=('the results differ from an uninterrupted run')
+report 'a damaged middle record: the records after it are used (3 of 4), the file rewritten clean, results unchanged' \
+   "${why[@]}"
+
+# ---- SIGTERM (a batch job's time limit, preemption, scancel) stops a sweep like its time limit --
+new_case
+slow=('&sweep chunk=1 /' '&solver steps_per_period=2048 /')
+run 60 "${small}" "$(out_override ref)" "${slow[@]}"
+status=0
+(cd "${dir}" && exec timeout --kill-after=5 60 "${exe}" "${small}" "$(out_override out)" "${slow[@]}" \
+   </dev/null >"${dir}/run.stdout" 2>"${dir}/run.stderr") &
+pid=$!
+for _ in $(seq 1 600); do      # until the first point is in the checkpoint (or the run ended)
+   size=$(stat -c %s "${dir}/out.checkpoint" 2>/dev/null || echo 0)
+   ((size > 2000)) && break
+   kill -0 "${pid}" 2>/dev/null || break
+   sleep 0.05
+done
+pkill -TERM -P "${pid}" 2>/dev/null || kill -TERM "${pid}" 2>/dev/null
+wait "${pid}" || status=$?
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 3 ]] || why+=("exit status ${status}, want 3")
+grep -q 'stopped by SIGTERM after' "${dir}/run.stdout" || why+=("no 'stopped by SIGTERM' line")
+[[ -f ${dir}/out.checkpoint && ! -e ${dir}/out.lock && ! -e ${dir}/out.h5 ]] \
+   || why+=('no checkpoint kept, or the lock or out.h5 left')
+run 60 "${small}" "$(out_override out)" "${slow[@]}"
+[[ ${status} -eq 0 ]] || why+=("resumed run: exit status ${status}, want 0")
+grep -q ' [1-8] already in the checkpoint' "${dir}/run.stdout" || why+=('the resumed run loaded no point')
+cmp -s "${dir}/ref.sweep.dat" "${dir}/out.sweep.dat" || why+=('the results differ from an uninterrupted run')
+report 'SIGTERM: the chunk finished, checkpoint kept, exit 3, lock released; resumed: same results (was: killed)' \
+   "${why[@]}"
+
+# ---- the lock: exit status 4 only when another run holds it --------------------------------------
+new_case
+mkdir "${dir}/out.lock"
+run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "$(out_override out)"
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1 (4 says another run holds the lock)")
+grep -q "cannot create the lock file .*: Is a directory (errno 21)" "${dir}/run.stderr" \
+   || why+=("the error does not give the system's reason in words")
+report 'a lock file that cannot be created: exit 1 with the reason in words (was: exit 4, bare errno)' \
+   "${why[@]}"
+
+new_case
+status=0      # the limit for gapbeam alone; its stderr through a pipe, which the limit spares
+(cd "${dir}" && ulimit -f 0 && exec timeout 20 "${exe}" "${inputs}/moon_shaw_modes.nml" \
+   "$(out_override out)" </dev/null 2>&1 >/dev/null) | cat >"${dir}/run.stderr"
+status=${PIPESTATUS[0]}
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+grep -q "cannot write the lock file .*: File too large (errno 27)" "${dir}/run.stderr" \
+   || why+=("the error does not give the system's reason in words")
+[[ ! -e ${dir}/out.h5 ]] || why+=('out.h5 written')
+report 'a lock file that cannot be written (ulimit -f 0, as a full disk): exit 1, reason in words (was: exit 4)' \
+   "${why[@]}"
+
+new_case
+long=$(printf 'x%.0s' $(seq 1 252))
+run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "&job output='${long}' /"   # in ${dir}
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+grep -q "File name too long" "${dir}/run.stderr" || why+=("no 'File name too long'")
+report 'an output name too long for the file system: exit 1 at the start, reason in words (was: exit 4)' \
+   "${why[@]}"
+
+# ---- options are parsed strictly; merge takes its options anywhere --------------------------------
+for opt in '--shard 1//4' '--shard 1/4/2' '--shard 1/4x' '--time-limit 5 junk' '--time-limit=5junk' \
+           '--progress 1e999'; do
+   new_case
+   run "${default_timeout}" "${small}" "$(out_override out)" "${opt%% *}" "${opt#* }"
+   [[ ${opt} == *=* ]] && run "${default_timeout}" "${small}" "$(out_override out)" "${opt}"
+   why=()
+   mapfile -t why < <(crash_reasons)
+   [[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
+   grep -q "^error: .*'${opt#*[ =]}'" "${dir}/run.stderr" || why+=('the error does not quote the value')
+   [[ -z $(files_left) ]] || why+=("files left: $(files_left)")
+   report "option ${opt}: refused, the whole value must be read (was: taken in part)" "${why[@]}"
+done
+new_case
+for i in 1 2; do run 60 "${small}" --shard "${i}/2" "$(out_override s)"; done
+status=0
+(cd "${dir}" && timeout 60 "${exe}" merge --quiet m.h5 s.shard_1_of_2.h5 s.shard_2_of_2.h5 \
+   </dev/null >"${dir}/run.stdout" 2>"${dir}/run.stderr") || status=$?
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 0 ]] || why+=("exit status ${status}, want 0")
+[[ -f ${dir}/m.h5 && ! -e ${dir}/--quiet.h5 ]] || why+=('no m.h5, or --quiet.h5 written')
+report 'merge --quiet OUT ...: --quiet is an option, OUT the output (was: --quiet taken as OUT)' "${why[@]}"
+
+# ---- shards dealt by cost (--shard-costs): same merged result, another deal -----------------------
+new_case
+run 60 "${small}" "$(out_override ref)"
+for i in 1 2 3; do
+   run 60 "${small}" --shard "${i}/3" --shard-costs "${dir}/ref.h5" "$(out_override s)"
+   [[ ${status} -eq 0 ]] || break
+done
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 0 ]] || why+=("a shard: exit status ${status}, want 0")
+grep -q '^shards: dealt by the costs in ' "${dir}/run.stdout" || why+=("no 'shards: dealt by' line")
+status=0
+(cd "${dir}" && timeout 60 "${exe}" merge m.h5 s.shard_1_of_3.h5 s.shard_2_of_3.h5 s.shard_3_of_3.h5 \
+   </dev/null >"${dir}/merge.stdout" 2>"${dir}/run.stderr") || status=$?
+[[ ${status} -eq 0 ]] || why+=("merge: exit status ${status}, want 0")
+cmp -s "${dir}/ref.sweep.dat" "${dir}/m.sweep.dat" && cmp -s "${dir}/ref.bifurcation.dat" \
+   "${dir}/m.bifurcation.dat" || why+=('the merged tables differ from the whole run')
+run 60 "${small}" --shard 1/3 --shard-costs "${dir}/s.shard_1_of_3.h5" "$(out_override t)"
+[[ ${status} -eq 1 ]] && grep -q 'give the whole or merged file' "${dir}/run.stderr" \
+   || why+=("a shard file as the costs: exit status ${status}, want 1 and an error")
+report '--shard-costs: shards dealt by cost merge into the whole run (tables byte for byte); a shard file refused' \
+   "${why[@]}"
 
 # ---- item 2: a failed first sweep point ----------------------------------------------------------
 new_case

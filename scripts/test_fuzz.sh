@@ -6,8 +6,8 @@
 #   (meant to be called by scripts/test.sh with the debug-built executable, like test_cli.sh)
 #
 # Runs `python3 scripts/fuzz_decks.py GAPBEAM_EXE` with its defaults (seed 20240611, 24 decks per
-# mutation class plus the 18 unmutated cheap decks, 2 workers, 5 s per deck, 60 s for the whole
-# run) and any extra options given. It prints one `PASS  fuzz: ...` or `FAIL  fuzz: ...` line per
+# mutation class (20 classes) plus the unmutated cheap decks of inputs/, 2 workers, 5 s per deck,
+# 60 s for the whole run) and any extra options given. It prints one `PASS  fuzz: ...` or `FAIL  fuzz: ...` line per
 # mutation class and one for the run time, then tables of counts; see the header of
 # scripts/fuzz_decks.py for the mutation classes and how each run is classified.
 #

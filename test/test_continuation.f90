@@ -18,7 +18,7 @@ program test_continuation
    use gapbeam_state, only: state_t
    use gapbeam_transition, only: reduce_state
    use gapbeam_continuation_output, only: write_continuation
-   use gapbeam_hdf5_output, only: h5_reader_t
+   use gapbeam_hdf5_input, only: h5_reader_t
    use gapbeam_files, only: remove_file, file_exists
    implicit none
    character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'

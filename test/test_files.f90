@@ -4,6 +4,7 @@ program test_files
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_files, only: rename_file, remove_file, make_parent_directory, file_exists, &
+      output_prefix_problem, directory_exists, &
       write_table, write_text_file
    use gapbeam_testing, only: check, check_close, finish
    implicit none
@@ -22,11 +23,30 @@ program test_files
    call test_zero_rows()
    call test_text_round_trip()
    call test_errors()
+   call test_output_prefixes()
    call clean_up()
    call check('temporary files and directories removed', .not. file_exists(tmp_dir))
    call finish('test_files')
 
 contains
+
+   !> An output prefix names the files' stem: one that names a directory is refused, with
+   !> the hidden file it would give and a stem to use instead.
+   subroutine test_output_prefixes()
+      character(len=:), allocatable :: why
+      call check('output prefix: a stem in a directory is fine', &
+         output_prefix_problem('results/sweep/run') == '' .and. &
+         output_prefix_problem('run') == '' .and. output_prefix_problem('./run') == '' .and. &
+         output_prefix_problem('../a.b') == '')
+      why = output_prefix_problem('results/x/')
+      call check('output prefix results/x/: refused, naming the hidden file and a stem', &
+         index(why, "'results/x/' names a directory") > 0 .and. &
+         index(why, "'results/x/.h5'") > 0 .and. index(why, "'results/x/run'") > 0, why)
+      call check('output prefix . and .. and / and an empty one: refused', &
+         output_prefix_problem('.') /= '' .and. output_prefix_problem('..') /= '' .and. &
+         output_prefix_problem('a/..') /= '' .and. output_prefix_problem('/') /= '' .and. &
+         output_prefix_problem('   ') /= '')
+   end subroutine test_output_prefixes
 
    !> make_parent_directory creates nested directories; a second call is fine.
    subroutine test_directories()
@@ -72,7 +92,7 @@ contains
          [character(len=6) :: 't', 'w_tip', 'f_stop'], [character(len=1) :: 's', 'm', 'N'], &
          columns, err)
       call check('write_table succeeds', .not. allocated(err), message(err))
-      call check('write_table leaves no .part file', file_exists(table_name) &
+      call check('write_table writes its file, no other', file_exists(table_name) &
          .and. .not. file_exists(table_name // '.part'))
 
       allocate(character(len=1024) :: header(0))
@@ -199,12 +219,11 @@ contains
          contains_text(err, 'gapbeam_files:write_text_file: ') &
          .and. contains_text(err, no_dir), message(err))
 
-      call write_table(nested_dir, 'onto a directory', ['x'], ['m'], &   ! rename: EISDIR
+      call write_table(nested_dir, 'onto a directory', ['x'], ['m'], &   ! open: EISDIR
          reshape([1.0_dp], [1, 1]), err)
-      call check('write_table onto a directory: rename error, no .part left', &
-         contains_text(err, 'gapbeam_files:write_table: cannot rename') &
-         .and. contains_text(err, nested_dir // '.part') &
-         .and. .not. file_exists(nested_dir // '.part'), message(err))
+      call check('write_table onto a directory: error naming it, the directory kept', &
+         contains_text(err, 'gapbeam_files:write_table: cannot create') &
+         .and. contains_text(err, nested_dir) .and. directory_exists(nested_dir), message(err))
    end subroutine test_errors
 
    !> Delete everything the test creates (directories last, deepest first).

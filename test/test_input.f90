@@ -38,6 +38,11 @@ program test_input
    call quotes_and_comments()
    call bad_decks()
    call bad_overrides()
+   call docs_tables()
+   call strict_text()
+   call extreme_values()
+   call long_initial_list()
+   call design_variables()
    call remove(tmp)
    call check('temporary deck removed', .not. exists(tmp))
    call finish('test_input')
@@ -412,7 +417,7 @@ contains
          [character(len=60) :: '&forcing', 'frequency_hz = 0', 'must be > 0'])
       call expect_error('negative stop gap', base &
          // '&stops node = 5, gap = -0.5, stiffness = 100.0 /', &
-         [character(len=60) :: '&stops', 'gap(1) = -0.5', 'must be >= 0'])
+         [character(len=60) :: '&stops', 'gap(1) = -0.5', 'must be >= 0 and <= 1.3407808E+154'])
       call expect_error('zero stop stiffness without the rule', base // '&stops node = 5 /', &
          [character(len=60) :: '&stops', 'stiffness(1) = 0', 'must be > 0'])
       call expect_error('stop stiffness rule without a target', base &
@@ -504,9 +509,13 @@ contains
          // '&forcing frequency_hz = 5.0 /' // nl // '&sweep n_frequency = 100000000, ' &
          // 'frequency_start_hz = 1.0, frequency_end_hz = 2.0 /', &
          [character(len=60) :: '&sweep', 'n_frequency = 100000000', 'must be in 0..1000000'])
-      call expect_error('transient_periods + record_periods overflow', base &
+      call expect_error('transient_periods = 2^31 - 1 (no wrap of the period counts)', base &
          // '&solver transient_periods = 2147483647, record_periods = 2147483647 /', &
-         [character(len=60) :: '&solver', 'record_periods'])
+         [character(len=60) :: '&solver', 'transient_periods = 2147483647', &
+         'must be in 0..100000000'])
+      call expect_error('the periods a run may integrate, counted in 64 bits', base &
+         // '&solver transient_periods = 100000000, record_periods = 100000000 /', &
+         [character(len=60) :: '&solver', 'a run may integrate up to', 'at most 2000000000'])
       call expect_error('thickness = 1e308 (EI overflows)', job // replace(beam, &
          'thickness = 5.0e-4', 'thickness = 1.0e308'), [character(len=60) :: '&beam', &
          'thickness', 'EI = Infinity'])
@@ -626,6 +635,207 @@ contains
          [character(len=60) :: 'override 1', 'group &forcing appears more than once'], &
          [character(len=80) :: '&forcing frequency_hz = 3.0 / &forcing amplitude_pp = 0.1 /'])
    end subroutine bad_overrides
+
+   !> The reader refuses text it does not consume (each case ran silently before: a group with
+   !> a stray character after its name was dropped whole, a lone sign kept the old value, a
+   !> second assignment or the text after a '/' was ignored).
+   subroutine strict_text()
+      character(len=*), parameter :: forcing = '&forcing frequency_hz=9.8 /'
+      character(len=10) :: bad(9)
+      integer :: k
+      ! characters around group names (override and deck file)
+      call expect_error("override '&forcing. frequency_hz=9.8 /'", base, [character(len=60) :: &
+         "override 1", "'&forcing.", 'must be followed by a blank'], &
+         [character(len=80) :: '&forcing. frequency_hz=9.8 /'])
+      bad = [character(len=10) :: '&forcing.', '&forcing-', '&forcing:', '&forcing=', &
+         '&-forcing', '&.forcing', '&=forcing', '&!forcing', '& forcing']
+      do k = 1, size(bad)
+         call expect_error("deck with '" // trim(bad(k)) // " frequency_hz=9.8 /'", base &
+            // trim(bad(k)) // ' frequency_hz=9.8 /', [character(len=60) :: 'line 3', &
+            '&forcing', trim(bad(k))])
+      end do
+      call expect_error("'&damping.' in a deck", base // "&damping. model = 'rayleigh', " &
+         // 'mass_coefficient = 1.0 /', [character(len=60) :: 'line 3', "'&damping."])
+      call expect_error("'&job.' in a deck", "&job. analysis = 'transient' /" // nl // beam, &
+         [character(len=60) :: 'line 1', "'&job."])
+      call expect_error("override '&sweep: n_frequency=2 /'", base, [character(len=60) :: &
+         "'&sweep:"], [character(len=80) :: '&sweep: n_frequency=2 /'])
+      call expect_error("'&-tops' in a deck", base // '&-tops node = 5, stiffness = 1.0 /', &
+         [character(len=60) :: "'&-tops", '(&tops?)'])
+      ! text outside groups, a second '/', a repeated assignment
+      call expect_error("text after a closing '/'", base // forcing // ' junk', &
+         [character(len=60) :: 'line 3', "text after the '/' that closes group &forcing", &
+         "'junk'"])
+      call expect_error('stray text between groups', job // 'stray text' // nl // beam, &
+         [character(len=60) :: 'line 2', 'text outside a group (after group &job)'])
+      call expect_error("a second '/' in a group", base // '&forcing frequency_hz=9.8 / ' &
+         // 'amplitude_pp=1.0e-3 /', [character(len=60) :: &
+         "text after the '/' that closes group &forcing", 'amplitude_pp=1.0e-3'])
+      call expect_error('the same variable twice in a group', base // '&forcing ' &
+         // 'frequency_hz=9.8, frequency_hz=10.2 /', [character(len=60) :: &
+         'frequency_hz is assigned twice', 'frequency_hz=9.8', 'frequency_hz=10.2'])
+      call expect_error('the same list entry twice in a group', base // '&stops node = 5, 3, ' &
+         // 'node(2) = 4, stiffness = 1.0, 1.0 /', [character(len=60) :: &
+         'node is assigned twice'])
+      call expect_ok('entries of one list in two assignments of a group', base // '&stops ' &
+         // 'node = 5, node(2) = 3, stiffness = 1.0, 1.0 /')
+      ! a missing '/' is reported as such, naming both groups and the line
+      call expect_error("a missing '/' in the middle of a deck", job // replace(beam, ' /', &
+         '') // '&forcing frequency_hz = 5.0 /', [character(len=60) :: &
+         "group &beam is not closed: no '/' before &forcing at line 3"])
+      ! lone signs
+      call expect_error("'frequency_hz=+'", base, [character(len=60) :: '&forcing', &
+         'frequency_hz = +', 'not a number'], [character(len=80) :: '&forcing frequency_hz=+ /'])
+      call expect_error("'record_periods=-'", base, [character(len=60) :: '&solver', &
+         'record_periods = -', 'not a number'], &
+         [character(len=80) :: '&solver record_periods=- /'])
+      call expect_error("'max_points=-'", base, [character(len=60) :: '&continuation', &
+         'max_points = -'], [character(len=80) :: '&continuation max_points=- /'])
+   end subroutine strict_text
+
+   !> Numbers that overflow, counts beyond 32 bits, derived quantities out of range.
+   subroutine extreme_values()
+      call expect_error('frequency_hz = 1e309 (overflows)', base // '&forcing frequency_hz ' &
+         // '= 1e309 /', [character(len=60) :: '&forcing', 'frequency_hz = 1e309', &
+         'the number overflows'])
+      call expect_error('frequency_hz = 1e308', base // '&forcing frequency_hz = 1e308 /', &
+         [character(len=60) :: '&forcing', 'frequency_hz = 1E+308', 'must be > 0 and <= 1E+009'])
+      call expect_error('transient_periods = 2^31 (beyond 32 bits)', base // '&solver ' &
+         // 'transient_periods = 2147483648 /', [character(len=60) :: '&solver', &
+         'transient_periods = 2147483648', 'the integer overflows'])
+      call expect_error('amplitude_pp = 1e-300 (its response would underflow)', base &
+         // '&forcing amplitude_pp = 1e-300 /', [character(len=60) :: '&forcing', &
+         'amplitude_pp = 1E-300', 'must be 0 or in [1E-030'])
+      call expect_ok('amplitude_pp = 1e-30 (the smallest non-zero amplitude)', base &
+         // '&forcing amplitude_pp = 1e-30 /')
+      call expect_error('amplitude_pp = 1e200 at 10 Hz (the base acceleration overflows)', base &
+         // '&forcing frequency_hz = 10.0, amplitude_pp = 1e200 /', [character(len=60) :: &
+         '&forcing', 'amplitude_pp = 1E+200', 'the base acceleration'])
+      call expect_error('&initial displacement = 1e300', base // "&initial kind = 'given', " &
+         // "node = 5, dof = 'w', displacement = 1e300 /", [character(len=60) :: '&initial', &
+         'displacement(1) = 1E+300'])
+      call expect_error('&initial: a (node, dof) given twice', base // "&initial kind = " &
+         // "'given', node = 5, 5, dof = 'w', 'w', displacement = 1e-3, 2e-3 /", &
+         [character(len=60) :: '&initial', 'node(2) = 5', 'also entry 1'])
+      call expect_error('a repeat count beyond the list', base // '&sweep frequency_hz = ' &
+         // '5000*10.0 /', [character(len=60) :: '&sweep', 'frequency_hz has 5000 entries', &
+         'at most 4096'])
+   end subroutine extreme_values
+
+   !> &initial takes as many entries as the model has dofs: a rigid rotation about the root
+   !> of a 40-element beam, every node's w and theta velocity (80 entries).
+   subroutine long_initial_list()
+      type(deck_t) :: deck
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: text, nodes, dofs, vel
+      integer :: i
+      nodes = '';  dofs = '';  vel = ''
+      do i = 2, 41
+         nodes = nodes // str(i) // ', ' // str(i) // ', '
+         dofs = dofs // "'w', 'theta', "
+         vel = vel // str(0.005_dp * (i - 1)) // ', 1.0, '
+      end do
+      text = job // replace(beam, 'n_elem = 4', 'n_elem = 40') // "&root condition = " &
+         // "'spring', k_theta = 1.0 /" // nl // "&initial kind = 'given'," // nl // 'node = ' &
+         // nodes // nl // 'dof = ' // dofs // nl // 'velocity = ' // vel // ' /' // nl
+      call write_deck(tmp, text)
+      call read_deck(tmp, no_overrides, deck, err)
+      call remove(tmp)
+      call check('&initial with 80 entries (every dof of a 40-element beam) is read', &
+         .not. allocated(err), message(err))
+      if (allocated(err)) return
+      call check('... 80 entries, the last the tip rotation at 1 rad/s', &
+         size(deck%initial%node) == 80 .and. deck%initial%node(80) == 41 .and. &
+         deck%initial%dof(80) == dof_theta .and. near(deck%initial%velocity(80), 1.0_dp))
+      call check_close('... the tip velocity omega L = 0.2 m/s', deck%initial%velocity(79), &
+         0.2_dp, rtol=1.0e-12_dp)
+   end subroutine long_initial_list
+
+   !> Design variables by name, through the deck table: unit, range, the refusals of
+   !> check_deck_variable, the Rayleigh coefficients that ratios give.
+   subroutine design_variables()
+      use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, &
+         check_deck_variable, get_deck_value, set_deck_value, deck_variable_words
+      type(deck_t) :: deck
+      type(error_t), allocatable :: err
+      type(deck_variable_t) :: var
+      real(dp) :: beta, gamma
+      call read_deck(full, no_overrides, deck, err)
+      if (allocated(err)) return
+      call parse_deck_variable('&stops gap(2)', var, err)
+      call check("'&stops gap(2)': group, name, entry 2, unit m", .not. allocated(err) .and. &
+         var%group == 'stops' .and. var%name == 'gap' .and. var%index == 2 .and. &
+         var%units == 'm', message(err))
+      call check_close('... its value in input_full.nml', get_deck_value(deck, var), &
+         deck%stops(2)%gap, rtol=0.0_dp)
+      call set_deck_value(deck, var, 3.0e-3_dp, err)
+      call check('... set to 3 mm', .not. allocated(err) .and. deck%stops(2)%gap == 3.0e-3_dp)
+      call set_deck_value(deck, var, -1.0_dp, err)
+      call check('... set to -1: refused, the deck unchanged', allocated(err) .and. &
+         deck%stops(2)%gap == 3.0e-3_dp)
+      if (allocated(err)) call check('... the message: the label, the value, the range', &
+         index(err%message, '&stops gap(2) = -1: must be >= 0') > 0, err%message)
+      call parse_deck_variable('&forcing frequency_hz', var, err)
+      call set_deck_value(deck, var, 2.0e9_dp, err)
+      call check('&forcing frequency_hz = 2e9: refused (at most 1e9)', allocated(err))
+      call parse_deck_variable('&stops side(1)', var, err)
+      call check('&stops side: not a numeric variable', allocated(err))
+      call parse_deck_variable('&forcing frequency_hz(2)', var, err)
+      call check('&forcing frequency_hz(2): no entry index on a scalar group', allocated(err))
+      call check('deck_variable_words names &beam length ... &forcing ... amplitude_pp', &
+         index(deck_variable_words(), '&beam length, youngs_modulus') == 1 .and. &
+         index(deck_variable_words(), '&forcing frequency_hz, amplitude_pp') > 0, &
+         deck_variable_words())
+      ! a ratio of model 'ratios': the coefficients follow
+      call write_deck(tmp, base // "&damping model = 'ratios', frequency1_hz = 1.0, " &
+         // 'ratio1 = 0.01, frequency2_hz = 10.0, ratio2 = 0.02 /')
+      call read_deck(tmp, no_overrides, deck, err)
+      call remove(tmp)
+      if (allocated(err)) return
+      call parse_deck_variable('&damping ratio2', var, err)
+      call check_deck_variable(deck, var, err)
+      call set_deck_value(deck, var, 0.05_dp, err)
+      call rayleigh_from_ratios(1.0_dp, 0.01_dp, 10.0_dp, 0.05_dp, beta, gamma)
+      call check('&damping ratio2 = 0.05: the Rayleigh coefficients recomputed', &
+         .not. allocated(err) .and. deck%damping%ratio2 == 0.05_dp .and. &
+         deck%damping%mass_coefficient == beta .and. deck%damping%stiffness_coefficient == gamma)
+      call parse_deck_variable('&damping mass_coefficient', var, err)
+      call check_deck_variable(deck, var, err)
+      call check("&damping mass_coefficient with model 'ratios': refused", allocated(err))
+      call parse_deck_variable('&beam area', var, err)
+      call check_deck_variable(deck, var, err)
+      call check('&beam area of a rectangular section: refused', allocated(err))
+   end subroutine design_variables
+
+   !> docs/decks.md holds, for every group of the deck table, exactly the table that
+   !> `gapbeam --help-deck --markdown` prints (renew them with scripts/test_docs.py
+   !> --write-decks GAPBEAM).
+   subroutine docs_tables()
+      use gapbeam_deck_help, only: deck_help, deck_table_begin, deck_table_end
+      use gapbeam_deck_check, only: deck_names_t, deck_names
+      character(len=:), allocatable :: doc, tables, block, group
+      type(deck_names_t) :: names
+      type(error_t), allocatable :: err
+      integer :: g, a, b
+      call deck_help('&stops', .false., tables, err)
+      call check("--help-deck '&stops': gap's default, unit, range", .not. allocated(err) &
+         .and. index(tables, 'gap = 0 [m];  >= 0') > 0 .and. index(tables, '&damping:') == 0)
+      call deck_help('stop', .false., tables, err)
+      call check("--help-deck stop: an unknown group", allocated(err))
+      doc = file_text('docs/decks.md')
+      call deck_help('', .true., tables, err)
+      call check('--help-deck --markdown works', .not. allocated(err))
+      if (allocated(err)) return
+      names = deck_names()
+      do g = 1, size(names%names)
+         group = trim(names%names(g))
+         a = index(tables, deck_table_begin(group))
+         b = index(tables, deck_table_end(group)) + len(deck_table_end(group)) - 1
+         block = tables(a:b)
+         call check('docs/decks.md holds the generated table of &' // group, a > 0 .and. &
+            index(doc, block) > 0, 'run: python3 scripts/test_docs.py --write-decks GAPBEAM')
+      end do
+   end subroutine docs_tables
 
    ! ---------------------------------------------------------------- helpers
 

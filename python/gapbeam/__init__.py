@@ -14,9 +14,12 @@ attributes (``res.attrs``). :func:`sweep_table` and :func:`table` give columns t
 ``pandas.DataFrame`` accepts; :func:`poincare` gives the Poincaré set of a transient run or of
 sweep points; :func:`attractors` every start of every point and the attractor it reached;
 :func:`parameters` the resolved model values of ``/parameters``; :func:`motion` the deflected
-beam at every history sample (``&output state_history``). Needs numpy and h5py only.
+beam at every history sample (``&output state_history``); :data:`CATALOGUE` every dataset
+gapbeam writes (path, units, axes, meaning, the analyses that write it), as the program's
+``gapbeam --help-outputs tsv`` gives it. Needs numpy and h5py only.
 """
 
+from ._catalogue import DATASETS as CATALOGUE
 from ._reader import ANALYSES, Group, Quantity, Result, deck_value, load
 from ._tables import PoincareSet, Table, attractors, poincare, sweep_table, table
 from ._model import Motion, motion, parameters
@@ -25,6 +28,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ANALYSES",
+    "CATALOGUE",
     "Group",
     "Motion",
     "PoincareSet",

@@ -24,6 +24,7 @@ ANALYSES = (
     "work_precision",
     "stability",
     "model_size",
+    "continuation",
 )
 
 # Top-level groups that name the analysis that wrote a file, most specific first: a transient
@@ -34,6 +35,7 @@ _ANALYSIS_GROUPS = (
     ("work_precision", "work_precision"),
     ("stability", "stability"),
     ("model_size", "model_size"),
+    ("continuation", "continuation"),
     ("calibrate", "calibrate"),
     ("poincare", "transient"),
     ("history", "transient"),

@@ -7,41 +7,24 @@ arrays, which ``pandas.DataFrame(table)`` takes as it is.
 
 import numpy as np
 
+from ._catalogue import DATASETS
 from ._reader import Group, Quantity, Result
 
 __all__ = ["Table", "PoincareSet", "table", "sweep_table", "poincare", "attractors"]
 
-# Order of the per-point columns of a sweep table; 1-D datasets of /sweep that are not listed
-# here (added by later versions) follow them in the file's order.
-_SWEEP_COLUMNS = (
-    "point_index",
-    "frequency_hz",
-    "amplitude_pp",
-    "period",
-    "label",
-    "label_text",
-    "lyapunov",
-    "lyapunov_error",
-    "status",
-    "steps",
-    "seconds",
-)
-# Order of the per-stop statistics (datasets of /sweep/impacts); others follow in file order.
-_IMPACT_COLUMNS = (
-    "count",
-    "peak_force",
-    "rms_force",
-    "contact_fraction",
-    "impulse_per_period",
-    "work_rate",
-)
-# Order of the per-stop wear outputs (datasets of /sweep/wear, two-plane supports and friction).
-_WEAR_COLUMNS = (
-    "normal_work_rate",
-    "sliding_distance",
-    "friction_work_rate",
-    "wear_volume_rate",
-)
+
+def _names(prefix, dims):
+    """Names of the catalogue's datasets directly under `prefix` with axes `dims`, in order."""
+    return tuple(path[len(prefix):] for _, _, path, _, d, _ in DATASETS
+                 if path.startswith(prefix) and "/" not in path[len(prefix):] and d == dims)
+
+
+# The field lists, from the output catalogue (gapbeam --help-outputs): the per-point columns
+# of a sweep table, in the catalogue's order (1-D datasets of /sweep added later follow them in
+# the file's order), and the per-stop statistics of /sweep/impacts and /sweep/wear.
+_SWEEP_COLUMNS = _names("/sweep/", "m")
+_IMPACT_COLUMNS = _names("/sweep/impacts/", "point=m stop=n_stops")
+_WEAR_COLUMNS = _names("/sweep/wear/", "point=m stop=n_stops")
 
 
 class Table(dict):

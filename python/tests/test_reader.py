@@ -10,10 +10,13 @@ Usage:
 
 Runs GAPBEAM_EXE on small decks (the decks of inputs/ with short command-line overrides: a few
 forcing periods, a few sweep points, a second stop) in a temporary directory: modes, calibrate,
-transient, sweep (independent, continuation, two shards and their merge), work_precision,
-stability, model_size and the tube deck (two planes, ring supports: /wear, /orbit, /energy).
-Each output file is read with `gapbeam.load` and independently with raw h5py, and compared: the same datasets, equal values (dtype and shape too), the `units` and every
-other attribute, the deck text, path and attribute access. The sweep files also check
+transient (also one whose record the settling test extended: its times on the clock of the
+whole trajectory), sweep (independent, continuation, two shards and their merge),
+work_precision, stability, model_size, continuation (its parameters, its per-point table, its
+output set) and the tube deck (two planes, ring supports: /wear, /orbit, /energy). Each output
+file is read with `gapbeam.load` and independently with raw h5py, and compared: the same
+datasets, equal values (dtype and shape too), the `units` and every other attribute, the deck
+text, path and attribute access. The sweep files also check
 `gapbeam.sweep_table` (equal-length columns, the values of the datasets they come from, per-stop
 columns) and `gapbeam.poincare` (shapes and values per point); the transient file `poincare`.
 A synthetic file with the layout additions to come (root attributes version/commit/date, a
@@ -25,8 +28,11 @@ Every file is also checked for what makes it self-describing (check_conventions)
 attribute parses with the small UDUNITS-2 grammar of python/tests/udunits.py (but the mass-
 normalised modal units listed in NOT_UDUNITS, which UDUNITS-2 cannot write), every dataset has
 a `long_name`, every 2-D dataset names its axes, the root attributes (version as in fpm.toml,
-deck_crc32 = zlib.crc32 of /deck, an ISO 8601 creation time), attributes read as str, a
-/parameters group. A transient with `&output state_history` checks `gapbeam.motion` (the shape
+deck_crc32 = zlib.crc32 of /deck, an ISO 8601 creation time), attributes read as str, the
+groups /parameters, /model and /run, and every dataset described by the output catalogue
+(python/gapbeam/_catalogue.py, generated from `gapbeam --help-outputs tsv`) with its units, long
+name and axes. scripts/output_catalogue.py --check: docs/outputs.md's tables and that module
+equal the program's catalogue. A transient with `&output state_history` checks `gapbeam.motion` (the shape
 through the nodes) and the .xdmf file: well-formed, every HDF5 item an existing dataset of that
 shape, hyperslabs in range, the times those of /history/time.
 
@@ -37,6 +43,7 @@ use OMP_NUM_THREADS=1 and OPENBLAS_NUM_THREADS=1; each is allowed GAPBEAM_PY_TIM
 """
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -108,6 +115,14 @@ CASES = {
     "transient_state": ("inputs/moon_shaw_9p8hz.nml",
                         [*SHORT, "&output history_periods = 2, samples_per_period = 16, "
                          "state_history = .true., shape_points = 4 /"], "transient", 1, []),
+    # a record extended by the settling test: 2 periods asked, 22 before the record
+    "transient_extended": ("inputs/moon_shaw_10p5hz.nml",
+                           ["&solver transient_periods = 2, record_periods = 20 /",
+                            "&diagnostics settle_tolerance = 1.0e-6, lyapunov_periods = 10 /",
+                            "&output history_periods = 2 /"], "transient", 1, []),
+    "continuation": ("test/decks/sdof_continuation.nml",
+                     ["&continuation parameter_max = 5.0 /", "&output write_text = .true. /"],
+                     "continuation", 1, []),
 }
 
 # Units that UDUNITS-2 cannot write (it has integer powers only): the mass-normalised modal
@@ -695,7 +710,6 @@ def check_conventions(c, name, path, analysis):
     """Self-describing files: units that UDUNITS-2 parses, long_name on every dataset, axis
     names on every 2-D dataset, root attributes (version as in fpm.toml, the deck's CRC-32, an
     ISO 8601 time), attributes that h5py reads as str, and the /parameters group."""
-    import re
     import zlib
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -727,6 +741,8 @@ def check_conventions(c, name, path, analysis):
         deck = f["/deck"][()]
         deck = deck.decode("utf-8") if isinstance(deck, bytes) else deck
         has_parameters = "parameters" in f and len(f["parameters"]) > 0
+        groups = [g for g in ("parameters", "model", "run") if g not in f or len(f[g]) == 0]
+        not_described = catalogue_differences(f, analysis)
     c.check("{}: every units attribute parses as UDUNITS-2 (but the documented "
             "mass-normalised ones)".format(name), not bad_units, "; ".join(bad_units[:5]))
     c.check("{}: every dataset has a long_name".format(name), not no_long, str(no_long[:8]))
@@ -750,6 +766,103 @@ def check_conventions(c, name, path, analysis):
                          str(root.get("creation_time"))) is not None,
             str(root.get("creation_time")))
     c.check("{}: /parameters holds the resolved model".format(name), has_parameters)
+    c.check("{}: /deck, /parameters, /model and /run are there".format(name), not groups,
+            "missing or empty: {}".format(groups))
+    c.check("{}: every dataset has the units, long_name and axes of the output catalogue "
+            "(python/gapbeam/_catalogue.py)".format(name), not not_described,
+            "; ".join(not_described[:5]))
+
+
+def catalogue_pattern(text):
+    """A regular expression for a catalogue path or long name: `<...>` any path component,
+    `{...}` any text."""
+    out = ""
+    for part in re.split(r"(<[^>]*>|\{[^}]*\})", text):
+        if part.startswith("<"):
+            out += "[^/]+"
+        elif part.startswith("{"):
+            out += ".*"
+        else:
+            out += re.escape(part)
+    return re.compile(out + r"\Z", re.S)
+
+
+def catalogue_differences(f, analysis):
+    """The datasets of an open file whose path, units, long_name or dimensions are not those
+    of the catalogue entry for their analysis (python/gapbeam/_catalogue.py)."""
+    from gapbeam._catalogue import DATASETS
+
+    entries = [(catalogue_pattern(p), u, d, catalogue_pattern(l))
+               for _, a, p, u, d, l in DATASETS if analysis in a]
+    bad = []
+
+    def visit(n, obj):
+        if not isinstance(obj, h5py.Dataset):
+            return
+        path = "/" + n
+        entry = next((e for e in entries if e[0].match(path)), None)
+        if entry is None:
+            bad.append(path + ": not in the catalogue")
+            return
+        _, units, dims, long_name = entry
+        attrs = obj.attrs
+        names = " ".join(w.split("=")[0] for w in dims.split()) if obj.ndim >= 2 else None
+        if not units.startswith("=") and attrs.get("units") != units:
+            bad.append("{}: units {!r}, catalogue {!r}".format(path, attrs.get("units"), units))
+        if not long_name.match(str(attrs.get("long_name"))):
+            bad.append("{}: long_name {!r}".format(path, attrs.get("long_name")))
+        if len(dims.split()) != obj.ndim or attrs.get("dimensions") != names:
+            bad.append("{}: rank {} dimensions {!r}, catalogue {!r}".format(
+                path, obj.ndim, attrs.get("dimensions"), dims))
+
+    f.visititems(visit)
+    return bad
+
+
+def check_time_origin(c, res):
+    """A record extended by the settling test: its times are those of the whole trajectory."""
+    period = 1.0 / 10.5
+    n = int(res["/diagnostics/transient_periods"].values)
+    t0 = float(res["/history/time"].values[0])
+    p0 = float(res["/poincare/time"].values[0])
+    t_end = float(res["/final/time"].values)
+    c.check("transient_extended: the record was extended ({} > 2 transient periods)".format(n),
+            n > 2)
+    c.check("transient_extended: /history/time, /poincare/time and /final/time start at "
+            "transient_periods T ({} periods) and end 20 periods later".format(n),
+            abs(t0 - n * period) < 1e-9 and abs(p0 - n * period) < 1e-9
+            and abs(t_end - (n + 20) * period) < 1e-9,
+            "history {:.6f} T, poincare {:.6f} T, end {:.6f} T".format(
+                t0 / period, p0 / period, t_end / period))
+
+
+def check_continuation(c, gapbeam, res, path):
+    """A continuation file: its parameters, its per-point table, its sibling tables."""
+    p = gapbeam.parameters(res)
+    c.check("continuation: parameters() gives the model (stop gap in m, the forcing)",
+            p.get("stops/gap") is not None and p["stops/gap"].units == "m"
+            and "forcing/frequency_hz" in p and "beam/length" in p, str(sorted(p)[:5]))
+    t = gapbeam.table(res.continuation)
+    n = len(res["/continuation/parameter"].values)
+    c.check("continuation: table(res.continuation) has one row per point ({}) with the "
+            "parameter, period, branch and stability".format(n),
+            t.n_rows == n and {"parameter", "period", "branch", "stable"} <= set(t)
+            and t.units["parameter"] == "Hz", repr(t))
+    files = [str(x) for x in np.atleast_1d(res["/run/files"].values)]
+    stem = Path(path).name[:-3]
+    c.check("continuation: /run/files lists the .h5 and its four tables, all there",
+            files == [stem + s for s in (".h5", ".branches.dat", ".bifurcations.dat",
+                                         ".multipliers.dat", ".curves.dat")]
+            and all((Path(path).parent / x).exists() for x in files), str(files))
+
+
+def check_catalogue_docs(c, exe):
+    """docs/outputs.md's tables and python/gapbeam/_catalogue.py equal the program's catalogue."""
+    p = subprocess.run([sys.executable, str(ROOT / "scripts" / "output_catalogue.py"), exe,
+                        "--check"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    c.check("docs/outputs.md and python/gapbeam/_catalogue.py come from `gapbeam "
+            "--help-outputs` (scripts/output_catalogue.py --check)", p.returncode == 0,
+            p.stdout.strip().replace("\n", "; "))
 
 
 def check_state(c, gapbeam, path):
@@ -821,6 +934,8 @@ def check_documented(c, files):
                     parts = ("/" + n).split("/")
                     if len(parts) > 3 and parts[1] == "work_precision":
                         parts[2] = "<series>"
+                    if len(parts) > 4 and parts[2] == "curves" and parts[3].startswith("curve_"):
+                        parts[3] = "curve_<NNN>"
                     paths.add("/".join(parts))
             f.visititems(visit)
     missing = sorted(p for p in paths if "`{}`".format(p) not in text)
@@ -852,6 +967,12 @@ def run_all(c, exe):
             if analysis == "tube":
                 check_tube(c, res, n_stops)
                 continue
+            if name == "transient_extended":
+                check_time_origin(c, res)
+                continue
+            if analysis == "continuation":
+                check_continuation(c, gapbeam, res, path)
+                continue
             if name == "transient_state":
                 check_state(c, gapbeam, path)
             if analysis == "sweep":
@@ -875,6 +996,7 @@ def run_all(c, exe):
                 c.check("work_precision: table(rk45) has one row per level (2)",
                         t.n_rows == 2 and t.units["seconds"] == "s", repr(t))
         check_documented(c, files)
+        check_catalogue_docs(c, exe)
         if "sweep_merged" in tables and "sweep_independent" in tables:
             a, b = tables["sweep_merged"], tables["sweep_independent"]
             differ = [k for k in b if not k.startswith("seconds")

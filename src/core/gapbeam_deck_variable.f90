@@ -2,44 +2,31 @@
 !> parse the name, read and set its value on a deck_t, with its unit and its allowed range.
 !>
 !> This is the "parameter setter" of the analyses that vary a design variable (continuation of
-!> periodic orbits, two-parameter bifurcation curves; maps over any variable later): they set
+!> periodic orbits, two-parameter bifurcation curves, the axes of sweeps and maps): they set
 !> the value on a copy of the deck and rebuild the model from it (gapbeam_deck_parameter), so a
 !> variable means exactly what it means in a deck (the stop-stiffness rule, the damping ratios
 !> are applied again). Pure data: nothing numerical here.
 !>
-!> Variables (real scalars; list groups take an entry index, default 1):
-!>   &beam length youngs_modulus density width thickness area second_moment fibre_distance
-!>         added_mass
-!>   &root k_theta      &springs(i) stiffness      &masses(i) mass inertia
-!>   &stops(i) gap stiffness damping exponent rule_factor rule_f1_ratio rule_f1_hz friction
-!>         wear_coefficient
-!>   &point_forces(i) amplitude
-!>   &damping mass_coefficient stiffness_coefficient frequency1_hz ratio1 frequency2_hz ratio2
-!>   &forcing frequency_hz amplitude_pp
-!> A list of names separated by commas, '&stops gap(1), &stops gap(2)', names several variables
-!> set together to one value (a sweep axis that moves both baffles' clearance): they must have
-!> one unit, and a forcing variable stands alone (parse_deck_variables).
-!> Setting a damping ratio or frequency with model = 'ratios' recomputes the Rayleigh
-!> coefficients (as the deck reader does); setting a coefficient needs model = 'rayleigh'.
+!> The design variables, their units and ranges are those the deck table declares with
+!> `design=.true.` (gapbeam_deck_table; `gapbeam --help-deck` marks them); list groups take an
+!> entry index, default 1. A list of names separated by commas, '&stops gap(1), &stops gap(2)',
+!> names several variables set together to one value (a sweep axis that moves both baffles'
+!> clearance): they must have one unit, and a forcing variable stands alone
+!> (parse_deck_variables). Setting a damping ratio or frequency with model = 'ratios'
+!> recomputes the Rayleigh coefficients (as the deck reader does); setting a coefficient needs
+!> model = 'rayleigh'.
 module gapbeam_deck_variable
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_description, only: rayleigh_from_ratios, damping_t
    use gapbeam_deck, only: deck_t
+   use gapbeam_deck_visitor, only: deck_visitor_t, deck_spec_t, spec_violation
+   use gapbeam_deck_table, only: walk_deck
    implicit none
    private
    public :: deck_variable_t, parse_deck_variable, check_deck_variable, get_deck_value, &
       set_deck_value, deck_variable_words, deck_variable_label, parse_deck_variables, &
       deck_variables_label
-
-   !> The variables, 'group:name' (documentation and messages).
-   character(len=*), parameter :: deck_variable_words = '&beam length, youngs_modulus, ' &
-      // 'density, width, thickness, area, second_moment, fibre_distance, added_mass; &root ' &
-      // 'k_theta; &springs stiffness; &masses mass, inertia; &stops gap, stiffness, damping, ' &
-      // 'exponent, rule_factor, rule_f1_ratio, rule_f1_hz, friction, wear_coefficient; ' &
-      // '&point_forces amplitude; &damping mass_coefficient, ' &
-      // 'stiffness_coefficient, frequency1_hz, ratio1, frequency2_hz, ratio2; &forcing ' &
-      // 'frequency_hz, amplitude_pp'
 
    !> A numeric deck variable.
    type :: deck_variable_t
@@ -50,6 +37,26 @@ module gapbeam_deck_variable
       real(dp) :: lower = 0.0_dp             !! allowed: value >= lower (or > lower)
       logical :: strict = .false.            !! value > lower (else >=)
    end type deck_variable_t
+
+   !> What the walks below do with the variable they look for.
+   integer, parameter :: op_describe = 1, op_get = 2, op_set = 3, op_words = 4
+
+   !> The visitor that finds one design variable: describes, reads or sets it.
+   type, extends(deck_visitor_t) :: design_visitor_t
+      integer :: op = op_describe
+      character(len=16) :: target_group = ''
+      character(len=32) :: target_name = ''
+      integer :: target_index = 0
+      real(dp) :: x = 0.0_dp                  !! value read, or to set
+      logical :: found = .false.              !! the variable was met
+      logical :: group_found = .false.        !! its group has design variables
+      logical :: in_list = .false.            !! it is an entry of a list group
+      type(deck_spec_t) :: spec               !! its description
+      character(len=:), allocatable :: words  !! op_words: the design variables
+      character(len=:), allocatable :: refused  !! op_set: why the value is refused
+   contains
+      procedure :: on_real => design_real
+   end type design_visitor_t
 
 contains
 
@@ -91,22 +98,17 @@ contains
          end if
          n = n(1:p - 1)
       end if
-      var%group = g;  var%name = n
+      var%group = g;  var%name = n;  var%index = idx
       call describe(var, err)
       if (allocated(err)) then
          err%message = "variable '" // trim(text) // "': " // err%message
          return
       end if
-      select case (g)
-      case ('springs', 'masses', 'stops', 'point_forces')
-         var%index = max(idx, 1)
-      case default
-         if (idx > 0) then
-            call fatal_error(err, "variable '" // trim(text) // "': &" // g // ' is not a ' &
-               // 'list group (no entry index)')
-            return
-         end if
-      end select
+      if (var%index < 0) then
+         call fatal_error(err, "variable '" // trim(text) // "': &" // g // ' is not a ' &
+            // 'list group (no entry index)')
+         return
+      end if
    end subroutine parse_deck_variable
 
    !> Parse a list of names separated by commas (one name: parse_deck_variable). The names
@@ -168,69 +170,84 @@ contains
       end do
    end function deck_variables_label
 
-   !> Unit and range of a known variable.
+   !> Unit and range of a known variable (from the deck table).
    subroutine describe(var, err)
       type(deck_variable_t), intent(inout) :: var        !! group and name set
       type(error_t), allocatable, intent(out) :: err     !! unknown
-      logical :: ok
-      ok = .true.
-      var%lower = 0.0_dp;  var%strict = .true.
-      select case (trim(var%group))
-      case ('beam')
-         select case (trim(var%name))
-         case ('length', 'width', 'thickness', 'fibre_distance');  var%units = 'm'
-         case ('youngs_modulus');  var%units = 'Pa'
-         case ('density');  var%units = 'kg/m^3'
-         case ('area');  var%units = 'm^2'
-         case ('second_moment');  var%units = 'm^4'
-         case ('added_mass');  var%units = 'kg/m';  var%strict = .false.
-         case default;  ok = .false.
-         end select
-      case ('root')
-         ok = var%name == 'k_theta';  var%units = 'N m/rad'
-      case ('springs')
-         ok = var%name == 'stiffness';  var%units = 'N/m'
-      case ('masses')
-         ok = var%name == 'mass' .or. var%name == 'inertia';  var%strict = .false.
-         var%units = merge('kg     ', 'kg m^2 ', var%name == 'mass')
-      case ('stops')
-         select case (trim(var%name))
-         case ('gap');  var%units = 'm';  var%strict = .false.
-         case ('stiffness');  var%units = 'N/m'
-         case ('damping');  var%units = 'N s/m';  var%strict = .false.
-         case ('exponent');  var%units = '-';  var%lower = 1.0_dp;  var%strict = .false.
-         case ('rule_factor', 'rule_f1_ratio');  var%units = '-'
-         case ('rule_f1_hz');  var%units = 'Hz'
-         case ('friction');  var%units = '-';  var%strict = .false.
-         case ('wear_coefficient');  var%units = '1/Pa';  var%strict = .false.
-         case default;  ok = .false.
-         end select
-      case ('point_forces')
-         ok = var%name == 'amplitude';  var%units = 'N';  var%strict = .false.
-         var%lower = -huge(1.0_dp)
-      case ('damping')
-         var%strict = .false.
-         select case (trim(var%name))
-         case ('mass_coefficient');  var%units = '1/s'
-         case ('stiffness_coefficient');  var%units = 's'
-         case ('frequency1_hz', 'frequency2_hz');  var%units = 'Hz';  var%strict = .true.
-         case ('ratio1', 'ratio2');  var%units = '-'
-         case default;  ok = .false.
-         end select
-      case ('forcing')
-         select case (trim(var%name))
-         case ('frequency_hz');  var%units = 'Hz'
-         case ('amplitude_pp');  var%units = 'm';  var%strict = .false.
-         case default;  ok = .false.
-         end select
-      case default
+      type(design_visitor_t) :: v
+      type(deck_t) :: d
+      v%op = op_describe;  v%describing = .true.
+      v%target_group = var%group;  v%target_name = var%name
+      call walk_deck(v, d)
+      if (.not. v%group_found) then
          call fatal_error(err, 'unknown group &' // trim(var%group) // '; numeric variables: ' &
-            // deck_variable_words)
-         return
-      end select
-      if (.not. ok) call fatal_error(err, '&' // trim(var%group) // ' has no numeric variable ' &
-         // trim(var%name) // '; numeric variables: ' // deck_variable_words)
+            // deck_variable_words())
+      else if (.not. v%found) then
+         call fatal_error(err, '&' // trim(var%group) // ' has no numeric variable ' &
+            // trim(var%name) // '; numeric variables: ' // deck_variable_words())
+      else
+         var%units = v%spec%unit
+         var%lower = v%spec%lo;  var%strict = v%spec%lo_open
+         if (v%spec%zero .and. v%spec%lo > 0.0_dp) then
+            var%lower = 0.0_dp;  var%strict = .false.
+         end if
+         if (v%in_list) then
+            var%index = max(var%index, 1)
+         else if (var%index > 0) then
+            var%index = -1                   ! an index on a scalar: refused by the caller
+         end if
+      end if
    end subroutine describe
+
+   !> The design variables, '&beam length, ...; &root k_theta; ...' (documentation, messages).
+   function deck_variable_words() result(words)
+      character(len=:), allocatable :: words
+      type(design_visitor_t) :: v
+      type(deck_t) :: d
+      v%op = op_words;  v%describing = .true.;  v%words = ''
+      call walk_deck(v, d)
+      words = v%words
+   end function deck_variable_words
+
+   !> Describe, read or set the variable looked for; collect the names for op_words.
+   subroutine design_real(self, s, x)
+      class(design_visitor_t), intent(inout) :: self
+      type(deck_spec_t), intent(in) :: s
+      real(dp), intent(inout) :: x
+      if (.not. s%design) return
+      if (self%op == op_words) then
+         if (index(self%words, '&' // trim(self%group) // ' ') == 0) then
+            if (len(self%words) > 0) self%words = self%words // '; '
+            self%words = self%words // '&' // trim(self%group) // ' ' // trim(s%name)
+         else if (index(self%words, ' ' // trim(s%name) // ',') == 0 .and. &
+                  .not. ends_with(self%words, ' ' // trim(s%name))) then
+            self%words = self%words // ', ' // trim(s%name)
+         end if
+         return
+      end if
+      if (self%group /= self%target_group) return
+      self%group_found = .true.
+      if (s%name /= self%target_name) return
+      if (self%op == op_describe) then
+         self%found = .true.;  self%spec = s;  self%in_list = self%entry > 0
+         return
+      end if
+      if (self%entry /= self%target_index) return
+      self%found = .true.
+      select case (self%op)
+      case (op_get)
+         self%x = x
+      case (op_set)
+         self%refused = spec_violation(s, self%x)
+         if (len(self%refused) == 0) x = self%x
+      end select
+   contains
+      pure logical function ends_with(t, tail)
+         character(len=*), intent(in) :: t, tail
+         ends_with = .false.
+         if (len(t) >= len(tail)) ends_with = t(len(t) - len(tail) + 1:) == tail
+      end function ends_with
+   end subroutine design_real
 
    !> The variable exists in this deck (list entry present, damping model matching).
    subroutine check_deck_variable(deck, var, err)
@@ -293,45 +310,14 @@ contains
       type(deck_t), intent(in) :: deck                  !! deck
       type(deck_variable_t), intent(in) :: var          !! variable
       real(dp) :: x
-      integer :: i
-      i = var%index
-      associate (b => deck%structure%beam)
-         select case (trim(var%group) // ':' // trim(var%name))
-         case ('beam:length');  x = b%length
-         case ('beam:youngs_modulus');  x = b%youngs_modulus
-         case ('beam:density');  x = b%density
-         case ('beam:width');  x = b%width
-         case ('beam:thickness');  x = b%thickness
-         case ('beam:area');  x = b%area
-         case ('beam:second_moment');  x = b%second_moment
-         case ('beam:fibre_distance');  x = b%fibre_distance
-         case ('root:k_theta');  x = deck%structure%root%k_theta
-         case ('springs:stiffness');  x = deck%structure%springs(i)%stiffness
-         case ('masses:mass');  x = deck%structure%masses(i)%mass
-         case ('masses:inertia');  x = deck%structure%masses(i)%inertia
-         case ('stops:gap');  x = deck%stops(i)%gap
-         case ('stops:stiffness');  x = deck%stops(i)%stiffness
-         case ('stops:damping');  x = deck%stops(i)%damping
-         case ('stops:exponent');  x = deck%stops(i)%exponent
-         case ('stops:rule_factor');  x = deck%stops(i)%rule_factor
-         case ('stops:rule_f1_ratio');  x = deck%stops(i)%rule_f1_ratio
-         case ('stops:rule_f1_hz');  x = deck%stops(i)%rule_f1_hz
-         case ('stops:friction');  x = deck%stops(i)%friction
-         case ('stops:wear_coefficient');  x = deck%stops(i)%wear_coefficient
-         case ('beam:added_mass');  x = b%added_mass
-         case ('point_forces:amplitude');  x = deck%forcing%forces(i)%amplitude
-         case ('damping:mass_coefficient');  x = deck%damping%mass_coefficient
-         case ('damping:stiffness_coefficient');  x = deck%damping%stiffness_coefficient
-         case ('damping:frequency1_hz');  x = deck%damping%frequency1_hz
-         case ('damping:ratio1');  x = deck%damping%ratio1
-         case ('damping:frequency2_hz');  x = deck%damping%frequency2_hz
-         case ('damping:ratio2');  x = deck%damping%ratio2
-         case ('forcing:frequency_hz');  x = deck%forcing%frequency_hz
-         case ('forcing:amplitude_pp');  x = deck%forcing%amplitude_pp
-         case default
-            error stop 'gapbeam_deck_variable:get_deck_value: variable not parsed'
-         end select
-      end associate
+      type(design_visitor_t) :: v
+      type(deck_t) :: d
+      d = deck
+      v%op = op_get
+      v%target_group = var%group;  v%target_name = var%name;  v%target_index = var%index
+      call walk_deck(v, d)
+      if (.not. v%found) error stop 'gapbeam_deck_variable:get_deck_value: variable not parsed'
+      x = v%x
    end function get_deck_value
 
    !> Set a variable on a deck, checking its range (and the Rayleigh coefficients that damping
@@ -341,71 +327,47 @@ contains
       type(deck_variable_t), intent(in) :: var          !! variable (checked)
       real(dp), intent(in) :: x                         !! new value
       type(error_t), allocatable, intent(out) :: err    !! out of range
-      integer :: i
-      real(dp) :: beta, gamma
+      type(design_visitor_t) :: v
       type(damping_t) :: dd
+      real(dp) :: beta, gamma
       character(len=:), allocatable :: lab
       lab = deck_variable_label(var)
-      if (.not. (x >= var%lower) .or. (var%strict .and. .not. (x > var%lower)) .or. &
-          abs(x) > huge(x)) then
-         call fatal_error(err, lab // ' = ' // str(x) // ': must be ' &
-            // trim(merge('> ', '>=', var%strict)) // ' ' // str(var%lower) // ' and finite')
+      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0) then
+         ! a ratio or a frequency of model 'ratios': the coefficients follow
+         dd = deck%damping
+         call set_on(dd%frequency1_hz, 'frequency1_hz', var%name, x)
+         call set_on(dd%ratio1, 'ratio1', var%name, x)
+         call set_on(dd%frequency2_hz, 'frequency2_hz', var%name, x)
+         call set_on(dd%ratio2, 'ratio2', var%name, x)
+         call rayleigh_from_ratios(dd%frequency1_hz, dd%ratio1, dd%frequency2_hz, &
+                                   dd%ratio2, beta, gamma)
+         if (beta < 0.0_dp .or. gamma < 0.0_dp .or. &
+             .not. (dd%frequency2_hz > dd%frequency1_hz)) then
+            call fatal_error(err, lab // ' = ' // str(x) // ': the damping ' &
+               // 'ratios give a negative Rayleigh coefficient or frequency2_hz <= ' &
+               // 'frequency1_hz')
+            return
+         end if
+      end if
+      v%op = op_set;  v%x = x;  v%refused = ''
+      v%target_group = var%group;  v%target_name = var%name;  v%target_index = var%index
+      call walk_deck(v, deck)
+      if (.not. v%found) error stop 'gapbeam_deck_variable:set_deck_value: variable not parsed'
+      if (len(v%refused) > 0) then
+         call fatal_error(err, lab // ' = ' // str(x) // ': ' // v%refused)
          return
       end if
-      i = var%index
-      associate (b => deck%structure%beam)
-         select case (trim(var%group) // ':' // trim(var%name))
-         case ('beam:length');  b%length = x
-         case ('beam:youngs_modulus');  b%youngs_modulus = x
-         case ('beam:density');  b%density = x
-         case ('beam:width');  b%width = x
-         case ('beam:thickness');  b%thickness = x
-         case ('beam:area');  b%area = x
-         case ('beam:second_moment');  b%second_moment = x
-         case ('beam:fibre_distance');  b%fibre_distance = x
-         case ('root:k_theta');  deck%structure%root%k_theta = x
-         case ('springs:stiffness');  deck%structure%springs(i)%stiffness = x
-         case ('masses:mass');  deck%structure%masses(i)%mass = x
-         case ('masses:inertia');  deck%structure%masses(i)%inertia = x
-         case ('stops:gap');  deck%stops(i)%gap = x
-         case ('stops:stiffness');  deck%stops(i)%stiffness = x
-         case ('stops:damping');  deck%stops(i)%damping = x
-         case ('stops:exponent');  deck%stops(i)%exponent = x
-         case ('stops:rule_factor');  deck%stops(i)%rule_factor = x
-         case ('stops:rule_f1_ratio');  deck%stops(i)%rule_f1_ratio = x
-         case ('stops:rule_f1_hz');  deck%stops(i)%rule_f1_hz = x
-         case ('stops:friction');  deck%stops(i)%friction = x
-         case ('stops:wear_coefficient');  deck%stops(i)%wear_coefficient = x
-         case ('beam:added_mass');  b%added_mass = x
-         case ('point_forces:amplitude');  deck%forcing%forces(i)%amplitude = x
-         case ('damping:mass_coefficient');  deck%damping%mass_coefficient = x
-         case ('damping:stiffness_coefficient');  deck%damping%stiffness_coefficient = x
-         case ('damping:frequency1_hz', 'damping:ratio1', 'damping:frequency2_hz', &
-               'damping:ratio2')
-            dd = deck%damping
-            select case (trim(var%name))
-            case ('frequency1_hz');  dd%frequency1_hz = x
-            case ('ratio1');  dd%ratio1 = x
-            case ('frequency2_hz');  dd%frequency2_hz = x
-            case ('ratio2');  dd%ratio2 = x
-            end select
-            call rayleigh_from_ratios(dd%frequency1_hz, dd%ratio1, dd%frequency2_hz, &
-                                      dd%ratio2, beta, gamma)
-            if (beta < 0.0_dp .or. gamma < 0.0_dp .or. &
-                .not. (dd%frequency2_hz > dd%frequency1_hz)) then
-               call fatal_error(err, lab // ' = ' // str(x) // ': the damping ' &
-                  // 'ratios give a negative Rayleigh coefficient or frequency2_hz <= ' &
-                  // 'frequency1_hz')
-               return
-            end if
-            dd%mass_coefficient = beta;  dd%stiffness_coefficient = gamma
-            deck%damping = dd
-         case ('forcing:frequency_hz');  deck%forcing%frequency_hz = x
-         case ('forcing:amplitude_pp');  deck%forcing%amplitude_pp = x
-         case default
-            error stop 'gapbeam_deck_variable:set_deck_value: variable not parsed'
-         end select
-      end associate
+      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0) then
+         deck%damping%mass_coefficient = beta;  deck%damping%stiffness_coefficient = gamma
+      end if
+   contains
+      !> y = x when the variable set is `name`.
+      pure subroutine set_on(y, name, set_name, x)
+         real(dp), intent(inout) :: y
+         character(len=*), intent(in) :: name, set_name
+         real(dp), intent(in) :: x
+         if (set_name == name) y = x
+      end subroutine set_on
    end subroutine set_deck_value
 
    !> Lower-case copy.

@@ -8,7 +8,8 @@ module gapbeam_settings
    private
    public :: job_t, calibrate_t, solver_settings_t, output_settings_t, initial_state_t, &
       diagnostics_settings_t, reduction_settings_t, model_size_settings_t, sweep_settings_t, &
-      study_settings_t, batch_options_t, starts_given
+      study_settings_t, batch_options_t, starts_given, initial_value_t
+   public :: default_series, default_elements, default_modes
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words, start_words
@@ -32,6 +33,14 @@ module gapbeam_settings
       // "'newmark_fixed_no_events', 'paper', 'hht', 'generalized_alpha', 'central_difference', " &
       // "'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact', 'newmark_error', " &
       // "'hht_error', 'generalized_alpha_error', 'auto'"
+
+   !> &study series when the deck gives none.
+   character(len=32), parameter :: default_series(10) = [character(len=32) :: 'auto', &
+      'newmark_error', 'hht_error', 'generalized_alpha_error', 'rk45', 'newmark_half_step', &
+      'newmark_fixed', 'paper', 'rk4', 'exact']
+   !> &model_size ladders when the deck gives none.
+   integer, parameter :: default_elements(7) = [2, 3, 4, 6, 8, 15, 30]
+   integer, parameter :: default_modes(6) = [1, 2, 3, 4, 5, 6]
 
    !> &job: what to run and where the results go.
    type :: job_t
@@ -106,6 +115,14 @@ module gapbeam_settings
       real(dp), allocatable :: velocity(:)          !! [m/s or rad/s]
    end type initial_state_t
 
+   !> One entry of &initial as the deck gives it (the defaults of an entry).
+   type :: initial_value_t
+      integer :: node = -1                          !! node index [-]
+      integer :: dof = 1                            !! dof code (1: w, as dof_w)
+      real(dp) :: displacement = 0.0_dp             !! [m or rad]
+      real(dp) :: velocity = 0.0_dp                 !! [m/s or rad/s]
+   end type initial_value_t
+
    !> How a forced run is classified and its label certified: the settling test, period
    !> detection, the adaptive Lyapunov exponent, the independent re-checks and the starts.
    !> Zero (or negative, where said) means 'automatic' for the variables that say so.
@@ -176,6 +193,21 @@ module gapbeam_settings
       character(len=160) :: y_variable = '&forcing amplitude_pp'
       real(dp), allocatable :: x(:)                  !! values of the x axis [its unit]
       real(dp), allocatable :: y(:)                  !! values of the y axis [its unit]
+      ! the axes as the deck gives them (read_deck makes frequency_hz, amplitude_pp, x, y)
+      real(dp) :: frequency_start_hz = 0.0_dp        !! first frequency of a range [Hz]
+      real(dp) :: frequency_end_hz = 0.0_dp          !! last frequency of a range [Hz]
+      integer :: n_frequency = 0                     !! frequencies of the range (0: none)
+      real(dp) :: amplitude_start_pp = 0.0_dp        !! first amplitude of a range [m]
+      real(dp) :: amplitude_end_pp = 0.0_dp          !! last amplitude of a range [m]
+      integer :: n_amplitude = 0                     !! amplitudes of the range (0: none)
+      real(dp), allocatable :: x_values(:)           !! x axis as a list [its unit]
+      real(dp), allocatable :: y_values(:)           !! y axis as a list [its unit]
+      real(dp) :: x_start = 0.0_dp                   !! first x of a range [its unit]
+      real(dp) :: x_end = 0.0_dp                     !! last x of a range
+      integer :: n_x = 0                             !! x values of the range (0: none)
+      real(dp) :: y_start = 0.0_dp                   !! first y of a range [its unit]
+      real(dp) :: y_end = 0.0_dp                     !! last y of a range
+      integer :: n_y = 0                             !! y values of the range (0: none)
       logical :: progress = .true.                   !! progress on standard error
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come
@@ -205,6 +237,8 @@ module gapbeam_settings
       real(dp) :: time_limit_s = 0.0_dp              !! stop after this [s], 0: none
       logical :: quiet = .false.                     !! no progress lines (--quiet)
       real(dp) :: progress_interval_s = 0.0_dp       !! between progress lines [s], 0: default
+      character(len=:), allocatable :: shard_costs   !! --shard-costs FILE.h5: deal the points
+                                                     !! to the shards by these costs
    end type batch_options_t
 
 contains

@@ -4,41 +4,57 @@
 !>
 !> A record holds one slot of the sweep (a point's start, gapbeam_sweep), indexed by slot.
 !>
-!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-4', the deck
+!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-5', the deck
 !> hash (int64: CRC-32 of the signature), the signature length (int64) and the signature (the
 !> effective deck text and the shard), then records: begin mark (int32), point index (int32),
-!> payload length m (int32), m reals (pack_point), checksum (int64: CRC-32 of the bytes of
-!> the point index, m and the reals), end mark (int32).
+!> payload length m (int32), m reals (pack_point), checksum (int64), end mark (int32). The
+!> checksum is the CRC-32 of the bytes of the point index, m and the reals, continued from the
+!> deck hash (zlib.crc32(record_bytes, deck_hash) in Python): the CRC-32 of the signature
+!> followed by the record, so that a record is valid in the checkpoint of its own deck and
+!> shard only.
 !>
-!> Nothing read back is trusted without its checksum. A record that fails it (a flipped byte),
-!> is not a well-formed point, or disagrees with another record of the same point is reported
-!> and its point computed again; a record cut short (a kill while writing) ends the reading,
-!> and the next record is written over it. A checkpoint whose hash or signature differs from
-!> the run's is refused, never mixed.
+!> Nothing read back is trusted without its checksum. A record that fails it (a flipped byte,
+!> or a record copied from another deck's checkpoint), is not a well-formed point, records a
+!> failed run (never written by gapbeam: failed runs are computed again), or disagrees with
+!> another record of the same point is reported and its point computed again. Bytes that are
+!> not a whole record (a damaged mark or length in the middle of the file, or a record cut
+!> short by a kill at its end) are reported and skipped, and the records after them are read.
+!> After any such finding the file is rewritten with the trusted records only (under a
+!> temporary name, then renamed), so that appending continues on a clean file. A checkpoint
+!> whose hash or signature differs from the run's is refused, never mixed.
 module gapbeam_checkpoint
    use, intrinsic :: iso_fortran_env, only: int8, int32, int64
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_results, only: point_result_t
-   use gapbeam_files, only: remove_file, file_exists, file_size
+   use gapbeam_files, only: remove_file, file_exists, file_size, rename_file
    implicit none
    private
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
       unpack_point, crc32
 
-   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-4'
+   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused
    character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'   ! no evidence: refused
    character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'   ! no wear: refused
+   character(len=*), parameter :: magic_4 = 'GAPBEAM-CHECKPOINT-4'   ! deck not in the checksums
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
+   integer(int64), parameter :: record_overhead = 24_int64      ! bytes of a record besides its reals
 
    !> An open checkpoint file.
    type :: checkpoint_t
       integer :: unit = -1                       !! Fortran unit
       character(len=:), allocatable :: path      !! file path
       integer(int64) :: next_pos = 1             !! where the next record goes
+      integer(int64) :: hash = 0                 !! the deck hash, start of every record's CRC
    end type checkpoint_t
+
+   !> Where the records of a checkpoint file lie (byte ranges), while it is read.
+   type :: record_spans_t
+      integer(int64), allocatable :: first(:)    !! first byte of the record kept per slot (0: none)
+      integer(int64), allocatable :: last(:)     !! its last byte
+   end type record_spans_t
 
 contains
 
@@ -55,36 +71,20 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! I/O error or foreign checkpoint
       character(len=len(magic)) :: head
       character(len=:), allocatable :: sig
-      integer(int64) :: sig_len, hash, fsize
+      integer(int64) :: sig_len, hash, fsize, header_end
       integer :: ios
       character(len=256) :: msg
       ck%path = path
+      ck%hash = crc32(text_bytes(signature))
       n_loaded = 0
       report = ''
+      if (file_exists(path) .and. header_cut_short(path, signature, ck%hash)) then
+         call remove_file(path)
+         report = path // ': cut short in its header (a run stopped while creating it): ' &
+            // 'started afresh'
+      end if
       if (.not. file_exists(path)) then
-         open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='new', &
-              action='readwrite', iostat=ios, iomsg=msg)
-         if (ios /= 0) then
-            call fatal_error(err, 'gapbeam_checkpoint: cannot create ' // path // ': ' &
-               // trim(msg))
-            return
-         end if
-         write(ck%unit, pos=1, iostat=ios, iomsg=msg) magic, crc32(text_bytes(signature)), &
-            int(len(signature), int64), signature
-         if (ios == 0) flush(ck%unit, iostat=ios, iomsg=msg)
-         if (ios /= 0) then
-            close(ck%unit, status='delete')
-            ck%unit = -1
-            call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // path // ': ' // trim(msg))
-            return
-         end if
-         inquire(unit=ck%unit, pos=ck%next_pos)
-         if (file_size(path) /= ck%next_pos - 1) then
-            close(ck%unit, status='delete')
-            ck%unit = -1
-            call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // path // ' (is the ' &
-               // 'disk full?)')
-         end if
+         call create_file(ck, signature, err)
          return
       end if
       open(newunit=ck%unit, file=path, access='stream', form='unformatted', status='old', &
@@ -111,6 +111,11 @@ contains
             // 'supports: remove it (its points are then computed again)', err)
          return
       end if
+      if (head == magic_4) then
+         call refuse(ck, 'was written by an older gapbeam, whose record checksums do not ' &
+            // 'cover the deck: remove it (its points are then computed again)', err)
+         return
+      end if
       if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
          call refuse(ck, 'is not a gapbeam sweep checkpoint (or its header is damaged); ' &
             // 'remove it or choose another output', err)
@@ -123,13 +128,74 @@ contains
             // 'remove it to start afresh', err)
          return
       end if
-      if (hash /= crc32(text_bytes(signature)) .or. sig /= signature) then
+      if (hash /= ck%hash .or. sig /= signature) then
          call refuse(ck, 'belongs to a different deck or shard; it is not mixed with this run: ' &
             // 'remove it to start afresh, or run the deck that wrote it', err)
          return
       end if
-      call load_records(ck, fsize, results, done, n_loaded, report)
+      inquire(unit=ck%unit, pos=header_end)
+      call load_records(ck, header_end, fsize, results, done, n_loaded, report, err)
    end subroutine checkpoint_open
+
+   !> Whether the file at `path` is shorter than the header this run would write and equal to
+   !> its beginning (empty, or a header cut short by a kill): it holds nothing.
+   function header_cut_short(path, signature, hash) result(cut)
+      character(len=*), intent(in) :: path               !! the checkpoint file
+      character(len=*), intent(in) :: signature          !! deck text and shard
+      integer(int64), intent(in) :: hash                 !! the deck hash
+      logical :: cut
+      integer(int8), allocatable :: head(:), b(:)
+      integer(int64) :: n
+      integer :: unit, ios
+      cut = .false.
+      head = [text_bytes(magic), transfer(hash, [0_int8]), &
+              transfer(int(len(signature), int64), [0_int8]), text_bytes(signature)]
+      n = file_size(path)
+      if (n < 0 .or. n >= size(head, kind=int64)) return
+      if (n == 0) then
+         cut = .true.
+         return
+      end if
+      allocate(b(n))
+      open(newunit=unit, file=path, access='stream', form='unformatted', status='old', &
+           action='read', iostat=ios)
+      if (ios /= 0) return
+      read(unit, pos=1, iostat=ios) b
+      close(unit)
+      cut = ios == 0 .and. all(b == head(1:n))
+   end function header_cut_short
+
+   !> Create a new checkpoint file holding the header only.
+   subroutine create_file(ck, signature, err)
+      type(checkpoint_t), intent(inout) :: ck            !! checkpoint, path and hash set
+      character(len=*), intent(in) :: signature          !! deck text and shard
+      type(error_t), allocatable, intent(inout) :: err   !! I/O error
+      integer :: ios
+      character(len=256) :: msg
+      open(newunit=ck%unit, file=ck%path, access='stream', form='unformatted', status='new', &
+           action='readwrite', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(err, 'gapbeam_checkpoint: cannot create ' // ck%path // ': ' &
+            // trim(msg))
+         return
+      end if
+      write(ck%unit, pos=1, iostat=ios, iomsg=msg) magic, ck%hash, int(len(signature), int64), &
+         signature
+      if (ios == 0) flush(ck%unit, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         close(ck%unit, status='delete')
+         ck%unit = -1
+         call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // ck%path // ': ' // trim(msg))
+         return
+      end if
+      inquire(unit=ck%unit, pos=ck%next_pos)
+      if (file_size(ck%path) /= ck%next_pos - 1) then
+         close(ck%unit, status='delete')
+         ck%unit = -1
+         call fatal_error(err, 'gapbeam_checkpoint: cannot write ' // ck%path // ' (is the ' &
+            // 'disk full?)')
+      end if
+   end subroutine create_file
 
    !> Close a checkpoint that is not used, and say why.
    subroutine refuse(ck, why, err)
@@ -141,71 +207,240 @@ contains
       call fatal_error(err, 'gapbeam_checkpoint: ' // ck%path // ' ' // why)
    end subroutine refuse
 
-   !> Read the records after the header; set `ck%next_pos` after the last whole record.
-   subroutine load_records(ck, fsize, results, done, n_loaded, report)
+   !> Read the records after the header (bytes header_end..fsize); when anything was not
+   !> trusted, rewrite the file with the trusted records only. Sets `ck%next_pos`.
+   subroutine load_records(ck, header_end, fsize, results, done, n_loaded, report, err)
       type(checkpoint_t), intent(inout) :: ck            !! open checkpoint, header read
+      integer(int64), intent(in) :: header_end           !! first byte after the header
       integer(int64), intent(in) :: fsize                !! file size [bytes]
       type(point_result_t), intent(inout) :: results(:)  !! loaded points land here
       logical, intent(inout) :: done(:)                  !! set for loaded points
       integer, intent(out) :: n_loaded                   !! points loaded
       character(len=:), allocatable, intent(inout) :: report  !! records not trusted
-      integer(int64) :: pos, sum_stored
-      integer(int32) :: m1, p, m, m2
+      type(error_t), allocatable, intent(inout) :: err   !! the rewrite failed
+      integer(int8), allocatable :: b(:)
+      integer(int64) :: pos, q, nxt, sum_stored
+      integer(int32) :: p, m
       real(dp), allocatable :: x(:)
       integer(int64), allocatable :: crc_of(:)           ! checksum of the record loaded per point
       logical, allocatable :: conflict(:)
+      type(record_spans_t) :: kept
       type(point_result_t) :: pr
       character(len=:), allocatable :: at
       integer :: ios, k
-      logical :: ok
+      logical :: ok, whole, clean
       allocate(crc_of(size(results)), source=-1_int64)
       allocate(conflict(size(results)), source=.false.)
+      allocate(kept%first(size(results)), kept%last(size(results)), source=0_int64)
+      allocate(b(fsize))
       n_loaded = 0
-      inquire(unit=ck%unit, pos=pos)
+      clean = .true.
+      ios = 0
+      if (fsize > 0) read(ck%unit, pos=1, iostat=ios) b
+      if (fsize > 0 .and. ios /= 0) then
+         call refuse(ck, 'cannot be read back', err)
+         return
+      end if
+      pos = header_end
       k = 0
-      do
-         read(ck%unit, pos=pos, iostat=ios) m1, p, m
-         if (ios /= 0 .or. m1 /= mark_begin .or. m < 0 .or. &
-             pos + 24_int64 + 8_int64 * m > fsize + 1) exit
-         if (allocated(x)) deallocate(x)
-         allocate(x(m))
-         read(ck%unit, iostat=ios) x, sum_stored, m2
-         if (ios /= 0 .or. m2 /= mark_end) exit
+      do while (pos <= fsize)
+         call parse_record(b, pos, whole, p, m, x, sum_stored, nxt)
+         if (.not. whole) then
+            clean = .false.
+            q = next_whole_record(b, pos + 1)
+            if (q == 0) then
+               call add_line(report, ck%path // ': the last ' // str_int64(fsize - pos + 1) &
+                  // ' bytes (from byte ' // str_int64(pos) // ') are not a whole record (a ' &
+                  // 'run stopped while writing?): dropped')
+               exit
+            end if
+            call add_line(report, ck%path // ': bytes ' // str_int64(pos) // ' to ' &
+               // str_int64(q - 1) // ' are not a whole record (a damaged mark or length): ' &
+               // 'skipped, the records after them are read; a point recorded there is ' &
+               // 'computed again')
+            pos = q
+            cycle
+         end if
          k = k + 1
          at = ck%path // ': record ' // str(k) // ' (byte ' // str_int64(pos) // ')'
-         if (sum_stored /= record_crc(p, m, x)) then
-            call add_line(report, at // ' fails its checksum: not trusted, its point is ' &
+         if (sum_stored /= crc32(b(pos + 4:nxt - 13), ck%hash)) then
+            clean = .false.
+            call add_line(report, at // ' fails its checksum (a damaged record, or one copied ' &
+               // 'from the checkpoint of another deck or shard): not trusted, its point is ' &
                // 'computed again')
          else if (p < 1 .or. p > size(results)) then
+            clean = .false.
             call add_line(report, at // ' names point ' // str(int(p)) // ', outside 1..' &
                // str(size(results)) // ': ignored')
          else
             call unpack_point(x, pr, ok)
             if (.not. ok) then
+               clean = .false.
                call add_line(report, at // ', point ' // str(int(p)) // ', is not a ' &
                   // 'well-formed point: not trusted, the point is computed again')
+            else if (pr%status /= 0) then
+               clean = .false.
+               call add_line(report, at // ', point ' // str(int(p)) // ', records a failed ' &
+                  // 'run (gapbeam records none): not trusted, the point is computed again')
             else if (conflict(p)) then
                continue
             else if (crc_of(p) >= 0 .and. crc_of(p) /= sum_stored) then
+               clean = .false.
                call add_line(report, at // ': point ' // str(int(p)) // ' has two different ' &
                   // 'records: neither is trusted, the point is computed again')
                conflict(p) = .true.
                if (done(p)) n_loaded = n_loaded - 1
                done(p) = .false.
+               kept%first(p) = 0
             else if (crc_of(p) < 0) then
                crc_of(p) = sum_stored
                results(p) = pr
                if (.not. done(p)) n_loaded = n_loaded + 1
                done(p) = .true.
+               kept%first(p) = pos
+               kept%last(p) = nxt - 1
             end if                ! else: an identical copy of a record already loaded
          end if
-         inquire(unit=ck%unit, pos=pos)
+         pos = nxt
       end do
-      if (pos <= fsize) call add_line(report, ck%path // ': the last ' &
-         // str_int64(fsize - pos + 1) // ' bytes (from byte ' // str_int64(pos) // ') are not ' &
-         // 'a whole record (a run stopped while writing?): dropped, and written over')
-      ck%next_pos = pos
+      if (clean) then
+         ck%next_pos = fsize + 1
+      else
+         call rewrite(ck, b(1:header_end - 1), b, kept, err)
+      end if
    end subroutine load_records
+
+   !> Whether bytes b(pos:) begin with a whole record: its marks where its length puts them.
+   !> Then its point index, length, reals, stored checksum and the byte after it.
+   subroutine parse_record(b, pos, whole, p, m, x, sum_stored, nxt)
+      integer(int8), intent(in) :: b(:)                  !! the file's bytes
+      integer(int64), intent(in) :: pos                  !! where the record would begin
+      logical, intent(out) :: whole                      !! a whole record is there
+      integer(int32), intent(out) :: p, m                !! point index, payload length
+      real(dp), allocatable, intent(inout) :: x(:)       !! payload
+      integer(int64), intent(out) :: sum_stored          !! stored checksum
+      integer(int64), intent(out) :: nxt                 !! first byte after the record
+      integer(int64) :: n, e
+      whole = .false.
+      p = 0;  m = 0;  sum_stored = -1;  nxt = pos
+      n = size(b, kind=int64)
+      if (pos < 1 .or. pos + 11 > n) return
+      if (transfer(b(pos:pos + 3), 0_int32) /= mark_begin) return
+      p = transfer(b(pos + 4:pos + 7), 0_int32)
+      m = transfer(b(pos + 8:pos + 11), 0_int32)
+      if (m < 0) return
+      if (pos - 1 + record_overhead + 8_int64 * m > n) return
+      e = pos + 12 + 8_int64 * m                         ! first byte of the checksum
+      if (transfer(b(e + 8:e + 11), 0_int32) /= mark_end) return
+      sum_stored = transfer(b(e:e + 7), 0_int64)
+      if (allocated(x)) deallocate(x)
+      allocate(x(m))
+      if (m > 0) x = transfer(b(pos + 12:e - 1), x, int(m))
+      nxt = e + 12
+      whole = .true.
+   end subroutine parse_record
+
+   !> The first byte at or after `from` where a whole record begins, 0 when none does.
+   function next_whole_record(b, from) result(q)
+      integer(int8), intent(in) :: b(:)                  !! the file's bytes
+      integer(int64), intent(in) :: from                 !! where to start looking
+      integer(int64) :: q
+      integer(int8), parameter :: mark(4) = transfer(mark_begin, [0_int8], 4)
+      integer(int64) :: j, nxt, sum_stored
+      integer(int32) :: p, m
+      real(dp), allocatable :: x(:)
+      logical :: whole
+      q = 0
+      do j = from, size(b, kind=int64) - record_overhead + 1
+         if (any(b(j:j + 3) /= mark)) cycle
+         call parse_record(b, j, whole, p, m, x, sum_stored, nxt)
+         if (whole) then
+            q = j
+            return
+         end if
+      end do
+   end function next_whole_record
+
+   !> Replace the checkpoint by its header and the kept records (in file order), under a
+   !> temporary name renamed over it; reopen it for appending.
+   subroutine rewrite(ck, header, b, kept, err)
+      type(checkpoint_t), intent(inout) :: ck            !! open checkpoint, reopened here
+      integer(int8), intent(in) :: header(:)             !! the header's bytes
+      integer(int8), intent(in) :: b(:)                  !! the file's bytes
+      type(record_spans_t), intent(in) :: kept           !! the records to keep
+      type(error_t), allocatable, intent(inout) :: err   !! I/O failure (file unchanged)
+      type(error_t), allocatable :: moved
+      character(len=:), allocatable :: part
+      integer(int64), allocatable :: starts(:)
+      integer(int64) :: total
+      integer :: unit, ios, j
+      integer, allocatable :: order(:)
+      character(len=512) :: msg
+      close(ck%unit, iostat=ios)
+      ck%unit = -1
+      part = ck%path // '.part'
+      starts = pack(kept%first, kept%first > 0)
+      order = sort_index(starts)
+      open(newunit=unit, file=part, access='stream', form='unformatted', status='replace', &
+           action='write', iostat=ios, iomsg=msg)
+      if (ios == 0) write(unit, pos=1, iostat=ios, iomsg=msg) header
+      total = size(header, kind=int64)
+      do j = 1, size(order)
+         if (ios /= 0) exit
+         associate (k => findloc(kept%first, starts(order(j)), dim=1))
+            write(unit, iostat=ios, iomsg=msg) b(kept%first(k):kept%last(k))
+            total = total + kept%last(k) - kept%first(k) + 1
+         end associate
+      end do
+      if (ios == 0) flush(unit, iostat=ios, iomsg=msg)
+      if (ios == 0) close(unit, iostat=ios, iomsg=msg)
+      if (ios == 0 .and. file_size(part) /= total) then
+         ios = 1
+         msg = 'only ' // str_int64(file_size(part)) // ' of ' // str_int64(total) // ' bytes ' &
+            // 'stored (a full disk?)'
+      end if
+      if (ios == 0) then
+         call rename_file(part, ck%path, moved)
+         if (allocated(moved)) then
+            ios = 1
+            msg = moved%message
+         end if
+      end if
+      if (ios /= 0) then
+         close(unit, iostat=j)
+         call remove_file(part)
+         call fatal_error(err, 'gapbeam_checkpoint: cannot rewrite ' // ck%path // ' without ' &
+            // 'its untrusted records: ' // trim(msg) // '; the file is unchanged')
+         return
+      end if
+      open(newunit=ck%unit, file=ck%path, access='stream', form='unformatted', status='old', &
+           action='readwrite', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ck%unit = -1
+         call fatal_error(err, 'gapbeam_checkpoint: cannot open ' // ck%path // ': ' // trim(msg))
+         return
+      end if
+      ck%next_pos = total + 1
+   end subroutine rewrite
+
+   !> Indices that sort `v` ascending (insertion sort: a checkpoint's records are nearly in
+   !> order already).
+   pure function sort_index(v) result(idx)
+      integer(int64), intent(in) :: v(:)                 !! values
+      integer, allocatable :: idx(:)
+      integer :: i, j, t
+      idx = [(i, i = 1, size(v))]
+      do i = 2, size(v)
+         t = idx(i)
+         j = i - 1
+         do while (j >= 1)
+            if (v(idx(j)) <= v(t)) exit
+            idx(j + 1) = idx(j)
+            j = j - 1
+         end do
+         idx(j + 1) = t
+      end do
+   end function sort_index
 
    !> Add a line to a report.
    subroutine add_line(report, line)
@@ -227,7 +462,8 @@ contains
       x = pack_point(pr)
       msg = ''
       write(ck%unit, pos=ck%next_pos, iostat=ios, iomsg=msg) mark_begin, int(p, int32), &
-         int(size(x), int32), x, record_crc(int(p, int32), int(size(x), int32), x), mark_end
+         int(size(x), int32), x, record_crc(ck%hash, int(p, int32), int(size(x), int32), x), &
+         mark_end
       if (ios == 0) flush(ck%unit, iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call fatal_error(err, 'gapbeam_checkpoint: cannot write to ' // ck%path // ' (point ' &
@@ -254,12 +490,14 @@ contains
       if (delete .and. allocated(ck%path)) call remove_file(ck%path)
    end subroutine checkpoint_close
 
-   !> Checksum of a record: CRC-32 of the bytes of its point index, length and reals.
-   pure function record_crc(p, m, x) result(crc)
+   !> Checksum of a record: CRC-32 of the bytes of its point index, length and reals,
+   !> continued from the deck hash.
+   pure function record_crc(hash, p, m, x) result(crc)
+      integer(int64), intent(in) :: hash               !! the deck hash
       integer(int32), intent(in) :: p, m               !! point index, payload length
       real(dp), intent(in) :: x(:)                     !! payload
       integer(int64) :: crc
-      crc = crc32(transfer(x, [0_int8]), crc32(transfer([p, m], [0_int8])))
+      crc = crc32(transfer(x, [0_int8]), crc32(transfer([p, m], [0_int8]), hash))
    end function record_crc
 
    !> The bytes of a text.

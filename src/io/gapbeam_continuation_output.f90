@@ -1,28 +1,19 @@
-!> Result files of a continuation (issue 14): PREFIX.h5 and gnuplot-ready text tables.
+!> Result files of a continuation: PREFIX.h5 and gnuplot-ready text tables, one output set
+!> (gapbeam_output_set): written under temporary names unique to the process and put in place
+!> together, or not at all; /run/files lists them.
 !>
-!> HDF5 (every dataset with `units`; Fortran shapes, so h5py shows 2-D arrays transposed):
-!>   /deck                              the effective deck text
-!>   /continuation/title, parameter_name ('&forcing frequency_hz'), parameter2_name ('' or
-!>                                      the second variable of the curves), parameter2_value
-!>   /continuation/parameter   (n)      the continued variable, in its own unit (Hz, m, ...)
-!>   /continuation/state       (n_state, n)  section state x = (u_r, v_r) of each orbit
-!>   /continuation/state_dofs  (n_state/2)   global dof of each u_r entry (v_r: the same dofs)
-!>   /continuation/period      (n)      forcing periods of the orbit
-!>   /continuation/branch      (n)      branch of the point (1 = the start branch)
-!>   /continuation/multipliers/real, /imag, /modulus  (n_state, n)  Floquet multipliers, by
-!>                                      decreasing modulus (complex: real and imaginary parts)
-!>   /continuation/stable      (n)      1: every |multiplier| < 1, 0: unstable
-!>   /continuation/located     (n)      1: a located bifurcation point
-!>   /continuation/arclength, /iterations, /grazing (extremum of a stop penetration nearest
-!>                                      0 [m]), /impacts (contact intervals per orbit)
-!>   /continuation/poincare/strain, strain_rate, tip  (max_period, n)  at the p section points
-!>                                      of each orbit (NaN beyond its period)
-!>   /continuation/branches/period, parent, first, last, ended   one entry per branch
-!>   /continuation/bifurcations/kind   ('saddle_node', 'period_doubling', 'neimark_sacker',
-!>                                      'grazing', 'branch_point'), parameter, period, branch,
-!>                                      point, multiplier_real, multiplier_imag, grazing, note
-!>   /continuation/curves/kind, period, ended (per curve); curve_NNN/parameter, parameter2
-!>   /continuation/seconds, map_evaluations, periods_integrated
+!> HDF5: the root attributes, /deck, /parameters and /model of every result file, and under
+!> /continuation (shapes in C order, as h5py shows them; units and long names from the output
+!> catalogue, `gapbeam --help-outputs continuation`):
+!>   title, parameter_name ('&forcing frequency_hz'), parameter2_name ('' or the second
+!>   variable of the curves), parameter2_value; per point (n): parameter, period, branch,
+!>   stable, located, arclength, iterations, grazing, impacts; state (n, n_state) with
+!>   state_dofs; multipliers/real, imag, modulus (n, n_state), by decreasing modulus;
+!>   poincare/strain, strain_rate, tip (n, max_period, NaN beyond a point's period);
+!>   branches/period, parent, first, last, ended; bifurcations/kind ('saddle_node',
+!>   'period_doubling', 'neimark_sacker', 'grazing', 'branch_point'), parameter, period, branch,
+!>   point, multiplier_real, multiplier_imag, grazing, note; curves/kind, period, ended and
+!>   curves/curve_NNN/parameter, parameter2; seconds, map_evaluations, periods_integrated.
 !> Text: PREFIX.branches.dat (blocks per branch and section point, a new block wherever the
 !> stability changes, a located bifurcation point ending one block and starting the next:
 !> parameter, strain, strain rate, tip, stable (1 stable, 0 unstable), branch, period),
@@ -33,7 +24,10 @@ module gapbeam_continuation_output
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
-   use gapbeam_files, only: make_parent_directory, write_text_file
+   use gapbeam_output_set, only: output_set_t
+   use gapbeam_model, only: model_t
+   use gapbeam_parameters, only: parameter_set_t
+   use gapbeam_file_info, only: write_parameter_set, write_model
    use gapbeam_continuation_types, only: continuation_result_t
    implicit none
    private
@@ -52,99 +46,90 @@ contains
       end select
    end function curve_kind_code
 
-   !> PREFIX.h5 and the text tables.
-   subroutine write_continuation(prefix, title, deck_text, overlay, res, write_text, err)
+   !> PREFIX.h5 and the text tables (with `write_text`), as one output set; with the run's
+   !> parameters and model when given.
+   subroutine write_continuation(prefix, title, deck_text, overlay, res, write_text, err, &
+                                 params, model, stiffness_units)
       character(len=*), intent(in) :: prefix             !! output prefix
       character(len=*), intent(in) :: title              !! job title
       character(len=*), intent(in) :: deck_text          !! effective deck
       character(len=*), intent(in) :: overlay            !! sweep prefix for the charts
       type(continuation_result_t), intent(in) :: res     !! results
       logical, intent(in) :: write_text                  !! also the .dat tables
-      type(error_t), allocatable, intent(out) :: err     !! I/O failure
-      call make_parent_directory(prefix // '.h5', err);  if (allocated(err)) return
-      call write_h5(prefix // '.h5', title, deck_text, res, err);  if (allocated(err)) return
-      if (.not. write_text) return
-      call write_tables(prefix, title, overlay, res, err)
+      type(error_t), allocatable, intent(out) :: err     !! I/O failure; no file changed then
+      type(parameter_set_t), intent(in), optional :: params   !! /parameters
+      type(model_t), intent(in), optional :: model       !! /model: the deck's model
+      character(len=*), intent(in), optional :: stiffness_units   !! of its stop stiffnesses
+      type(output_set_t) :: set
+      type(h5_writer_t) :: h5
+      if (write_text) then
+         call set%begin(prefix, [character(len=18) :: '.h5', '.branches.dat', &
+                        '.bifurcations.dat', '.multipliers.dat', '.curves.dat'])
+      else
+         call set%begin(prefix, ['.h5'])
+      end if
+      call set%open_h5(h5, 'continuation', deck_text)
+      if (present(params)) call write_parameter_set(h5, params)
+      if (present(model) .and. present(stiffness_units)) call write_model(h5, model, &
+                                                                          stiffness_units)
+      call write_h5(h5, title, res)
+      call set%close_h5(h5)
+      if (write_text) call write_tables(set, title, overlay, res)
+      call set%finish(err)
    end subroutine write_continuation
 
-   subroutine write_h5(path, title, deck_text, res, err)
-      character(len=*), intent(in) :: path, title, deck_text
-      type(continuation_result_t), intent(in) :: res
-      type(error_t), allocatable, intent(out) :: err
-      type(h5_writer_t) :: h5
-      character(len=:), allocatable :: u, su
+   !> The /continuation datasets.
+   subroutine write_h5(h5, title, res)
+      type(h5_writer_t), intent(inout) :: h5             !! writer, file created
+      character(len=*), intent(in) :: title              !! job title
+      type(continuation_result_t), intent(in) :: res     !! results
+      character(len=*), parameter :: c = '/continuation/'
+      character(len=:), allocatable :: u, u2
       character(len=256), allocatable :: ended(:)
       character(len=16), allocatable :: kinds(:)
       integer :: k, nb, nc
-      u = res%parameter_units
-      su = 'm, rad (u); m/s, rad/s (v)'
-      call h5%create(path, err);  if (allocated(err)) return
-      call h5%write_text('/deck', deck_text, err);  if (failed()) return
-      call h5%write_text('/continuation/title', title, err);  if (failed()) return
-      call h5%write_text('/continuation/parameter_name', res%parameter_name, err)
-      if (failed()) return
-      call h5%write_text('/continuation/parameter2_name', res%parameter2_name, err)
-      if (failed()) return
-      call h5%write('/continuation/parameter2_value', res%parameter2_value, &
-                    unit_or_dash(res%parameter2_units), err);  if (failed()) return
-      call h5%write('/continuation/parameter', res%parameter, u, err);  if (failed()) return
-      call h5%write('/continuation/state', res%state, su, err);  if (failed()) return
-      call h5%write('/continuation/state_dofs', res%dofs, '-', err);  if (failed()) return
-      call h5%write('/continuation/period', res%period, 'forcing periods', err)
-      if (failed()) return
-      call h5%write('/continuation/branch', res%branch, '-', err);  if (failed()) return
-      call h5%write('/continuation/multipliers/real', real(res%multipliers, dp), '-', err)
-      if (failed()) return
-      call h5%write('/continuation/multipliers/imag', aimag(res%multipliers), '-', err)
-      if (failed()) return
-      call h5%write('/continuation/multipliers/modulus', abs(res%multipliers), '-', err)
-      if (failed()) return
-      call h5%write('/continuation/stable', merge(1, 0, res%stable), '1: stable, 0: unstable', &
-                    err);  if (failed()) return
-      call h5%write('/continuation/located', merge(1, 0, res%located), &
-                    '1: a located bifurcation point', err);  if (failed()) return
-      call h5%write('/continuation/arclength', res%arclength, '-', err);  if (failed()) return
-      call h5%write('/continuation/iterations', res%iterations, '-', err);  if (failed()) return
-      call h5%write('/continuation/grazing', res%grazing, 'm', err);  if (failed()) return
-      call h5%write('/continuation/impacts', res%impacts, 'contact intervals per orbit', err)
-      if (failed()) return
-      call h5%write('/continuation/poincare/strain', res%p_strain, '-', err)
-      if (failed()) return
-      call h5%write('/continuation/poincare/strain_rate', res%p_rate, '1/s', err)
-      if (failed()) return
-      call h5%write('/continuation/poincare/tip', res%p_tip, 'm', err);  if (failed()) return
+      u = unit_or_dash(res%parameter_units)
+      u2 = unit_or_dash(res%parameter2_units)
+      call h5%put(c // 'title', title)
+      call h5%put(c // 'parameter_name', res%parameter_name)
+      call h5%put(c // 'parameter2_name', res%parameter2_name)
+      call h5%put(c // 'parameter2_value', res%parameter2_value, units=u2)
+      call h5%put(c // 'parameter', res%parameter, units=u)
+      call h5%put(c // 'state', res%state)
+      call h5%put(c // 'state_dofs', res%dofs)
+      call h5%put(c // 'period', res%period)
+      call h5%put(c // 'branch', res%branch)
+      call h5%put(c // 'multipliers/real', real(res%multipliers, dp))
+      call h5%put(c // 'multipliers/imag', aimag(res%multipliers))
+      call h5%put(c // 'multipliers/modulus', abs(res%multipliers))
+      call h5%put(c // 'stable', merge(1, 0, res%stable))
+      call h5%put(c // 'located', merge(1, 0, res%located))
+      call h5%put(c // 'arclength', res%arclength)
+      call h5%put(c // 'iterations', res%iterations)
+      call h5%put(c // 'grazing', res%grazing)
+      call h5%put(c // 'impacts', res%impacts)
+      call h5%put(c // 'poincare/strain', res%p_strain)
+      call h5%put(c // 'poincare/strain_rate', res%p_rate)
+      call h5%put(c // 'poincare/tip', res%p_tip)
       nb = size(res%branches)
-      allocate(ended(max(nb, 0)))
+      allocate(ended(nb))
       do k = 1, nb
          ended(k) = res%branches(k)%ended
       end do
-      call h5%write('/continuation/branches/period', [(res%branches(k)%period, k = 1, nb)], &
-                    'forcing periods', err);  if (failed()) return
-      call h5%write('/continuation/branches/parent', [(res%branches(k)%parent, k = 1, nb)], &
-                    '-', err);  if (failed()) return
-      call h5%write('/continuation/branches/first', [(res%branches(k)%first, k = 1, nb)], &
-                    '-', err);  if (failed()) return
-      call h5%write('/continuation/branches/last', [(res%branches(k)%last, k = 1, nb)], &
-                    '-', err);  if (failed()) return
-      call h5%write('/continuation/branches/ended', ended, '-', err);  if (failed()) return
-      call h5%write('/continuation/bifurcations/kind', res%bif_kind, '-', err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/parameter', res%bif_parameter, u, err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/period', res%bif_period, 'forcing periods', err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/branch', res%bif_branch, '-', err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/point', res%bif_point, '-', err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/multiplier_real', real(res%bif_multiplier, dp), &
-                    '-', err);  if (failed()) return
-      call h5%write('/continuation/bifurcations/multiplier_imag', aimag(res%bif_multiplier), &
-                    '-', err);  if (failed()) return
-      call h5%write('/continuation/bifurcations/grazing', res%bif_grazing, 'm', err)
-      if (failed()) return
-      call h5%write('/continuation/bifurcations/note', res%bif_note, '-', err)
-      if (failed()) return
+      call h5%put(c // 'branches/period', [(res%branches(k)%period, k = 1, nb)])
+      call h5%put(c // 'branches/parent', [(res%branches(k)%parent, k = 1, nb)])
+      call h5%put(c // 'branches/first', [(res%branches(k)%first, k = 1, nb)])
+      call h5%put(c // 'branches/last', [(res%branches(k)%last, k = 1, nb)])
+      call h5%put(c // 'branches/ended', ended)
+      call h5%put(c // 'bifurcations/kind', res%bif_kind)
+      call h5%put(c // 'bifurcations/parameter', res%bif_parameter, units=u)
+      call h5%put(c // 'bifurcations/period', res%bif_period)
+      call h5%put(c // 'bifurcations/branch', res%bif_branch)
+      call h5%put(c // 'bifurcations/point', res%bif_point)
+      call h5%put(c // 'bifurcations/multiplier_real', real(res%bif_multiplier, dp))
+      call h5%put(c // 'bifurcations/multiplier_imag', aimag(res%bif_multiplier))
+      call h5%put(c // 'bifurcations/grazing', res%bif_grazing)
+      call h5%put(c // 'bifurcations/note', res%bif_note)
       nc = size(res%curves)
       allocate(kinds(nc))
       deallocate(ended);  allocate(ended(nc))
@@ -152,35 +137,26 @@ contains
          kinds(k) = res%curves(k)%kind
          ended(k) = res%curves(k)%ended
       end do
-      call h5%write('/continuation/curves/kind', kinds, '-', err);  if (failed()) return
-      call h5%write('/continuation/curves/period', [(res%curves(k)%period, k = 1, nc)], &
-                    'forcing periods', err);  if (failed()) return
-      call h5%write('/continuation/curves/ended', ended, '-', err);  if (failed()) return
+      call h5%put(c // 'curves/kind', kinds)
+      call h5%put(c // 'curves/period', [(res%curves(k)%period, k = 1, nc)])
+      call h5%put(c // 'curves/ended', ended)
       do k = 1, nc
-         call h5%write('/continuation/curves/curve_' // pad3(k) // '/parameter', &
-                       res%curves(k)%parameter, u, err);  if (failed()) return
-         call h5%write('/continuation/curves/curve_' // pad3(k) // '/parameter2', &
-                       res%curves(k)%parameter2, unit_or_dash(res%parameter2_units), err)
-         if (failed()) return
+         call h5%put(c // 'curves/curve_' // pad3(k) // '/parameter', res%curves(k)%parameter, &
+                     units=u)
+         call h5%put(c // 'curves/curve_' // pad3(k) // '/parameter2', &
+                     res%curves(k)%parameter2, units=u2)
       end do
-      call h5%write('/continuation/seconds', res%seconds, 's', err);  if (failed()) return
-      call h5%write('/continuation/map_evaluations', res%map_evaluations, '-', err)
-      if (failed()) return
-      call h5%write('/continuation/periods_integrated', res%periods_integrated, &
-                    'forcing periods', err);  if (failed()) return
-      call h5%close(err)
-   contains
-      logical function failed()
-         failed = allocated(err)
-         if (failed) call h5%abort()
-      end function failed
+      call h5%put(c // 'seconds', res%seconds)
+      call h5%put(c // 'map_evaluations', res%map_evaluations)
+      call h5%put(c // 'periods_integrated', res%periods_integrated)
    end subroutine write_h5
 
+   !> A deck variable's unit as UDUNITS-2 ('-' or none is '1', a pure number).
    pure function unit_or_dash(u) result(s)
       character(len=*), intent(in) :: u
       character(len=:), allocatable :: s
       s = trim(u)
-      if (len(s) == 0) s = '-'
+      if (len(s) == 0 .or. s == '-') s = '1'
    end function unit_or_dash
 
    pure function pad3(k) result(s)
@@ -190,10 +166,10 @@ contains
    end function pad3
 
    !> The four text tables.
-   subroutine write_tables(prefix, title, overlay, res, err)
-      character(len=*), intent(in) :: prefix, title, overlay
+   subroutine write_tables(set, title, overlay, res)
+      type(output_set_t), intent(inout) :: set
+      character(len=*), intent(in) :: title, overlay
       type(continuation_result_t), intent(in) :: res
-      type(error_t), allocatable, intent(out) :: err
       character(len=:), allocatable :: t, head
       integer :: nt
       integer :: b, j, k, m
@@ -235,7 +211,7 @@ contains
             call append(t, nt, new_line('a') // new_line('a'))
          end do
       end do
-      call write_text_file(prefix // '.branches.dat', t(1:nt), err);  if (allocated(err)) return
+      call set%text('.branches.dat', t(1:nt))
       ! bifurcations
       nt = 0
       call append(t, nt, head)
@@ -250,7 +226,7 @@ contains
             real(res%bif_multiplier(j), dp), aimag(res%bif_multiplier(j)), res%bif_grazing(j), &
             real(curve_kind_code(res%bif_kind(j)), dp)]))
       end do
-      call write_text_file(prefix // '.bifurcations.dat', t(1:nt), err);  if (allocated(err)) return
+      call set%text('.bifurcations.dat', t(1:nt))
       ! multipliers
       nt = 0
       call append(t, nt, head)
@@ -263,7 +239,7 @@ contains
                real(res%period(j), dp)]))
          end do
       end do
-      call write_text_file(prefix // '.multipliers.dat', t(1:nt), err);  if (allocated(err)) return
+      call set%text('.multipliers.dat', t(1:nt))
       ! curves
       nt = 0
       call append(t, nt, head)
@@ -279,7 +255,7 @@ contains
          end do
          call append(t, nt, new_line('a') // new_line('a'))
       end do
-      call write_text_file(prefix // '.curves.dat', t(1:nt), err)
+      call set%text('.curves.dat', t(1:nt))
    end subroutine write_tables
 
    !> Append text to a buffer t of used length nt (capacity doubles).

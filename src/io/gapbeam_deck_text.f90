@@ -1,20 +1,72 @@
-!> Text handling of namelist decks: loading a file, finding groups, splitting assignments.
+!> The text of namelist decks, read strictly: every character of a deck file or an override is
+!> consumed by a group, an assignment, a value, a comment or a blank, or refused with a
+!> message naming the line (deck file) and what was found.
 !>
-!> A deck is a sequence of sources: the deck file, then each command-line override (a
-!> namelist fragment such as "&forcing frequency_hz=10.2 /"). Quotes (' and ") and
-!> comments (! to the end of a line, outside quotes) are honoured when groups are located.
+!> The syntax is Fortran namelist input as gapbeam's decks use it: a group opens with `&name`
+!> (the name right after '&', then a blank or the end of the line) and closes with `/`; inside,
+!> assignments `name = value, value ...` or `name(i) = value ...` (entries from i on), values
+!> separated by commas or blanks and running over lines, `r*value` repeats, quoted strings
+!> ('...' or "...", a doubled quote for one, on one line), logicals (.true., .false., t, f,
+!> true, false, .t., .f.), numbers (Fortran forms, d or e exponents, NaN, Inf); `!` starts a
+!> comment to the end of the line. Refused: text outside a group (between groups or after a
+!> closing '/'), characters around a group name (`&forcing.`, `& forcing`, `&-tops`), a group
+!> that runs into the next one, an unknown character where a name or a value belongs, a lone
+!> sign, an empty value (`x = ,`, `x = 1, , 2`, `3*`: namelist input would keep the old value
+!> silently), array sections, and a variable or list entry assigned twice in one group.
+!> What the values mean (types, ranges) is for the reader (gapbeam_input) to decide.
 module gapbeam_deck_text
-   use gapbeam_error, only: error_t, fatal_error
+   use gapbeam_error, only: error_t, fatal_error, str
    implicit none
    private
-   public :: source_t, load_file, make_source, group_names, group_block, split_assignments
-   public :: lower, basename_stem, null_value, longest_text_value, assigned_name, quote_left_open
+   public :: source_t, group_text_t, assignment_t, value_t, load_file, make_source, &
+      parse_source, lower, basename_stem, present_group, given
+   public :: value_number, value_logical, value_string
 
-   !> One source of namelist text (file or override), as lines.
+   integer, parameter :: value_number = 1    !! a number (integer or real syntax, NaN, Inf)
+   integer, parameter :: value_logical = 2   !! .true. or .false.
+   integer, parameter :: value_string = 3    !! a quoted string (quotes removed)
+   integer, parameter :: max_repeat = 100000 !! largest repeat count r of r*value
+
+   !> One value of an assignment.
+   type :: value_t
+      integer :: kind = 0                             !! value_number, ...
+      character(len=:), allocatable :: text           !! as written (strings: the contents)
+      logical :: flag = .false.                       !! a logical's value
+   end type value_t
+
+   !> One assignment: name [ (first) ] = values.
+   type :: assignment_t
+      character(len=:), allocatable :: name           !! variable, lower case
+      integer :: first = 0                            !! entry given (0: the whole variable)
+      integer :: line = 0                             !! line of the name
+      character(len=:), allocatable :: written        !! as written, on one line (messages)
+      type(value_t), allocatable :: values(:)         !! the values, repeats expanded
+   end type assignment_t
+
+   !> One group of a source.
+   type :: group_text_t
+      character(len=:), allocatable :: name           !! lower case
+      integer :: line = 0                             !! line of '&name'
+      type(assignment_t), allocatable :: items(:)     !! in order
+   end type group_text_t
+
+   !> One source of namelist text: the deck file or an override.
    type :: source_t
-      character(len=:), allocatable :: label       !! 'deck.nml' or "override 2 '...'"
-      character(len=:), allocatable :: lines(:)    !! the text, one element per line
+      character(len=:), allocatable :: label          !! 'deck.nml' or "override 2 '...'"
+      character(len=:), allocatable :: text           !! LF line ends
+      logical :: is_file = .true.                     !! messages name lines of files only
+      type(group_text_t), allocatable :: groups(:)    !! after parse_source
    end type source_t
+
+   !> Where the scanner is.
+   type :: cursor_t
+      character(len=:), allocatable :: t              !! the text
+      integer :: p = 1                                !! next character
+      integer :: line = 1                             !! its line
+      logical :: is_file = .true.                     !! name lines in messages
+   end type cursor_t
+
+   character(len=1), parameter :: lf = achar(10), tab = achar(9)
 
 contains
 
@@ -41,31 +93,18 @@ contains
       if (j > 1) stem = stem(1:j - 1)
    end function basename_stem
 
-   !> Build a source from a text with newlines.
-   pure subroutine make_source(label, text, src)
+   !> A source from a text (any line ends; a UTF-8 byte-order mark first is dropped).
+   pure subroutine make_source(label, text, is_file, src)
       character(len=*), intent(in) :: label     !! for messages
-      character(len=*), intent(in) :: text      !! text, lines separated by newline
+      character(len=*), intent(in) :: text      !! the text
+      logical, intent(in) :: is_file            !! the deck file (messages name its lines)
       type(source_t), intent(out) :: src        !! result
-      integer :: n, i, start, width, k
-      character(len=1), parameter :: nl = new_line('a')
-      n = 1;  width = 1;  start = 1
-      do i = 1, len(text)
-         if (text(i:i) == nl) then
-            n = n + 1
-            width = max(width, i - start);  start = i + 1
-         end if
-      end do
-      width = max(width, len(text) - start + 1, 1)
-      allocate(character(len=width) :: src%lines(n))
-      k = 0;  start = 1
-      do i = 1, len(text) + 1
-         if (i > len(text)) then
-            k = k + 1;  src%lines(k) = text(start:)
-         else if (text(i:i) == nl) then
-            k = k + 1;  src%lines(k) = text(start:i - 1);  start = i + 1
-         end if
-      end do
       src%label = label
+      src%is_file = is_file
+      src%text = unix_line_ends(text)
+      if (len(src%text) >= 3) then
+         if (src%text(1:3) == char(239) // char(187) // char(191)) src%text = src%text(4:)
+      end if
    end subroutine make_source
 
    !> Read a whole text file.
@@ -91,18 +130,14 @@ contains
       allocate(character(len=max(fsize, 0)) :: text)
       if (fsize > 0) read(unit, iostat=ios, iomsg=msg) text
       close(unit)
-      if (ios /= 0) then
-         call fatal_error(err, path // ': cannot read the deck file: ' // trim(msg))
-         return
-      end if
-      text = unix_line_ends(text)
+      if (ios /= 0) call fatal_error(err, path // ': cannot read the deck file: ' // trim(msg))
    end subroutine load_file
 
    !> Text with every line end as LF: CRLF (DOS) becomes LF, then a lone CR (old Mac) too.
    pure function unix_line_ends(s) result(t)
       character(len=*), intent(in) :: s   !! text with any line ends
       character(len=:), allocatable :: t
-      character(len=1), parameter :: cr = achar(13), lf = achar(10)
+      character(len=1), parameter :: cr = achar(13)
       integer :: i, k
       allocate(character(len=len(s)) :: t)
       k = 0
@@ -119,297 +154,544 @@ contains
       t = t(1:k)
    end function unix_line_ends
 
-   !> Names (lower case) of all groups opened in a source, in order, with repeats.
-   pure subroutine group_names(src, names)
-      type(source_t), intent(in) :: src                       !! source
-      character(len=32), allocatable, intent(out) :: names(:) !! group names
-      integer :: l, i, j, n
-      character(len=1) :: q
-      character(len=:), allocatable :: line
-      character(len=32), allocatable :: buf(:)
-      allocate(buf(16))
-      n = 0;  q = ' '
-      do l = 1, size(src%lines)
-         line = trim(src%lines(l))   ! the lines are padded to the longest one
-         i = 1
-         do while (i <= len(line))
-            if (q /= ' ') then
-               if (line(i:i) == q) q = ' '
-            else if (line(i:i) == '"' .or. line(i:i) == "'") then
-               q = line(i:i)
-            else if (line(i:i) == '!') then
-               exit
-            else if (line(i:i) == '&' .or. line(i:i) == '$') then
-               j = i + 1
-               do while (j <= len(line))
-                  if (.not. is_name_char(line(j:j))) exit
-                  j = j + 1
-               end do
-               if (j > i + 1) then
-                  if (n == size(buf)) buf = [buf, buf]     ! no limit on the number of groups
-                  n = n + 1;  buf(n) = lower(line(i + 1:j - 1))
-               end if
-               i = j - 1
-            end if
-            i = i + 1
+   !> Whether any source has group `name`.
+   pure logical function present_group(srcs, name)
+      type(source_t), intent(in) :: srcs(:)          !! parsed sources
+      character(len=*), intent(in) :: name           !! group
+      integer :: s, i
+      present_group = .false.
+      do s = 1, size(srcs)
+         do i = 1, size(srcs(s)%groups)
+            if (srcs(s)%groups(i)%name == name) present_group = .true.
          end do
       end do
-      names = buf(1:n)
-   end subroutine group_names
+   end function present_group
 
-   !> The lines of group `name` (from '&name' to its closing '/'), or an unallocated array.
-   pure subroutine group_block(src, name, block, closed)
-      type(source_t), intent(in) :: src                          !! source
-      character(len=*), intent(in) :: name                       !! group name, lower case
-      character(len=:), allocatable, intent(out) :: block(:)     !! the group's lines
-      logical, intent(out), optional :: closed                   !! a '/' ends the group
-      integer :: l, i, first, last, cstart, cend
-      character(len=1) :: q
-      character(len=:), allocatable :: line
-      logical :: inside
-      q = ' ';  inside = .false.;  first = 0;  last = 0;  cstart = 1;  cend = 0
-      outer: do l = 1, size(src%lines)
-         line = trim(src%lines(l))   ! the lines are padded to the longest one
-         i = 1
-         do while (i <= len(line))
-            if (q /= ' ') then
-               if (line(i:i) == q) q = ' '
-            else if (line(i:i) == '"' .or. line(i:i) == "'") then
-               q = line(i:i)
-            else if (line(i:i) == '!') then
-               exit
-            else if (.not. inside .and. (line(i:i) == '&' .or. line(i:i) == '$')) then
-               if (lower(line(i + 1:min(len(line), i + len(name)))) == name) then
-                  if (i + len(name) + 1 > len(line)) then
-                     inside = .true.
-                  else if (.not. is_name_char(line(i + len(name) + 1:i + len(name) + 1))) then
-                     inside = .true.
-                  end if
-                  if (inside) then
-                     first = l;  cstart = i;  i = i + len(name)
-                  end if
-               end if
-            else if (inside .and. line(i:i) == '/') then
-               last = l;  cend = i
-               exit outer
-            end if
-            i = i + 1
+   !> Whether any source assigns variable `var` of group `group`.
+   pure logical function given(srcs, group, var)
+      type(source_t), intent(in) :: srcs(:)          !! parsed sources
+      character(len=*), intent(in) :: group, var     !! group and variable
+      integer :: s, i, k
+      given = .false.
+      do s = 1, size(srcs)
+         do i = 1, size(srcs(s)%groups)
+            if (srcs(s)%groups(i)%name /= group) cycle
+            do k = 1, size(srcs(s)%groups(i)%items)
+               if (srcs(s)%groups(i)%items(k)%name == var) given = .true.
+            end do
          end do
-      end do outer
-      if (present(closed)) closed = last > 0
-      if (first == 0) return
-      if (last == 0) last = size(src%lines)
-      allocate(character(len=len(src%lines)) :: block(last - first + 1))
-      block = src%lines(first:last)
-      block(1) = repeat(' ', cstart - 1) // src%lines(first)(cstart:)
-      if (cend > 0) block(size(block)) = block(size(block))(1:cend)
-   end subroutine group_block
-
-   pure logical function is_name_char(c)
-      character(len=1), intent(in) :: c
-      is_name_char = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. &
-                     (c >= '0' .and. c <= '9') .or. c == '_'
-   end function is_name_char
-
-   !> Split a group block into its assignments ('name = value', 'node(2) = 3, 4').
-   pure subroutine split_assignments(block, items)
-      character(len=*), intent(in) :: block(:)                   !! lines of one group
-      character(len=:), allocatable, intent(out) :: items(:)     !! one assignment each
-      character(len=:), allocatable :: s
-      integer :: i, j, k, n, l, ends
-      integer, allocatable :: starts(:)
-      character(len=1) :: q
-      logical :: at_sep
-      ! join the lines without comments
-      s = ''
-      do l = 1, size(block)
-         q = ' '
-         ends = len(block(l))
-         do i = 1, len(block(l))
-            if (q /= ' ') then
-               if (block(l)(i:i) == q) q = ' '
-            else if (block(l)(i:i) == '"' .or. block(l)(i:i) == "'") then
-               q = block(l)(i:i)
-            else if (block(l)(i:i) == '!') then
-               ends = i - 1;  exit
-            end if
-         end do
-         s = s // ' ' // block(l)(1:ends)
       end do
-      ! drop '&name' and the closing '/'
-      i = index(s, '&');  if (i == 0) i = index(s, '$')
-      if (i > 0) then
-         j = i + 1
-         do while (j <= len(s))
-            if (.not. is_name_char(s(j:j))) exit
-            j = j + 1
-         end do
-         s = s(j:)
+   end function given
+
+   ! ---------------------------------------------------------------- the scanner
+
+   !> Split a source into its groups and assignments, refusing what is not namelist text.
+   subroutine parse_source(src, err)
+      type(source_t), intent(inout) :: src              !! its groups are set
+      type(error_t), allocatable, intent(out) :: err    !! the first text refused
+      type(cursor_t) :: c
+      type(group_text_t) :: g
+      character(len=:), allocatable :: closed
+      integer :: closed_line
+      c%t = src%text;  c%is_file = src%is_file
+      allocate(src%groups(0))
+      closed = '';  closed_line = 0
+      do
+         call skip_space(c)
+         if (c%p > len(c%t)) exit
+         if (c%t(c%p:c%p) == '&') then
+            call parse_group(c, g, err)
+            if (allocated(err)) return
+            src%groups = [src%groups, g]
+            closed = g%name;  closed_line = c%line
+         else if (len(closed) > 0 .and. closed_line == c%line) then
+            call fatal_error(err, at(c) // "text after the '/' that closes group &" // closed &
+               // ": '" // rest_of_line(c) // "' (a group ends at its '/'; a comment " &
+               // "starts with '!')")
+            return
+         else
+            call fatal_error(err, at(c) // "text outside a group" // after(closed) // ": '" &
+               // rest_of_line(c) // "' (a group starts with &name, a comment with '!')")
+            return
+         end if
+      end do
+   end subroutine parse_source
+
+   !> ' (after group &name)', or '' before the first group.
+   pure function after(closed) result(t)
+      character(len=*), intent(in) :: closed
+      character(len=:), allocatable :: t
+      t = ''
+      if (len(closed) > 0) t = ' (after group &' // closed // ')'
+   end function after
+
+   !> '&name ... /' at the cursor.
+   subroutine parse_group(c, g, err)
+      type(cursor_t), intent(inout) :: c
+      type(group_text_t), intent(out) :: g
+      type(error_t), allocatable, intent(inout) :: err
+      type(assignment_t) :: item
+      character(len=1) :: ch
+      integer :: k
+      g%line = c%line
+      c%p = c%p + 1
+      if (.not. is_letter(peek(c))) then
+         call fatal_error(err, at(c) // "'" // group_token(c) // "': '&' must be followed " &
+            // 'directly by a group name' // meant(c))
+         return
       end if
-      ! find the starts of 'name [(...)] =' outside quotes
-      allocate(starts(16))
-      n = 0;  q = ' ';  at_sep = .true.
-      i = 1
-      do while (i <= len(s))
-         if (q /= ' ') then
-            if (s(i:i) == q) q = ' '
-            at_sep = .false.
-         else if (s(i:i) == '"' .or. s(i:i) == "'") then
-            q = s(i:i);  at_sep = .false.
-         else if (s(i:i) == ' ' .or. s(i:i) == ',') then
-            at_sep = .true.
-         else
-            if (at_sep .and. is_name_char(s(i:i))) then
-               j = i
-               do while (j <= len(s))
-                  if (.not. is_name_char(s(j:j))) exit
-                  j = j + 1
-               end do
-               k = j
-               do while (k <= len(s))
-                  if (s(k:k) /= ' ') exit
-                  k = k + 1
-               end do
-               if (k <= len(s)) then
-                  if (s(k:k) == '(') then
-                     k = index(s(k:), ')') + k
-                     do while (k <= len(s))
-                        if (s(k:k) /= ' ') exit
-                        k = k + 1
-                     end do
-                  end if
-               end if
-               if (k <= len(s)) then
-                  if (s(k:k) == '=') then
-                     if (n == size(starts)) starts = [starts, starts]   ! no limit
-                     n = n + 1;  starts(n) = i
-                  end if
-               end if
-               i = j - 1
-            end if
-            at_sep = .false.
+      g%name = lower(read_name(c))
+      ch = peek(c)
+      if (.not. (ch == ' ' .or. ch == tab .or. ch == lf .or. ch == '/' .or. &
+                 c%p > len(c%t))) then
+         c%p = c%p - len(g%name)
+         call fatal_error(err, at(c) // "'" // group_token(c) // "': a group name must be " &
+            // 'followed by a blank or the end of the line')
+         return
+      end if
+      allocate(g%items(0))
+      do
+         call skip_space(c)
+         if (c%p > len(c%t)) then
+            call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before the " &
+               // 'end of the ' // trim(merge('deck file', 'override ', c%is_file)))
+            return
          end if
-         i = i + 1
-      end do
-      ! cut: each assignment runs to the next start (trailing '/' and commas removed)
-      allocate(character(len=max(1, len(s))) :: items(n))
-      do k = 1, n
-         if (k < n) then
-            items(k) = s(starts(k):starts(k + 1) - 1)
-         else
-            items(k) = s(starts(k):)
-         end if
-         call trim_tail(items(k))
-      end do
-   end subroutine split_assignments
-
-   !> Whether a quote opened in `item` is still open at its end (then the rest of the source,
-   !> the closing '/' included, is read as part of the string).
-   pure logical function quote_left_open(item)
-      character(len=*), intent(in) :: item                 !! one assignment
-      integer :: i
-      character(len=1) :: q
-      q = ' '
-      do i = 1, len(item)
-         if (q /= ' ') then
-            if (item(i:i) == q) q = ' '
-         else if (item(i:i) == "'" .or. item(i:i) == '"') then
-            q = item(i:i)
-         end if
-      end do
-      quote_left_open = q /= ' '
-   end function quote_left_open
-
-   !> The variable name of an assignment, lower case: 'Node(2) = 3' -> 'node'.
-   pure function assigned_name(item) result(var)
-      character(len=*), intent(in) :: item                 !! one assignment
-      character(len=:), allocatable :: var
-      integer :: p
-      p = scan(item, '(=')
-      var = trim(lower(adjustl(item(1:max(p - 1, 1)))))
-   end function assigned_name
-
-   !> True if an assignment gives a null value, which namelist input reads as "leave the
-   !> variable as it is": nothing after '=' ('x =', 'x = ,'), an empty entry in a list
-   !> ('x = 1, , 3', 'x = , 2') or a repeat without a value ('x = 3*').
-   pure logical function null_value(item)
-      character(len=*), intent(in) :: item                 !! one assignment, as split
-      integer :: i, eq, n
-      character(len=1) :: q, prev
-      eq = index(item, '=')
-      null_value = .false.
-      if (eq == 0) return
-      q = ' ';  prev = ','          ! as if a separator came right before the value
-      n = len_trim(item)
-      null_value = .true.
-      do i = eq + 1, n
-         if (q /= ' ') then
-            if (item(i:i) == q) q = ' '
-            cycle
-         end if
-         select case (item(i:i))
-         case ("'", '"')
-            q = item(i:i);  prev = 'x'
-         case (' ')
-            cycle
-         case (',')
-            if (prev == ',') return
-            prev = ','
-         case ('*')
-            if (i == n) return
-            if (scan(item(i + 1:i + 1), ', ') > 0) return
-            prev = 'x'
-         case default
-            prev = 'x'
-         end select
-      end do
-      null_value = prev == ','       ! nothing after '=', or after the last separator
-   end function null_value
-
-   !> Length of the longest character constant in the value of an assignment: each quoted
-   !> string ('a doubled '''' quote counts once'), or each blank- or comma-separated token of
-   !> an unquoted value. 0 for an empty value.
-   pure integer function longest_text_value(item) result(longest)
-      character(len=*), intent(in) :: item                 !! one assignment, as split
-      integer :: i, eq, n, run
-      character(len=1) :: q
-      longest = 0
-      eq = index(item, '=')
-      if (eq == 0) return
-      n = len_trim(item)
-      q = ' ';  run = 0;  i = eq + 1
-      do while (i <= n)
-         if (q /= ' ') then
-            if (item(i:i) == q) then
-               if (i < n) then
-                  if (item(i + 1:i + 1) == q) then   ! doubled quote: one character
-                     run = run + 1;  i = i + 2
-                     cycle
-                  end if
-               end if
-               q = ' ';  longest = max(longest, run);  run = 0
+         ch = peek(c)
+         if (ch == '/') then
+            c%p = c%p + 1
+            exit
+         else if (ch == '&') then
+            c%p = c%p + 1
+            if (c%is_file) then
+               call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before &" &
+                  // lower(read_name(c)) // ' at line ' // str(c%line))
             else
-               run = run + 1
+               call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before &" &
+                  // lower(read_name(c)))
             end if
-         else if (item(i:i) == "'" .or. item(i:i) == '"') then
-            q = item(i:i);  run = 0
-         else if (item(i:i) == ' ' .or. item(i:i) == ',') then
-            longest = max(longest, run);  run = 0
+            return
+         else if (is_letter(ch)) then
+            call parse_assignment(c, g%name, item, err)
+            if (allocated(err)) return
+            do k = 1, size(g%items)
+               if (overlap(g%items(k), item)) then
+                  call fatal_error(err, at(c, item%line) // 'group &' // g%name // ': ' &
+                     // trim(item%name) // ' is assigned twice (' // trim(g%items(k)%written) &
+                     // '; ' // trim(item%written) // '): give each variable or list entry ' &
+                     // 'once per group')
+                  return
+               end if
+            end do
+            g%items = [g%items, item]
          else
-            run = run + 1
+            call fatal_error(err, at(c) // 'group &' // g%name // ": '" // rest_of_line(c) &
+               // "': a variable name expected (an assignment reads name = value)")
+            return
          end if
-         i = i + 1
       end do
-      longest = max(longest, run)
-   end function longest_text_value
+   end subroutine parse_group
 
-   pure subroutine trim_tail(t)
-      character(len=*), intent(inout) :: t
-      integer :: e
-      e = len_trim(t)
-      do while (e > 0)
-         if (t(e:e) /= ',' .and. t(e:e) /= '/' .and. t(e:e) /= ' ') exit
-         t(e:e) = ' ';  e = e - 1
+   !> 'name [ (i) ] = values' at the cursor.
+   subroutine parse_assignment(c, group, a, err)
+      type(cursor_t), intent(inout) :: c
+      character(len=*), intent(in) :: group
+      type(assignment_t), intent(out) :: a
+      type(error_t), allocatable, intent(inout) :: err
+      integer :: start, last, ios
+      character(len=:), allocatable :: digits_text
+      logical :: after_comma
+      start = c%p;  a%line = c%line
+      a%name = lower(read_name(c))
+      call skip_blanks(c)
+      if (peek(c) == '(') then
+         c%p = c%p + 1
+         call skip_blanks(c)
+         digits_text = ''
+         do while (is_digit(peek(c)) .and. len(digits_text) < 9)
+            digits_text = digits_text // peek(c);  c%p = c%p + 1
+         end do
+         call skip_blanks(c)
+         ios = 1
+         if (len(digits_text) > 0) read(digits_text, *, iostat=ios) a%first
+         if (peek(c) == ':') then
+            call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name // "(...:...): " &
+               // 'array sections are not read; give ' // a%name // '(i) = v1, v2, ... (from ' &
+               // 'entry i on)')
+            return
+         else if (ios /= 0 .or. a%first < 1 .or. peek(c) /= ')') then
+            call fatal_error(err, at(c) // 'group &' // group // ": '" // a%name // '(' &
+               // rest_of_line(c) // "': an entry index is a whole number >= 1, e.g. " &
+               // a%name // '(2)')
+            return
+         end if
+         c%p = c%p + 1
+         call skip_blanks(c)
+      end if
+      if (peek(c) /= '=') then
+         call fatal_error(err, at(c) // 'group &' // group // ": '" // a%name // ' ' &
+            // rest_of_line(c) // "': '=' expected after the variable name")
+         return
+      end if
+      c%p = c%p + 1
+      allocate(a%values(0))
+      after_comma = .true.;  last = c%p - 1
+      do
+         call skip_space(c)
+         if (c%p > len(c%t)) exit
+         if (scan(peek(c), '/&') > 0) exit
+         if (peek(c) == ',') then
+            if (after_comma) exit                     ! an empty value: refused below
+            after_comma = .true.;  c%p = c%p + 1
+            cycle
+         end if
+         if (is_letter(peek(c)) .and. assignment_follows(c)) exit
+         call parse_value(c, group, a, err)
+         if (allocated(err)) return
+         after_comma = .false.;  last = c%p - 1
       end do
-   end subroutine trim_tail
+      a%written = one_line(c%t(start:max(last, start)))
+      if (size(a%values) == 0 .or. (after_comma .and. peek(c) == ',')) then
+         call fatal_error(err, at(c, a%line) // 'group &' // group // ': "' // a%written &
+            // '": no value for ' // a%name // ' (an empty value would keep the default ' &
+            // 'silently: give a value or leave ' // a%name // ' out)')
+      end if
+   end subroutine parse_assignment
+
+   !> One value (or r*value) at the cursor, appended to a%values.
+   subroutine parse_value(c, group, a, err)
+      type(cursor_t), intent(inout) :: c
+      character(len=*), intent(in) :: group
+      type(assignment_t), intent(inout) :: a
+      type(error_t), allocatable, intent(inout) :: err
+      type(value_t) :: v
+      type(value_t), allocatable :: reps(:)
+      character(len=:), allocatable :: tok
+      integer :: r, star, ios
+      r = 1
+      if (scan(peek(c), '''"') > 0) then
+         call parse_string(c, group, a%name, v, err)
+      else
+         tok = read_token(c)
+         star = index(tok, '*')
+         if (star > 1) then
+            if (verify(tok(1:star - 1), '0123456789') == 0 .and. star <= 10) then
+               read(tok(1:star - 1), *, iostat=ios) r
+               if (r < 1 .or. r > max_repeat) then
+                  call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name // ' = ' &
+                     // tok // ': a repeat count r*value needs 1 <= r <= ' // str(max_repeat))
+                  return
+               end if
+               tok = tok(star + 1:)
+               if (len(tok) == 0) then
+                  if (scan(peek(c), '''"') == 0) then
+                     call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name &
+                        // ' = ' // str(r) // '*: no value for ' // a%name // ' after the ' &
+                        // "repeat count (namelist input would keep the old value silently)")
+                     return
+                  end if
+                  call parse_string(c, group, a%name, v, err)
+               end if
+            end if
+         end if
+         if (.not. allocated(err) .and. len(tok) > 0) call classify(tok, v)
+         if (v%kind == 0) then
+            call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name // ' = ' // tok &
+               // ': not a number, a logical (.true., .false.) or a quoted text; cannot read ' &
+               // 'the value of ' // a%name)
+            return
+         end if
+      end if
+      if (allocated(err)) return
+      if (.not. (c%p > len(c%t) .or. scan(peek(c), ' ,/!&' // tab // lf) > 0)) then
+         call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name // ": '" &
+            // rest_of_line(c) // "' right after a value (values are separated by commas or " &
+            // 'blanks)')
+         return
+      end if
+      allocate(reps(r))
+      reps = v
+      a%values = [a%values, reps]
+   end subroutine parse_value
+
+   !> A quoted string at the cursor ('' or "" inside for one quote), on one line.
+   subroutine parse_string(c, group, name, v, err)
+      type(cursor_t), intent(inout) :: c
+      character(len=*), intent(in) :: group, name
+      type(value_t), intent(out) :: v
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=1) :: q
+      integer :: p0
+      q = peek(c);  p0 = c%p;  c%p = c%p + 1
+      v%kind = value_string;  v%text = ''
+      do
+         if (c%p > len(c%t) .or. peek(c) == lf) then
+            call fatal_error(err, at(c) // 'group &' // group // ': a quote opened in the ' &
+               // 'value of ' // name // ' is never closed on its line (' &
+               // one_line(c%t(p0:min(len(c%t), p0 + 60))) // ')')
+            return
+         end if
+         if (peek(c) == q) then
+            if (c%p < len(c%t)) then
+               if (c%t(c%p + 1:c%p + 1) == q) then
+                  v%text = v%text // q;  c%p = c%p + 2
+                  cycle
+               end if
+            end if
+            c%p = c%p + 1
+            return
+         end if
+         v%text = v%text // peek(c);  c%p = c%p + 1
+      end do
+   end subroutine parse_string
+
+   !> The kind of an unquoted token (0: none, i.e. not a value).
+   pure subroutine classify(tok, v)
+      character(len=*), intent(in) :: tok
+      type(value_t), intent(inout) :: v
+      character(len=len(tok)) :: t
+      t = lower(tok)
+      v%text = tok
+      select case (t)
+      case ('.true.', '.t.', '.t', 't', 'true')
+         v%kind = value_logical;  v%flag = .true.
+      case ('.false.', '.f.', '.f', 'f', 'false')
+         v%kind = value_logical;  v%flag = .false.
+      case default
+         if (is_number(t)) v%kind = value_number
+      end select
+   end subroutine classify
+
+   !> Fortran number syntax: [sign] digits [. digits] [(e|d) [sign] digits], '.5', NaN, Inf.
+   pure logical function is_number(t)
+      character(len=*), intent(in) :: t      !! lower case
+      integer :: i, n, mant
+      is_number = .false.
+      n = len(t);  i = 1
+      if (n == 0) return
+      if (scan(t(1:1), '+-') > 0) i = 2
+      if (t(i:) == 'nan' .or. t(i:) == 'inf' .or. t(i:) == 'infinity') then
+         is_number = .true.
+         return
+      end if
+      mant = 0
+      do while (i <= n)
+         if (.not. is_digit(t(i:i))) exit
+         i = i + 1;  mant = mant + 1
+      end do
+      if (i <= n) then
+         if (t(i:i) == '.') then
+            i = i + 1
+            do while (i <= n)
+               if (.not. is_digit(t(i:i))) exit
+               i = i + 1;  mant = mant + 1
+            end do
+         end if
+      end if
+      if (mant == 0) return
+      if (i <= n) then
+         if (scan(t(i:i), 'ed') == 0) return
+         i = i + 1
+         if (i <= n) then
+            if (scan(t(i:i), '+-') > 0) i = i + 1
+         end if
+         if (i > n) return
+         if (verify(t(i:), '0123456789') /= 0) return
+      end if
+      is_number = .true.
+   end function is_number
+
+   !> Whether 'name =' or 'name(' follows at the cursor (the next assignment).
+   pure logical function assignment_follows(c)
+      type(cursor_t), intent(in) :: c
+      integer :: p
+      p = c%p
+      do while (p <= len(c%t))
+         if (.not. is_name_char(c%t(p:p))) exit
+         p = p + 1
+      end do
+      do while (p <= len(c%t))
+         if (c%t(p:p) /= ' ' .and. c%t(p:p) /= tab) exit
+         p = p + 1
+      end do
+      assignment_follows = .false.
+      if (p <= len(c%t)) assignment_follows = c%t(p:p) == '=' .or. c%t(p:p) == '('
+   end function assignment_follows
+
+   !> Two assignments that set the same variable or list entry.
+   pure logical function overlap(a, b)
+      type(assignment_t), intent(in) :: a, b
+      integer :: a1, a2, b1, b2
+      overlap = .false.
+      if (a%name /= b%name) return
+      a1 = max(a%first, 1);  a2 = a1 + size(a%values) - 1
+      b1 = max(b%first, 1);  b2 = b1 + size(b%values) - 1
+      overlap = (a%first == 0 .and. b%first == 0) .or. (a1 <= b2 .and. b1 <= a2)
+   end function overlap
+
+   !> Skip blanks, line ends and comments.
+   pure subroutine skip_space(c)
+      type(cursor_t), intent(inout) :: c
+      character(len=1) :: ch
+      do while (c%p <= len(c%t))
+         ch = c%t(c%p:c%p)
+         if (ch == lf) then
+            c%line = c%line + 1
+         else if (ch == '!') then
+            do while (c%p < len(c%t))
+               if (c%t(c%p + 1:c%p + 1) == lf) exit
+               c%p = c%p + 1
+            end do
+         else if (ch /= ' ' .and. ch /= tab) then
+            return
+         end if
+         c%p = c%p + 1
+      end do
+   end subroutine skip_space
+
+   !> Skip blanks and tabs on the line.
+   pure subroutine skip_blanks(c)
+      type(cursor_t), intent(inout) :: c
+      do while (c%p <= len(c%t))
+         if (c%t(c%p:c%p) /= ' ' .and. c%t(c%p:c%p) /= tab) return
+         c%p = c%p + 1
+      end do
+   end subroutine skip_blanks
+
+   !> The name at the cursor (letters, digits, '_').
+   function read_name(c) result(name)
+      type(cursor_t), intent(inout) :: c
+      character(len=:), allocatable :: name
+      integer :: p0
+      p0 = c%p
+      do while (c%p <= len(c%t))
+         if (.not. is_name_char(c%t(c%p:c%p))) exit
+         c%p = c%p + 1
+      end do
+      name = c%t(p0:c%p - 1)
+   end function read_name
+
+   !> An unquoted token at the cursor: up to a blank, a comma, '/', '!' or the line end.
+   function read_token(c) result(tok)
+      type(cursor_t), intent(inout) :: c
+      character(len=:), allocatable :: tok
+      integer :: p0
+      p0 = c%p
+      do while (c%p <= len(c%t))
+         if (scan(c%t(c%p:c%p), ' ,/!' // tab // lf) > 0) exit
+         if (c%p > p0 .and. scan(c%t(c%p:c%p), '''"') > 0 .and. c%t(c%p - 1:c%p - 1) == '*') &
+            exit
+         c%p = c%p + 1
+      end do
+      tok = c%t(p0:c%p - 1)
+   end function read_token
+
+   !> The character at the cursor (a blank past the end).
+   pure character(len=1) function peek(c)
+      type(cursor_t), intent(in) :: c
+      peek = ' '
+      if (c%p <= len(c%t)) peek = c%t(c%p:c%p)
+   end function peek
+
+   !> The group opening as written, from its '&' (just before the cursor) to the first blank
+   !> after a name: '&forcing.', '& forcing', '&-tops' (at most 30 characters).
+   pure function group_token(c) result(t)
+      type(cursor_t), intent(in) :: c
+      character(len=:), allocatable :: t
+      integer :: q
+      logical :: named
+      named = .false.
+      q = c%p
+      do while (q <= len(c%t) .and. q - c%p < 29)
+         if (c%t(q:q) == lf) exit
+         if ((c%t(q:q) == ' ' .or. c%t(q:q) == tab) .and. named) exit
+         if (is_letter(c%t(q:q))) named = .true.
+         q = q + 1
+      end do
+      t = '&' // c%t(c%p:q - 1)
+   end function group_token
+
+   !> ' (&name?)': the first name on the rest of the line, the group perhaps meant.
+   pure function meant(c) result(t)
+      type(cursor_t), intent(in) :: c
+      character(len=:), allocatable :: t
+      integer :: p, q
+      t = ''
+      p = c%p
+      do while (p <= len(c%t))
+         if (c%t(p:p) == lf) return
+         if (is_letter(c%t(p:p))) exit
+         p = p + 1
+      end do
+      if (p > len(c%t)) return
+      q = p
+      do while (q <= len(c%t))
+         if (.not. is_name_char(c%t(q:q))) exit
+         q = q + 1
+      end do
+      t = ' (&' // lower(c%t(p:q - 1)) // '?)'
+   end function meant
+
+   !> The rest of the cursor's line, at most 40 characters.
+   pure function rest_of_line(c) result(t)
+      type(cursor_t), intent(in) :: c
+      character(len=:), allocatable :: t
+      integer :: e
+      e = index(c%t(min(c%p, len(c%t) + 1):), lf)
+      if (e == 0) then
+         t = c%t(min(c%p, len(c%t) + 1):)
+      else
+         t = c%t(c%p:c%p + e - 2)
+      end if
+      t = trim(t)
+      if (len(t) > 40) t = t(1:40) // '...'
+   end function rest_of_line
+
+   !> 'line N: ' in a deck file ('' in an override).
+   pure function at(c, line) result(t)
+      type(cursor_t), intent(in) :: c
+      integer, intent(in), optional :: line
+      character(len=:), allocatable :: t
+      t = ''
+      if (.not. c%is_file) return
+      if (present(line)) then
+         t = 'line ' // str(line) // ': '
+      else
+         t = 'line ' // str(c%line) // ': '
+      end if
+   end function at
+
+   !> Text on one line: line ends and runs of blanks as one blank.
+   pure function one_line(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: t
+      integer :: i
+      t = ''
+      do i = 1, len(s)
+         if (s(i:i) == lf .or. s(i:i) == tab .or. s(i:i) == ' ') then
+            if (len(t) > 0) then
+               if (t(len(t):len(t)) /= ' ') t = t // ' '
+            end if
+         else
+            t = t // s(i:i)
+         end if
+      end do
+      t = trim(t)
+      if (len(t) > 200) t = t(1:200) // '...'
+   end function one_line
+
+   pure logical function is_letter(ch)
+      character(len=1), intent(in) :: ch
+      is_letter = (ch >= 'a' .and. ch <= 'z') .or. (ch >= 'A' .and. ch <= 'Z')
+   end function is_letter
+
+   pure logical function is_digit(ch)
+      character(len=1), intent(in) :: ch
+      is_digit = ch >= '0' .and. ch <= '9'
+   end function is_digit
+
+   pure logical function is_name_char(ch)
+      character(len=1), intent(in) :: ch
+      is_name_char = is_letter(ch) .or. is_digit(ch) .or. ch == '_'
+   end function is_name_char
 end module gapbeam_deck_text

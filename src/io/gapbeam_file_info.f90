@@ -4,29 +4,29 @@
 !>   by the repository's scripts, else 'unknown'), `compiler`, `creation_time` (ISO 8601 with
 !>   the UTC offset), `analysis`, `deck_crc32` (zlib's CRC-32 of the /deck text, 8 hex digits),
 !>   `units_convention` and `axis_order`;
-!> * `/parameters`: every resolved model value (gapbeam_parameters), each with units and
-!>   long_name;
-!> * `/model/dof_node`, `/model/dof_type`, `/model/dof_name`: which node and which of (w,
-!>   theta) each degree of freedom is (finite element models; a modal model has none).
+!> * `/parameters`: every resolved model value (gapbeam_parameters);
+!> * `/model`: the discrete model, so that other tools can integrate the same equations: K and
+!>   M with the dof map (`/model/dof_node`, `dof_type`, `dof_name`: which node and which of w,
+!>   theta, v, theta_v each degree of freedom is; a modal model has none), and for an analysis
+!>   that integrates, C, the load shape, the forcing, the strain row and the contacts.
 !>
 !> Axis order, one rule for every file: in C order (as h5py, numpy, h5dump and ParaView show
-!> a dataset) the first axis is the record -- history sample, sweep point, mode, method,
-!> study level -- and the second is what each record holds -- stop, node, dof, period. Each
+!> a dataset) the first axis is the record -- history sample, sweep point, mode, method, study
+!> level -- and the second is what each record holds -- stop, node, dof, period. Each
 !> two-dimensional dataset names its axes in its `dimensions` attribute.
 module gapbeam_file_info
    use, intrinsic :: iso_fortran_env, only: int8, int64
-   use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_model, only: system_t
-   use gapbeam_description, only: dof_w, dof_theta
+   use gapbeam_model, only: system_t, model_t
+   use gapbeam_description, only: dof_name
+   use gapbeam_error, only: str
    use gapbeam_checkpoint, only: crc32
    use gapbeam_version, only: program_version, compiler_text, git_commit
    implicit none
    private
-   public :: write_file_info, write_parameter_set, write_dof_map, axis_order_text, &
-      creation_time, crc32_hex
+   public :: write_file_info, write_parameter_set, write_structure, write_model, &
+      axis_order_text, creation_time, crc32_hex
 
    !> The axis-order rule, as stored in the root attribute `axis_order`.
    character(len=*), parameter :: axis_order_text = 'C order (h5py, numpy, h5dump, ParaView):' &
@@ -37,75 +37,100 @@ module gapbeam_file_info
 contains
 
    !> The root attributes of a result file written by `analysis` from `deck_text`.
-   subroutine write_file_info(h5, analysis, deck_text, err)
+   subroutine write_file_info(h5, analysis, deck_text)
       type(h5_writer_t), intent(inout) :: h5             !! writer, file created
       character(len=*), intent(in) :: analysis           !! analysis word
       character(len=*), intent(in) :: deck_text          !! the effective deck text (/deck)
-      type(error_t), allocatable, intent(out) :: err     !! write failure
-      call h5%write_attr('/', 'program', 'gapbeam', err);  if (allocated(err)) return
-      call h5%write_attr('/', 'version', program_version, err);  if (allocated(err)) return
-      call h5%write_attr('/', 'git_commit', git_commit(), err);  if (allocated(err)) return
-      call h5%write_attr('/', 'compiler', compiler_text(), err);  if (allocated(err)) return
-      call h5%write_attr('/', 'creation_time', creation_time(), err);  if (allocated(err)) return
-      call h5%write_attr('/', 'analysis', analysis, err);  if (allocated(err)) return
-      call h5%write_attr('/', 'deck_crc32', crc32_hex(deck_text), err)
-      if (allocated(err)) return
-      call h5%write_attr('/', 'units_convention', 'UDUNITS-2 (units attribute of every ' &
-         // 'dataset; 1 for a pure number); long_name says what the values are', err)
-      if (allocated(err)) return
-      call h5%write_attr('/', 'axis_order', axis_order_text, err)
+      call h5%attr('/', 'program', 'gapbeam')
+      call h5%attr('/', 'version', program_version)
+      call h5%attr('/', 'git_commit', git_commit())
+      call h5%attr('/', 'compiler', compiler_text())
+      call h5%attr('/', 'creation_time', creation_time())
+      call h5%attr('/', 'analysis', analysis)
+      call h5%attr('/', 'deck_crc32', crc32_hex(deck_text))
+      call h5%attr('/', 'units_convention', 'UDUNITS-2 (units attribute of every dataset; 1 ' &
+         // 'for a pure number); long_name says what the values are')
+      call h5%attr('/', 'axis_order', axis_order_text)
    end subroutine write_file_info
 
    !> The run's parameters under /parameters.
-   subroutine write_parameter_set(h5, set, err)
+   subroutine write_parameter_set(h5, set)
       type(h5_writer_t), intent(inout) :: h5             !! writer, file created
       type(parameter_set_t), intent(in) :: set           !! the parameters
-      type(error_t), allocatable, intent(out) :: err     !! write failure
+      character(len=:), allocatable :: fill
       integer :: k
       if (.not. allocated(set%items)) return
       do k = 1, size(set%items)
          associate (p => set%items(k))
+            fill = ''
+            if (allocated(p%fill)) fill = p%fill
             if (allocated(p%text)) then
-               call h5%write_text('/parameters/' // p%path, p%text, err, p%long_name)
+               call h5%put('/parameters/' // p%path, p%text)
+            else if (p%is_array .and. allocated(p%units)) then
+               call h5%put('/parameters/' // p%path, p%values, units=p%units)
             else if (p%is_array) then
-               call h5%write('/parameters/' // p%path, p%values, p%units, err, p%long_name)
+               call h5%put('/parameters/' // p%path, p%values)
             else
-               call h5%write('/parameters/' // p%path, p%values(1), p%units, err, p%long_name)
+               call h5%put('/parameters/' // p%path, p%values(1), fill=fill)
             end if
          end associate
-         if (allocated(err)) return
       end do
    end subroutine write_parameter_set
 
-   !> Which node and which dof each degree of freedom of a finite element model is.
-   subroutine write_dof_map(h5, sys, err)
+   !> /model/stiffness, /model/mass and the dof map of an assembled structure (a modal
+   !> model's matrices without a dof map).
+   subroutine write_structure(h5, sys)
       type(h5_writer_t), intent(inout) :: h5             !! writer, file created
-      type(system_t), intent(in) :: sys                  !! assembled structure
-      type(error_t), allocatable, intent(out) :: err     !! write failure
+      type(system_t), intent(in) :: sys                  !! assembled structure (or modal)
       integer, allocatable :: node(:), kind(:)
       character(len=16), allocatable :: names(:)
       integer :: i, j, g
+      call h5%put('/model/stiffness', sys%k)
+      call h5%put('/model/mass', sys%m)
       if (sys%n_node < 1 .or. .not. allocated(sys%dof_of)) return   ! a modal model
       allocate(node(sys%n_dof), kind(sys%n_dof), names(sys%n_dof))
       node = 0;  kind = 0;  names = ''
       do i = 1, sys%n_node
-         do j = dof_w, dof_theta
+         do j = 1, size(sys%dof_of, 1)
             g = sys%dof_of(j, i)
             if (g < 1) cycle
             node(g) = i;  kind(g) = j
-            names(g) = merge('w_    ', 'theta_', j == dof_w)
-            names(g) = trim(names(g)) // str(i)
+            names(g) = dof_name(j) // '_' // str(i)
          end do
       end do
-      call h5%write('/model/dof_node', node, '1', err, 'node of each degree of freedom ' &
-         // '(1 = root, node i at x = (i - 1) le)')
-      if (allocated(err)) return
-      call h5%write('/model/dof_type', kind, '1', err, 'kind of each degree of freedom: ' &
-         // '1 w (transverse displacement, m), 2 theta (rotation dw/dx, rad)')
-      if (allocated(err)) return
-      call h5%write('/model/dof_name', names, '1', err, 'name of each degree of freedom: ' &
-         // 'w_<node> or theta_<node>')
-   end subroutine write_dof_map
+      call h5%put('/model/dof_node', node)
+      call h5%put('/model/dof_type', kind)
+      call h5%put('/model/dof_name', names)
+   end subroutine write_structure
+
+   !> /model of an analysis that integrates: the structure, the stop stiffnesses, C, the load
+   !> shape, the forcing, the strain row, the one-sided and the ring contacts.
+   subroutine write_model(h5, model, stiffness_units)
+      type(h5_writer_t), intent(inout) :: h5             !! writer, file created
+      type(model_t), intent(in) :: model                 !! the model
+      character(len=*), intent(in) :: stiffness_units    !! of the stop stiffnesses
+      call h5%put('/model/stop_stiffness', model%stop_stiffness, units=stiffness_units)
+      call h5%put('/model/f1_open_hz', model%f1_open_hz)
+      call write_structure(h5, model%sys)
+      call h5%put('/model/damping', model%c)
+      call h5%put('/model/load_shape', model%q)
+      call h5%put('/model/forcing_omega', model%omega)
+      call h5%put('/model/forcing_half_amplitude', model%half_amplitude)
+      call h5%put('/model/strain_row', model%sys%strain_row)
+      call h5%put('/model/contact_dof', model%c_dof)
+      call h5%put('/model/contact_sign', model%c_sign)
+      call h5%put('/model/contact_gap', model%c_gap)
+      call h5%put('/model/contact_stiffness', model%c_k)
+      call h5%put('/model/contact_damping', model%c_c)
+      call h5%put('/model/contact_law', model%c_law)
+      if (model%n_rings == 0) return
+      call h5%put('/model/ring_dof_w', model%r_dof(1, :))
+      call h5%put('/model/ring_dof_v', model%r_dof(2, :))
+      call h5%put('/model/ring_gap', model%r_gap)
+      call h5%put('/model/ring_stiffness', model%r_k)
+      call h5%put('/model/ring_friction', model%r_mu)
+      call h5%put('/model/ring_tangential_stiffness', model%r_kt)
+   end subroutine write_model
 
    !> The current local time in ISO 8601 with the UTC offset, e.g. '2024-05-01T12:34:56+02:00'.
    function creation_time() result(t)

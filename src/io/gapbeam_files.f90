@@ -3,10 +3,11 @@
 !> - `rename_file`, `remove_file`, `make_parent_directory`, `file_exists`: thin wrappers of
 !>   C `rename`, `remove`, `mkdir` and `access` that report failures as `error_t` with the C
 !>   reason (`strerror` text and `errno`).
-!> - `write_table` and `write_text_file` write text files atomically: the text goes to
-!>   `path // '.part'`, which is renamed to `path` only once it is complete. A failed or killed
-!>   run leaves no half-written file under the final name, and a file already at `path` is
-!>   replaced only by a complete one. On failure the `.part` file is removed.
+!> - `write_table` and `write_text_file` write a text file with every write, the flush and the
+!>   close checked (and its size on disk, which is how a full disk shows with gfortran), and
+!>   delete it on failure. They write the path they are given: the atomicity of a run's files
+!>   is the output set's (gapbeam_output_set), which gives them temporary names and puts the
+!>   complete files in place together.
 !>
 !> Paths are used without their trailing blanks (as Fortran `open` does), so fixed-length
 !> character variables can be passed directly. Tables are meant for gnuplot: '#' lines are
@@ -15,10 +16,6 @@
 !> - `process_id`, `host_name`, `real_path`, `directory_exists`: C `getpid`, `gethostname`,
 !>   `realpath` and `access`, for lock files, temporary names unique to a process and the
 !>   comparison of paths.
-!>
-!> With `in_place = .true.` the two writers write `path` itself, with every write and the
-!> close checked, and delete it on failure: for a caller that owns the atomicity, such as an
-!> output set writing under its own temporary names (gapbeam_output_set).
 !>
 !> The `errno` of the calling thread is read through glibc's (and musl's) `__errno_location`.
 !> C `strerror` may share its buffer between threads: call the procedures that report a C
@@ -33,10 +30,10 @@ module gapbeam_files
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
-   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal
+   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal, errno_text
+   public :: output_prefix_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
-   character(len=*), parameter :: part_suffix = '.part'      ! temporary name: path // part_suffix
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
    integer, parameter :: value_width = 25     ! characters per value in a row, separator included
    integer, parameter :: max_c_string = 4096                 ! longest C string read back
@@ -206,6 +203,26 @@ contains
       end do
    end subroutine make_parent_directory
 
+   !> Why `prefix` cannot be an output prefix (the files are PREFIX.h5, PREFIX.history.dat,
+   !> ...), '' when it can: a prefix that names a directory ('results/x/', '.', '..', '/')
+   !> would give hidden files ('results/x/.h5'). It is refused rather than given a stem: the
+   !> user meant a directory, and only the user can say what the files there should be called.
+   pure function output_prefix_problem(prefix) result(why)
+      character(len=*), intent(in) :: prefix             !! output prefix as given
+      character(len=:), allocatable :: why, last
+      why = ''
+      last = trim(prefix)
+      last = last(index(last, '/', back=.true.) + 1:)
+      if (len_trim(prefix) == 0) then
+         why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
+      else if (len(last) == 0 .or. last == '.' .or. last == '..') then
+         why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
+            // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
+            // 'a stem in it, e.g. ' // q(trim(prefix) // trim(merge('/  ', '   ', &
+            len(last) > 0)) // 'run')
+      end if
+   end function output_prefix_problem
+
    !> Whether a file or directory exists at `path` (C `access` with F_OK).
    logical function file_exists(path)
       character(len=*), intent(in) :: path               !! file or directory name
@@ -299,7 +316,7 @@ contains
    ! Atomic text files
    ! ---------------------------------------------------------------------------------------
 
-   !> Write a gnuplot-ready table to `path`, atomically (through `path // '.part'`).
+   !> Write a gnuplot-ready table to `path` (deleted on failure).
    !>
    !> The file holds three comment lines, then one line per row of `columns`, each value in
    !> `es24.16e3` (17 significant digits, so reals read back exactly) followed by a blank:
@@ -314,14 +331,13 @@ contains
    !> Zero rows give the comment lines only. The directory of `path` must exist (see
    !> `make_parent_directory`). `names` and `units` must have one entry per column of
    !> `columns` (`error stop` otherwise: a programming error); names should contain no blanks.
-   subroutine write_table(path, title, names, units, columns, err, in_place)
+   subroutine write_table(path, title, names, units, columns, err)
       character(len=*), intent(in) :: path               !! file to write, e.g. 'results/tip.dat'
       character(len=*), intent(in) :: title              !! first comment line (new lines -> ' ')
       character(len=*), intent(in) :: names(:)           !! column names, e.g. ['t    ', 'w_tip']
       character(len=*), intent(in) :: units(:)           !! column units, e.g. ['s', 'm']
       real(dp), intent(in) :: columns(:, :)              !! values, shape (n_rows, n_cols)
       type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
-      logical, intent(in), optional :: in_place          !! write `path` itself, no rename
       character(len=*), parameter :: proc = 'write_table'
       character(len=:), allocatable :: p, described, header, line, row
       character(len=512) :: msg
@@ -346,7 +362,7 @@ contains
          header = header // ' ' // trim(names(j))
       end do
 
-      call open_part(proc, p, .false., direct(in_place), unit, err)
+      call open_file(proc, p, .false., unit, err)
       if (allocated(err)) return
       msg = ''
       ! every line through a buffer, so that the bytes the file must have are known
@@ -367,18 +383,17 @@ contains
          if (ios == 0) write(unit, '(a)', iostat=ios, iomsg=msg) row(1:width)
          bytes = bytes + width + 1
       end do
-      call close_part(proc, p, direct(in_place), unit, ios, msg, bytes, err)
+      call close_file(proc, p, unit, ios, msg, bytes, err)
    end subroutine write_table
 
-   !> Write `text` to `path` byte for byte, atomically (through `path // '.part'`).
+   !> Write `text` to `path` byte for byte (deleted on failure).
    !>
    !> New lines inside `text` are kept; none is added, so end the text with
    !> `new_line('a')` for a conventional last line. The directory of `path` must exist.
-   subroutine write_text_file(path, text, err, in_place)
+   subroutine write_text_file(path, text, err)
       character(len=*), intent(in) :: path               !! file to write, e.g. 'results/report.txt'
       character(len=*), intent(in) :: text               !! whole file content
       type(error_t), allocatable, intent(out) :: err     !! set on failure; no file is left
-      logical, intent(in), optional :: in_place          !! write `path` itself, no rename
       character(len=*), parameter :: proc = 'write_text_file'
       character(len=:), allocatable :: p
       character(len=512) :: msg
@@ -389,101 +404,60 @@ contains
          return
       end if
       p = trim(path)
-      call open_part(proc, p, .true., direct(in_place), unit, err)
+      call open_file(proc, p, .true., unit, err)
       if (allocated(err)) return
       msg = ''
       write(unit, iostat=ios, iomsg=msg) text
-      call close_part(proc, p, direct(in_place), unit, ios, msg, int(len(text), int64), err)
+      call close_file(proc, p, unit, ios, msg, int(len(text), int64), err)
    end subroutine write_text_file
 
    ! ---------------------------------------------------------------------------------------
    ! Helpers
    ! ---------------------------------------------------------------------------------------
 
-   !> Whether a writer was asked to write its path in place.
-   pure logical function direct(in_place)
-      logical, intent(in), optional :: in_place          !! the writer's argument
-      direct = .false.
-      if (present(in_place)) direct = in_place
-   end function direct
-
-   !> The name a writer writes: `p // '.part'`, or `p` itself when `in_place`.
-   pure function written_name(p, in_place) result(name)
-      character(len=*), intent(in) :: p                  !! final file name, trimmed
-      logical, intent(in) :: in_place                    !! no temporary name
-      character(len=:), allocatable :: name
-      if (in_place) then
-         name = p
-      else
-         name = p // part_suffix
-      end if
-   end function written_name
-
-   !> Create (or truncate) `p // '.part'` (or `p` when `in_place`) for writing: formatted
-   !> sequential, or unformatted stream for a byte-for-byte copy.
-   subroutine open_part(proc, p, stream, in_place, unit, err)
+   !> Create (or truncate) `p` for writing: formatted sequential, or unformatted stream for a
+   !> byte-for-byte copy.
+   subroutine open_file(proc, p, stream, unit, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
-      character(len=*), intent(in) :: p                  !! final file name, trimmed
+      character(len=*), intent(in) :: p                  !! file name, trimmed
       logical, intent(in) :: stream                      !! unformatted stream access
-      logical, intent(in) :: in_place                    !! write `p` itself
       integer, intent(out) :: unit                       !! unit of the open file
       type(error_t), allocatable, intent(inout) :: err   !! set when the file cannot be created
       character(len=512) :: msg
-      character(len=:), allocatable :: name
       integer :: ios
-
       msg = ''
-      name = written_name(p, in_place)
       if (stream) then
-         open(newunit=unit, file=name, status='replace', action='write', &
-            access='stream', form='unformatted', iostat=ios, iomsg=msg)
+         open(newunit=unit, file=p, status='replace', action='write', access='stream', &
+              form='unformatted', iostat=ios, iomsg=msg)
       else
-         open(newunit=unit, file=name, status='replace', action='write', &
-            form='formatted', iostat=ios, iomsg=msg)
+         open(newunit=unit, file=p, status='replace', action='write', form='formatted', &
+              iostat=ios, iomsg=msg)
       end if
-      if (ios /= 0) then
-         if (in_place) then
-            call fatal_error(err, here(proc) // 'cannot create file ' // q(name) &
-               // ' (does the directory exist and is it writable?): ' // trim(msg))
-         else
-            call fatal_error(err, here(proc) // 'cannot create file ' // q(name) &
-               // ' (temporary name of ' // q(p) // '; does the directory exist and is it ' &
-               // 'writable?): ' // trim(msg))
-         end if
-      end if
-   end subroutine open_part
+      if (ios /= 0) call fatal_error(err, here(proc) // 'cannot create file ' // q(p) &
+         // ' (does the directory exist and is it writable?): ' // trim(msg))
+   end subroutine open_file
 
-   !> Close the `.part` file of `p` and rename it to `p`; after a write error (`ios /= 0`),
-   !> or when closing or renaming fails, delete it and set `err`.
+   !> Close the file `p`; after a write error (`ios /= 0`), or when flushing or closing fails,
+   !> or when it has not the bytes written, delete it and set `err`.
    !>
    !> The size of the closed file is compared with the bytes written: gfortran (12) reports
    !> no error when the disk is full (the data are dropped, the writes, FLUSH and CLOSE
    !> succeed), so this is the check that catches it.
-   subroutine close_part(proc, p, in_place, unit, ios, msg, expected, err)
+   subroutine close_file(proc, p, unit, ios, msg, expected, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
-      character(len=*), intent(in) :: p                  !! final file name, trimmed
-      logical, intent(in) :: in_place                    !! `p` itself was written: no rename
-      integer, intent(in) :: unit                        !! unit of the open `.part` file
+      character(len=*), intent(in) :: p                  !! file name, trimmed
+      integer, intent(in) :: unit                        !! its unit
       integer, intent(in) :: ios                         !! status of the writes, 0 when all ok
       character(len=*), intent(in) :: msg                !! iomsg of the failed write
       integer(int64), intent(in) :: expected             !! bytes the file must have
       type(error_t), allocatable, intent(inout) :: err   !! set on failure
-      character(len=:), allocatable :: part, reason
       character(len=512) :: close_msg
       integer :: close_ios, ios_ignored
       integer(int64) :: stored
-
-      part = written_name(p, in_place)
       if (ios /= 0) then
          close(unit, status='delete', iostat=close_ios)
-         call remove_file(part)
-         if (in_place) then
-            call fatal_error(err, here(proc) // 'cannot write file ' // q(part) // ': ' &
-               // trim(msg))
-         else
-            call fatal_error(err, here(proc) // 'cannot write file ' // q(part) &
-               // ' (temporary name of ' // q(p) // '): ' // trim(msg))
-         end if
+         call remove_file(p)
+         call fatal_error(err, here(proc) // 'cannot write file ' // q(p) // ': ' // trim(msg))
          return
       end if
       close_msg = ''
@@ -491,26 +465,19 @@ contains
       if (close_ios == 0) close(unit, iostat=close_ios, iomsg=close_msg)
       if (close_ios /= 0) then
          close(unit, status='delete', iostat=ios_ignored)
-         call remove_file(part)
-         call fatal_error(err, here(proc) // 'cannot flush or close file ' // q(part) &
-            // ': ' // trim(close_msg))
+         call remove_file(p)
+         call fatal_error(err, here(proc) // 'cannot flush or close file ' // q(p) // ': ' &
+            // trim(close_msg))
          return
       end if
-      stored = file_size(part)
+      stored = file_size(p)
       if (stored /= expected) then
-         call remove_file(part)
-         call fatal_error(err, here(proc) // 'file ' // q(part) // ' is incomplete: ' &
+         call remove_file(p)
+         call fatal_error(err, here(proc) // 'file ' // q(p) // ' is incomplete: ' &
             // str_int64(stored) // ' of ' // str_int64(expected) // ' bytes stored (a full ' &
             // 'disk, or the file size limit?); it was deleted')
-         return
       end if
-      if (in_place) return
-      call rename_path(part, p, reason)
-      if (len(reason) > 0) then
-         call remove_file(part)
-         call fatal_error(err, here(proc) // reason)
-      end if
-   end subroutine close_part
+   end subroutine close_file
 
    !> C `rename` of `old` to `new`; `reason` is '' on success, else
    !> "cannot rename file 'old' to 'new': <strerror text> (errno N)".

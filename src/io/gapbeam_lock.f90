@@ -13,6 +13,10 @@
 !> - on a file system without `flock`, the holder named in the file decides: a process that
 !>   no longer exists on this host is taken over, anything else is refused.
 !>
+!> `busy` tells a caller why `acquire_lock` failed: another run holds (or, for a lock file of
+!> another host, may hold) the lock; any other failure (permission, a full disk, a name too
+!> long) is an error of this run, reported with the system's reason in words.
+!>
 !> After the `flock` the file is checked to still be the one under PREFIX.lock (a run that
 !> ends deletes it, and a newcomer may hold the deleted file): if not, the lock is taken again.
 !> Linux values of the C constants (`O_*`, `LOCK_*`, `errno`) are used.
@@ -20,7 +24,7 @@ module gapbeam_lock
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_long, c_size_t, c_null_char, c_ptr, &
       c_f_pointer
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_files, only: remove_file, process_id, host_name
+   use gapbeam_files, only: remove_file, process_id, host_name, errno_text
    implicit none
    private
    public :: lock_t, acquire_lock, release_lock
@@ -30,11 +34,13 @@ module gapbeam_lock
       integer(c_int) :: fd = -1                    !! file descriptor of PREFIX.lock (-1: none)
       character(len=:), allocatable :: path        !! PREFIX.lock
       character(len=:), allocatable :: note        !! set when a stale lock was taken over
+      logical :: busy = .false.                    !! set when another run holds the lock (or
+                                                   !! may hold it: a lock file of another host)
    end type lock_t
 
    integer(c_int), parameter :: o_rdwr = 2, o_creat = 64, o_cloexec = 524288
    integer(c_int), parameter :: lock_ex = 2, lock_nb = 4
-   integer(c_int), parameter :: e_perm = 1, e_srch = 3, e_again = 11
+   integer(c_int), parameter :: e_srch = 3, e_again = 11, e_nospc = 28
    integer(c_int), parameter :: file_mode = int(o'644', c_int)
    integer, parameter :: max_content = 1024    ! bytes of the lock file read back
    character(len=*), parameter :: here = 'gapbeam_lock: '
@@ -121,7 +127,7 @@ contains
       type(error_t), allocatable, intent(out) :: err   !! held by another run, or an I/O error
       character(len=:), allocatable :: mine, before, holder_host
       integer :: attempt, holder_pid
-      integer(c_int) :: fd, code
+      integer(c_int) :: fd, code, status
       logical :: have_flock, same
 
       lock%path = trim(prefix) // '.lock'
@@ -130,8 +136,9 @@ contains
       do attempt = 1, 20
          fd = c_open(lock%path // c_null_char, ior(ior(o_rdwr, o_creat), o_cloexec), file_mode)
          if (fd < 0) then
+            code = errno()
             call fatal_error(err, here // 'cannot create the lock file ' // q(lock%path) &
-               // ' (errno ' // str(int(errno())) // ')')
+               // ': ' // reason(code))
             return
          end if
          before = read_fd(fd)
@@ -141,6 +148,7 @@ contains
             code = errno()
             if (code == e_again) then
                code = c_close(fd)
+               lock%busy = .true.
                call fatal_error(err, 'output ' // q(trim(prefix)) // ' is in use by another ' &
                   // 'gapbeam run (' // holder_text(holder_pid, holder_host) // ', lock file ' &
                   // q(lock%path) // '): wait until it ends, or give this run another ' &
@@ -150,6 +158,7 @@ contains
             ! no flock on this file system: the holder named in the file decides
             if (len(before) > 0 .and. .not. is_stale(holder_pid, holder_host)) then
                code = c_close(fd)
+               lock%busy = .true.
                call fatal_error(err, 'output ' // q(trim(prefix)) // ' is in use by another ' &
                   // 'gapbeam run (' // holder_text(holder_pid, holder_host) // ', lock file ' &
                   // q(lock%path) // '; this file system has no flock, so a lock file left by ' &
@@ -161,6 +170,7 @@ contains
             ! a lock file whose lock is free: its run ended without deleting it
             if (holder_host /= host_name()) then
                code = c_close(fd)
+               lock%busy = .true.
                call fatal_error(err, 'output ' // q(trim(prefix)) // ': the lock file ' &
                   // q(lock%path) // ' names ' // holder_text(holder_pid, holder_host) &
                   // '; from this host (' // host_name() // ') gapbeam cannot tell whether ' &
@@ -169,10 +179,10 @@ contains
             end if
          end if
          ! ours now: say so in the file, then check that it is still the file under the name
-         if (.not. write_fd(fd, mine)) then
-            code = c_close(fd)
+         if (.not. write_fd(fd, mine, code)) then
+            status = c_close(fd)      ! an empty lock file may stay: the next run takes it
             call fatal_error(err, here // 'cannot write the lock file ' // q(lock%path) &
-               // ' (errno ' // str(int(errno())) // '; a full disk?)')
+               // ': ' // reason(code))
             return
          end if
          same = read_path(lock%path) == mine
@@ -186,6 +196,7 @@ contains
          end if
          code = c_close(fd)         ! the file was deleted by the run that held it: again
       end do
+      lock%busy = .true.
       call fatal_error(err, here // 'cannot take the lock ' // q(lock%path) // ': it keeps ' &
          // 'changing under other gapbeam runs')
    end subroutine acquire_lock
@@ -241,20 +252,41 @@ contains
       host = trim(host)
    end subroutine parse_holder
 
-   !> Replace the content of the open file `fd` by `text`, synced; false on failure.
-   logical function write_fd(fd, text)
+   !> Replace the content of the open file `fd` by `text`, synced; false on failure, with the
+   !> C `errno` in `code` (ENOSPC for a short write).
+   logical function write_fd(fd, text, code)
       integer(c_int), intent(in) :: fd                 !! open file
       character(len=*), intent(in) :: text             !! new content
+      integer(c_int), intent(out) :: code              !! errno of the failure (0: none)
       character(kind=c_char) :: buf(max(1, len(text)))
+      integer(c_long) :: n
       integer :: i
       write_fd = .false.
+      code = 0
       do i = 1, len(text)
          buf(i) = text(i:i)
       end do
-      if (c_ftruncate(fd, 0_c_long) /= 0) return
-      if (c_pwrite(fd, buf, int(len(text), c_size_t), 0_c_long) /= len(text)) return
-      write_fd = c_fsync(fd) == 0
+      if (c_ftruncate(fd, 0_c_long) /= 0) then
+         code = errno();  return
+      end if
+      n = c_pwrite(fd, buf, int(len(text), c_size_t), 0_c_long)
+      if (n < 0) then
+         code = errno();  return
+      else if (n /= len(text)) then
+         code = e_nospc;  return
+      end if
+      if (c_fsync(fd) /= 0) then
+         code = errno();  return
+      end if
+      write_fd = .true.
    end function write_fd
+
+   !> The system's reason for an `errno` value, in words: 'Permission denied (errno 13)'.
+   function reason(code) result(t)
+      integer(c_int), intent(in) :: code               !! errno value
+      character(len=:), allocatable :: t
+      t = errno_text(code) // ' (errno ' // str(int(code)) // ')'
+   end function reason
 
    !> Content of the open file `fd` (at most max_content bytes).
    function read_fd(fd) result(text)

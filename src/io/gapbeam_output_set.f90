@@ -17,12 +17,27 @@
 !> set (`names`, written to `/run/files` by the writers).
 !>
 !> All files of a set share the directory of PREFIX (so that renames are atomic); `begin`
-!> creates that directory when missing.
+!> creates that directory when missing, and refuses a PREFIX that names a directory
+!> ('results/x/', '.', '..': its files would be hidden, 'results/x/.h5').
+!>
+!> Errors are a state of the set, as of the HDF5 writer: the first failure of any step is
+!> kept, later steps do nothing, and `finish` reports it after removing the temporaries.
+!>
+!> ```fortran
+!> call set%begin(prefix, [character(len=12) :: '.h5', '.history.dat'])
+!> call set%open_h5(h5, 'transient', deck%text)     ! root attributes, /deck, /run/files
+!> call h5%put('/history/time', time)
+!> call set%close_h5(h5)
+!> call set%table('.history.dat', title, names, units, columns)
+!> call set%finish(err)                              ! all in place, or nothing changed
+!> ```
 module gapbeam_output_set
    use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_kinds, only: dp
    use gapbeam_files, only: rename_file, remove_file, file_exists, directory_exists, &
-      make_parent_directory, process_id
+      make_parent_directory, process_id, write_table, write_text_file, output_prefix_problem
    use gapbeam_hdf5_output, only: h5_writer_t
+   use gapbeam_file_info, only: write_file_info
    implicit none
    private
    public :: output_set_t
@@ -38,16 +53,22 @@ module gapbeam_output_set
       character(len=:), allocatable :: prefix      !! output prefix, e.g. 'results/baseline'
       character(len=:), allocatable :: tag         !! '.<pid>', unique to the process
       type(name_t), allocatable :: final(:)        !! final names, in the order given
+      type(error_t), allocatable :: err            !! the first failure
    contains
       procedure :: begin => set_begin              !! name the files; make the directory
       procedure :: temp => set_temp                !! temporary name of file k
       procedure :: final_name => set_final_name    !! final name of file k
       procedure :: names => set_names              !! file names without the directory
       procedure :: size => set_size                !! number of files
-      procedure :: record => set_record            !! the list of files, in an HDF5 file
+      procedure :: open_h5 => set_open_h5          !! the .h5: root attributes, /deck, /run/files
+      procedure :: close_h5 => set_close_h5        !! close the .h5, keeping its failure
+      procedure :: table => set_table              !! a gnuplot table of the set
+      procedure :: text => set_text                !! a text file of the set
+      procedure :: keep => set_keep                !! keep a failure found by the caller
+      procedure :: failed => set_failed            !! whether a step failed
       procedure :: commit => set_commit            !! put every file in place, or none
       procedure :: discard => set_discard          !! remove the temporaries
-      procedure :: finish => set_finish            !! commit, or discard after an error
+      procedure :: finish => set_finish            !! commit, or discard after a failure
    end type output_set_t
 
    character(len=*), parameter :: here = 'gapbeam_output_set: '
@@ -57,11 +78,11 @@ contains
    !> Name the files of the set, PREFIX // suffix for each suffix ('.h5', '.history.dat', ...),
    !> and create the directory of PREFIX when missing. The `.h5` file should come first: it is
    !> put in place last.
-   subroutine set_begin(self, prefix, suffixes, err)
+   subroutine set_begin(self, prefix, suffixes)
       class(output_set_t), intent(out) :: self           !! the set
       character(len=*), intent(in) :: prefix             !! output prefix
       character(len=*), intent(in) :: suffixes(:)        !! one per file, e.g. ['.h5  ', '.dat ']
-      type(error_t), allocatable, intent(out) :: err     !! the directory cannot be made
+      character(len=:), allocatable :: why
       integer :: k
       self%prefix = trim(prefix)
       self%tag = '.' // str(process_id())
@@ -69,7 +90,12 @@ contains
       do k = 1, size(suffixes)
          self%final(k)%s = self%prefix // trim(suffixes(k))
       end do
-      call make_parent_directory(self%prefix, err)
+      why = output_prefix_problem(self%prefix)
+      if (len(why) > 0) then
+         call fatal_error(self%err, here // why)
+         return
+      end if
+      call make_parent_directory(self%prefix, self%err)
    end subroutine set_begin
 
    !> The temporary name file k is written under, 'FINAL.<pid>.part'.
@@ -113,27 +139,79 @@ contains
       end do
    end subroutine set_names
 
-   !> Write the list of the set's files (names without directory) to `/run/files` of an HDF5
-   !> file being written, with a `description` attribute.
-   subroutine set_record(self, h5, err)
-      class(output_set_t), intent(in) :: self            !! the set
-      type(h5_writer_t), intent(inout) :: h5             !! writer of the set's HDF5 file
-      type(error_t), allocatable, intent(out) :: err     !! write failure
+   !> Create the set's HDF5 file (its first file, under its temporary name) for `analysis`,
+   !> with the root attributes, /deck and /run/files (the files of the set, without their
+   !> directory). Nothing when a step failed already.
+   subroutine set_open_h5(self, h5, analysis, deck_text)
+      class(output_set_t), intent(in) :: self            !! the set; file 1 is the .h5
+      type(h5_writer_t), intent(inout) :: h5             !! writer, not open
+      character(len=*), intent(in) :: analysis           !! analysis word
+      character(len=*), intent(in) :: deck_text          !! the effective deck text
       character(len=:), allocatable :: names(:)
+      character(len=*), parameter :: description = 'the files written together with this ' &
+         // 'one, in its directory, by one run (they appear together or not at all)'
+      if (allocated(self%err)) return
+      call h5%create(self%temp(1), analysis, in_place=.true.)
+      call write_file_info(h5, analysis, deck_text)
+      call h5%put('/deck', deck_text)
       call self%names(names)
-      call h5%write('/run/files', names, '1', err, 'the files written together with this ' &
-         // 'one, in its directory, by one run (they appear together or not at all)')
-      if (allocated(err)) return
-      call h5%write_attr('/run/files', 'description', 'the files written together with this ' &
-         // 'one, in its directory, by one run (they appear together or not at all)', err)
-   end subroutine set_record
+      call h5%put('/run/files', names)
+      call h5%attr('/run/files', 'description', description)
+   end subroutine set_open_h5
 
-   !> After the writers: commit the set when `err` is not set, else discard it (`err` kept).
+   !> Close the set's HDF5 file; its failure (of any of its calls) becomes the set's.
+   subroutine set_close_h5(self, h5)
+      class(output_set_t), intent(inout) :: self         !! the set
+      type(h5_writer_t), intent(inout) :: h5             !! writer of file 1
+      type(error_t), allocatable :: e
+      if (allocated(self%err)) then
+         call h5%abort()
+         return
+      end if
+      call h5%close(e)
+      if (allocated(e)) call move_alloc(e, self%err)
+   end subroutine set_close_h5
+
+   !> Write the gnuplot table PREFIX // suffix of the set (gapbeam_files: write_table).
+   subroutine set_table(self, suffix, title, names, units, columns)
+      class(output_set_t), intent(inout) :: self         !! the set
+      character(len=*), intent(in) :: suffix             !! which file, e.g. '.history.dat'
+      character(len=*), intent(in) :: title              !! first comment line
+      character(len=*), intent(in) :: names(:), units(:) !! column names and units
+      real(dp), intent(in) :: columns(:, :)              !! (rows, columns)
+      if (allocated(self%err)) return
+      call write_table(self%temp(which(self, suffix)), title, names, units, columns, self%err)
+   end subroutine set_table
+
+   !> Write the text file PREFIX // suffix of the set.
+   subroutine set_text(self, suffix, text)
+      class(output_set_t), intent(inout) :: self         !! the set
+      character(len=*), intent(in) :: suffix             !! which file, e.g. '.stability.txt'
+      character(len=*), intent(in) :: text               !! its contents
+      if (allocated(self%err)) return
+      call write_text_file(self%temp(which(self, suffix)), text, self%err)
+   end subroutine set_text
+
+   !> Keep a failure the caller found (the first one is kept).
+   subroutine set_keep(self, e)
+      class(output_set_t), intent(inout) :: self         !! the set
+      type(error_t), intent(in) :: e                     !! the failure
+      if (.not. allocated(self%err)) self%err = e
+   end subroutine set_keep
+
+   !> Whether a step of the set failed.
+   pure logical function set_failed(self)
+      class(output_set_t), intent(in) :: self            !! the set
+      set_failed = allocated(self%err)
+   end function set_failed
+
+   !> After the writers: commit the set, or discard it after a failure (reported in `err`).
    subroutine set_finish(self, err)
       class(output_set_t), intent(inout) :: self         !! the set
-      type(error_t), allocatable, intent(inout) :: err   !! the writers' status; the commit's
-      if (allocated(err)) then
+      type(error_t), allocatable, intent(out) :: err     !! the first failure, or the commit's
+      if (allocated(self%err)) then
          call self%discard()
+         call move_alloc(self%err, err)
          return
       end if
       call self%commit(err)
@@ -213,6 +291,16 @@ contains
          call remove_file(self%temp(k))
       end do
    end subroutine set_discard
+
+   !> The number of the file PREFIX // suffix (a suffix not in the set is a programming error).
+   integer function which(self, suffix)
+      class(output_set_t), intent(in) :: self
+      character(len=*), intent(in) :: suffix
+      do which = 1, self%size()
+         if (self%final(which)%s == self%prefix // trim(suffix)) return
+      end do
+      error stop 'gapbeam_output_set: a file that is not in the set'
+   end function which
 
    !> The name a previous run's file k is moved aside to during the commit.
    function old_name(self, k) result(name)

@@ -10,19 +10,23 @@
 !> strain_rate (recorded periods, points); /sweep/lyapunov_running (periods, points);
 !> /sweep/starts/kind (starts), /sweep/starts/label, attractor, lyapunov (starts, points);
 !> /sweep/attractors/label, fraction, lyapunov (starts, points; padded past n_attractors);
-!> /parameters (gapbeam_file_info). Shapes above are Fortran's: in C order (h5py) every
-!> per-point array has the point first: (point, stop), (point, period), (point, start).
+!> /parameters and /model (gapbeam_file_info: the deck's model; a merge copies the first
+!> shard's). Shapes above are Fortran's: in C order (h5py) every per-point array has the
+!> point first: (point, stop), (point, period), (point, start). Units and long names are
+!> those of the output catalogue.
 module gapbeam_sweep_output
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_hdf5_output, only: h5_writer_t, h5_reader_t, write_failed
-   use gapbeam_files, only: write_table, real_path, file_exists
+   use gapbeam_hdf5_output, only: h5_writer_t
+   use gapbeam_hdf5_input, only: h5_reader_t
+   use gapbeam_files, only: real_path, file_exists
    use gapbeam_output_set, only: output_set_t
    use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
+   use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_file_info, only: write_file_info, write_parameter_set
+   use gapbeam_file_info, only: write_parameter_set, write_model
    implicit none
    private
    public :: sweep_file_t, write_sweep, read_sweep, merge_sweep
@@ -44,8 +48,11 @@ module gapbeam_sweep_output
       integer :: shard_count = 1                     !! shards of the sweep
       integer, allocatable :: points(:)              !! point indices in the file (ascending)
       type(parameter_set_t) :: parameters            !! the run's parameters (/parameters)
-      !> a file whose /parameters are copied instead (a merge: the first shard's)
+      type(model_t), allocatable :: model            !! the deck's model (/model)
+      character(len=:), allocatable :: stiffness_units   !! of its stop stiffnesses
+      !> a file whose /parameters and /model are copied instead (a merge: the first shard's)
       character(len=:), allocatable :: parameters_source
+      logical :: has_model = .false.                 !! the file read holds /model
       real(dp) :: cpu_seconds = -1.0_dp              !! CPU time of the process, all threads [s]
       real(dp) :: wall_seconds = -1.0_dp             !! elapsed time of the job [s]
       integer :: threads = 0                         !! OpenMP threads of the run
@@ -56,64 +63,26 @@ module gapbeam_sweep_output
       character(len=:), allocatable :: v(:)        !! the texts, blank padded
    end type text_list_t
 
-   !> Integer fields per point: name, units (see point_result_t).
+   !> One per-stop statistic of every point of a file, (stops, points).
+   type :: stat_t
+      real(dp), allocatable :: v(:, :)             !! values
+   end type stat_t
+
+   !> Integer fields per point (see point_result_t), /sweep/<name>.
    character(len=*), parameter :: int_names(14) = [character(len=20) :: 'period', 'label', &
       'status', 'certificate', 'lyapunov_periods', 'lyapunov_converged', 'period_max_tested', &
       'closest_period', 'transient_periods', 'settle_windows', 'settled', 'accuracy_label', &
       'perturbed_label', 'n_attractors']
-   character(len=*), parameter :: label_codes = 'p >= 1: period p; 0: undecided; -1: ' &
-      // 'chaotic; -2: unsettled; -3: failed'
-   !> their UDUNITS-2 units and long names
-   character(len=*), parameter :: int_units(14) = [character(len=1) :: '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', '1', &
-      '1', '1', '1']
-   character(len=*), parameter :: int_long(14) = [character(len=100) :: &
-      'detected period in forcing periods; 0: none up to period_max', &
-      'label code of the point (' // label_codes // ')', &
-      'status of the point: 0 done, 1 failed (results NaN)', &
-      'certificate: 0 none, 1 certified, 2 disputed', &
-      'forcing periods averaged for the Lyapunov exponent', &
-      'exponent converged: 1 sigma met its target, 0 stopped at the most periods', &
-      'periods 1..this were tried for a period', &
-      'best-repeating candidate period in forcing periods', &
-      'forcing periods before the final record, in all', &
-      'windows of the record compared by the settling test', &
-      'settled: 1 the windows agree (or no test), 0 not settled', &
-      'label code of the accuracy check (-3: the check failed)', &
-      'label code of the perturbed start (-3: the check failed)', &
-      'distinct attractors reached by the starts of the point']
-   !> Real fields per point.
+   !> Real fields per point, /sweep/<name>.
    character(len=*), parameter :: real_names(18) = [character(len=24) :: 'lyapunov', &
       'lyapunov_error', 'seconds', 'steps', 'f1_open_hz', 'period_tolerance', &
       'repeat_distance', 'window_difference', 'strain_range', 'strain_rate_range', &
       'seconds_label', 'seconds_certify', 'accuracy_lyapunov', 'accuracy_lyapunov_error', &
       'accuracy_distance', 'perturbed_lyapunov', 'perturbed_lyapunov_error', &
       'perturbed_distance']
-   character(len=*), parameter :: real_units(18) = [character(len=3) :: 's-1', 's-1', &
-      's', '1', 'Hz', '1', '1', '1', '1', 's-1', 's', 's', 's-1', 's-1', '1', 's-1', 's-1', '1']
-   character(len=*), parameter :: real_long(18) = [character(len=100) :: &
-      'largest Lyapunov exponent', 'standard error of the largest Lyapunov exponent', &
-      'CPU time of the point (labelled run and certificate)', &
-      'accepted integration steps of the labelled run (Lyapunov periods not counted)', &
-      'first natural frequency of the point''s model, stops open', &
-      'period tolerance used, relative to the orbit size', &
-      'repeat distance of the closest period, relative to the orbit size', &
-      'largest difference of the settling windows, relative to the orbit size', &
-      'range of the root strain over the final record', &
-      'range of the root strain rate over the final record', &
-      'CPU time of the labelled run', 'CPU time of the certificate''s checks', &
-      'Lyapunov exponent of the accuracy check', &
-      'standard error of the Lyapunov exponent of the accuracy check', &
-      'distance of the accuracy check''s orbit to the run''s, relative to the orbit size', &
-      'Lyapunov exponent of the perturbed start', &
-      'standard error of the Lyapunov exponent of the perturbed start', &
-      'distance of the perturbed start''s orbit to the run''s, relative to the orbit size']
-   !> Texts per point.
+   !> Texts per point, /sweep/<name>.
    character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
       'certificate_reason', 'accuracy_method', 'message']
-   character(len=*), parameter :: text_long(4) = [character(len=60) :: &
-      'integration method of the labelled run', 'the certificate and its reason', &
-      'what the accuracy check ran ('''' when none)', 'failure message ('''' when done)']
-
 contains
 
    !> Write points `sf%points` of `results` to PREFIX.h5 (and the text tables when asked), as
@@ -129,17 +98,13 @@ contains
       logical, intent(in) :: write_text                  !! also .sweep.dat, .bifurcation.dat
       type(error_t), allocatable, intent(out) :: err     !! I/O failure; no file changed then
       type(output_set_t) :: set
-      type(h5_writer_t) :: h5
       if (write_text) then
-         call set%begin(prefix, [character(len=16) :: '.h5', '.sweep.dat', '.bifurcation.dat'], &
-                        err)
+         call set%begin(prefix, [character(len=16) :: '.h5', '.sweep.dat', '.bifurcation.dat'])
       else
-         call set%begin(prefix, ['.h5'], err)
+         call set%begin(prefix, ['.h5'])
       end if
-      if (allocated(err)) return
-      call h5%create(set%temp(1), err, in_place=.true.)
-      if (.not. allocated(err)) call sweep_h5(h5, set, sf, results, err)
-      if (.not. allocated(err) .and. write_text) call sweep_tables(set, sf, results, err)
+      call sweep_h5(set, sf, results)
+      if (write_text) call sweep_tables(set, sf, results)
       call set%finish(err)
    end subroutine write_sweep
 
@@ -222,102 +187,50 @@ contains
       end do
    end function impact_counts
 
-   !> Integer field j (int_names) of a point.
-   pure integer function int_field(pr, j) result(v)
+   !> The integer fields of a point, in the order of int_names.
+   pure function int_fields(pr) result(v)
       type(point_result_t), intent(in) :: pr   !! point
-      integer, intent(in) :: j                 !! field
-      select case (j)
-      case (1);  v = pr%period
-      case (2);  v = pr%label
-      case (3);  v = pr%status
-      case (4);  v = pr%certificate
-      case (5);  v = pr%lyapunov_periods
-      case (6);  v = pr%lyapunov_converged
-      case (7);  v = pr%period_max_tested
-      case (8);  v = pr%closest_period
-      case (9);  v = pr%transient_periods
-      case (10);  v = pr%settle_windows
-      case (11);  v = pr%settled
-      case (12);  v = pr%accuracy_label
-      case (13);  v = pr%perturbed_label
-      case default;  v = pr%n_attractors
-      end select
-   end function int_field
+      integer :: v(size(int_names))
+      v = [pr%period, pr%label, pr%status, pr%certificate, pr%lyapunov_periods, &
+           pr%lyapunov_converged, pr%period_max_tested, pr%closest_period, &
+           pr%transient_periods, pr%settle_windows, pr%settled, pr%accuracy_label, &
+           pr%perturbed_label, pr%n_attractors]
+   end function int_fields
 
-   !> Set integer field j of a point.
-   pure subroutine set_int_field(pr, j, v)
+   !> Set the integer fields of a point (int_names order).
+   pure subroutine set_int_fields(pr, v)
       type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: j, v                 !! field, value
-      select case (j)
-      case (1);  pr%period = v
-      case (2);  pr%label = v
-      case (3);  pr%status = v
-      case (4);  pr%certificate = v
-      case (5);  pr%lyapunov_periods = v
-      case (6);  pr%lyapunov_converged = v
-      case (7);  pr%period_max_tested = v
-      case (8);  pr%closest_period = v
-      case (9);  pr%transient_periods = v
-      case (10);  pr%settle_windows = v
-      case (11);  pr%settled = v
-      case (12);  pr%accuracy_label = v
-      case (13);  pr%perturbed_label = v
-      case default;  pr%n_attractors = v
-      end select
-   end subroutine set_int_field
+      integer, intent(in) :: v(:)                 !! values
+      pr%period = v(1);  pr%label = v(2);  pr%status = v(3);  pr%certificate = v(4)
+      pr%lyapunov_periods = v(5);  pr%lyapunov_converged = v(6)
+      pr%period_max_tested = v(7);  pr%closest_period = v(8);  pr%transient_periods = v(9)
+      pr%settle_windows = v(10);  pr%settled = v(11);  pr%accuracy_label = v(12)
+      pr%perturbed_label = v(13);  pr%n_attractors = v(14)
+   end subroutine set_int_fields
 
-   !> Real field j (real_names) of a point.
-   pure real(dp) function real_field(pr, j) result(v)
+   !> The real fields of a point, in the order of real_names.
+   pure function real_fields(pr) result(v)
       type(point_result_t), intent(in) :: pr   !! point
-      integer, intent(in) :: j                 !! field
-      select case (j)
-      case (1);  v = pr%lyapunov
-      case (2);  v = pr%lyapunov_error
-      case (3);  v = pr%seconds
-      case (4);  v = real(pr%steps, dp)
-      case (5);  v = pr%f1_open_hz
-      case (6);  v = pr%period_tolerance
-      case (7);  v = pr%repeat_distance
-      case (8);  v = pr%window_difference
-      case (9);  v = pr%strain_range
-      case (10);  v = pr%strain_rate_range
-      case (11);  v = pr%seconds_label
-      case (12);  v = pr%seconds_certify
-      case (13);  v = pr%accuracy_lyapunov
-      case (14);  v = pr%accuracy_lyapunov_error
-      case (15);  v = pr%accuracy_distance
-      case (16);  v = pr%perturbed_lyapunov
-      case (17);  v = pr%perturbed_lyapunov_error
-      case default;  v = pr%perturbed_distance
-      end select
-   end function real_field
+      real(dp) :: v(size(real_names))
+      v = [pr%lyapunov, pr%lyapunov_error, pr%seconds, real(pr%steps, dp), pr%f1_open_hz, &
+           pr%period_tolerance, pr%repeat_distance, pr%window_difference, pr%strain_range, &
+           pr%strain_rate_range, pr%seconds_label, pr%seconds_certify, pr%accuracy_lyapunov, &
+           pr%accuracy_lyapunov_error, pr%accuracy_distance, pr%perturbed_lyapunov, &
+           pr%perturbed_lyapunov_error, pr%perturbed_distance]
+   end function real_fields
 
-   !> Set real field j of a point.
-   pure subroutine set_real_field(pr, j, v)
+   !> Set the real fields of a point (real_names order).
+   pure subroutine set_real_fields(pr, v)
       type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: j                    !! field
-      real(dp), intent(in) :: v                   !! value
-      select case (j)
-      case (1);  pr%lyapunov = v
-      case (2);  pr%lyapunov_error = v
-      case (3);  pr%seconds = v
-      case (4);  pr%steps = nint(v, int64)
-      case (5);  pr%f1_open_hz = v
-      case (6);  pr%period_tolerance = v
-      case (7);  pr%repeat_distance = v
-      case (8);  pr%window_difference = v
-      case (9);  pr%strain_range = v
-      case (10);  pr%strain_rate_range = v
-      case (11);  pr%seconds_label = v
-      case (12);  pr%seconds_certify = v
-      case (13);  pr%accuracy_lyapunov = v
-      case (14);  pr%accuracy_lyapunov_error = v
-      case (15);  pr%accuracy_distance = v
-      case (16);  pr%perturbed_lyapunov = v
-      case (17);  pr%perturbed_lyapunov_error = v
-      case default;  pr%perturbed_distance = v
-      end select
-   end subroutine set_real_field
+      real(dp), intent(in) :: v(:)                !! values
+      pr%lyapunov = v(1);  pr%lyapunov_error = v(2);  pr%seconds = v(3)
+      pr%steps = nint(v(4), int64);  pr%f1_open_hz = v(5);  pr%period_tolerance = v(6)
+      pr%repeat_distance = v(7);  pr%window_difference = v(8);  pr%strain_range = v(9)
+      pr%strain_rate_range = v(10);  pr%seconds_label = v(11);  pr%seconds_certify = v(12)
+      pr%accuracy_lyapunov = v(13);  pr%accuracy_lyapunov_error = v(14)
+      pr%accuracy_distance = v(15);  pr%perturbed_lyapunov = v(16)
+      pr%perturbed_lyapunov_error = v(17);  pr%perturbed_distance = v(18)
+   end subroutine set_real_fields
 
    !> Text field j (text_names) of a point ('' when unset).
    pure function text_field(pr, j) result(t)
@@ -412,195 +325,126 @@ contains
    end subroutine start_tables
 
    !> PREFIX.h5 of a sweep: the datasets listed in the module header.
-   subroutine sweep_h5(h5, set, sf, results, err)
-      type(h5_writer_t), intent(inout) :: h5             !! writer, file created; closed here
-      type(output_set_t), intent(in) :: set              !! the set (for /run/files)
+   subroutine sweep_h5(set, sf, results)
+      type(output_set_t), intent(inout) :: set           !! the set; its .h5 is written here
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
-      type(error_t), allocatable, intent(out) :: err     !! I/O failure
-      integer :: m, ns, nr, nl, j, p, k
-      real(dp), allocatable :: f(:), a(:), x(:), y(:), r2(:, :), s_lyap(:, :), a_frac(:, :), &
-         a_lyap(:, :)
-      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :)
+      type(h5_writer_t) :: h5
+      character(len=*), parameter :: stat_names(9) = [character(len=26) :: &
+         'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
+         'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
+         'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
+      real(dp), allocatable :: f(:), a(:), x(:), y(:), rv(:, :)
+      integer, allocatable :: iv(:, :)
       character(len=16), allocatable :: labels(:), certs(:)
-      character(len=*), parameter :: stat_names(5) = [character(len=18) :: 'peak_force', &
-         'rms_force', 'contact_fraction', 'impulse_per_period', 'work_rate']
-      character(len=*), parameter :: stat_units(5) = [character(len=3) :: 'N', 'N', '1', &
-         'N s', 'W']
-      character(len=*), parameter :: wear_names(4) = [character(len=18) :: 'normal_work_rate', &
-         'sliding_distance', 'friction_work_rate', 'wear_volume_rate']
-      character(len=*), parameter :: wear_units(4) = [character(len=6) :: 'W', 'm', 'W', &
-         'm3 s-1']
-      character(len=*), parameter :: wear_long(4) = [character(len=72) :: &
-         'normal work rate of each support, (1/T) integral of F_N |v_t| dt', &
-         'distance each support slid over the record', &
-         'mean friction power of each support', &
-         'Archard wear volume rate of each support']
-      character(len=*), parameter :: stat_long(5) = [character(len=60) :: &
-         'largest force of each stop in the record', &
-         'root mean square force of each stop over the record', &
-         'fraction of the record each stop is in contact', &
-         'impulse of each stop per forcing period', &
-         'mean rate of contact work of each stop']
-
+      integer :: m, ns, nr, nl, j, k
       m = size(sf%points)
       call point_sizes(results, sf%points, ns, nr, nl)
       allocate(f(m), a(m), x(m), y(m), labels(m), certs(m))
       do j = 1, m
-         p = sf%points(j)
-         call point_axes(sf, p, x(j), y(j), f(j), a(j))
-         labels(j) = label_text(results(p)%label)
-         certs(j) = certificate_text(results(p)%certificate)
+         call point_axes(sf, sf%points(j), x(j), y(j), f(j), a(j))
+         labels(j) = label_text(results(sf%points(j))%label)
+         certs(j) = certificate_text(results(sf%points(j))%certificate)
       end do
-      call write_file_info(h5, 'sweep', sf%deck_text, err);  if (write_failed(h5, err)) return
-      call h5%write_text('/deck', sf%deck_text, err, 'the effective deck text: deck file ' &
-         // 'and command-line overrides');  if (write_failed(h5, err)) return
-      call set%record(h5, err);  if (write_failed(h5, err)) return
+      call set%open_h5(h5, 'sweep', sf%deck_text)
       if (allocated(sf%parameters_source)) then
-         call h5%copy_from(sf%parameters_source, '/parameters', err)
+         call h5%copy_from(sf%parameters_source, '/parameters')
+         if (sf%has_model) call h5%copy_from(sf%parameters_source, '/model')
       else
-         call write_parameter_set(h5, sf%parameters, err)
+         call write_parameter_set(h5, sf%parameters)
+         if (allocated(sf%model)) call write_model(h5, sf%model, sf%stiffness_units)
       end if
-      if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/title', sf%title, err, '&job title')
-      if (write_failed(h5, err)) return
+      call h5%put('/sweep/title', sf%title)
       if (sf%threads > 0) then   ! a run, not a merge (a merge's shards hold their own)
-         call h5%write('/run/cpu_seconds', sf%cpu_seconds, 's', err, 'CPU time of the ' &
-                       // 'process up to the writing of the results, all threads')
-         if (write_failed(h5, err)) return
-         call h5%write('/run/wall_seconds', sf%wall_seconds, 's', err, 'wall time of the ' &
-                       // 'job up to the writing of the results')
-         if (write_failed(h5, err)) return
-         call h5%write('/run/threads', sf%threads, '1', err, 'OpenMP threads of the run')
-         if (write_failed(h5, err)) return
+         call h5%put('/run/cpu_seconds', sf%cpu_seconds)
+         call h5%put('/run/wall_seconds', sf%wall_seconds)
+         call h5%put('/run/threads', sf%threads)
       end if
-      call h5%write('/sweep/grid_frequency_hz', sf%grid_frequency_hz, 'Hz', err, &
-                    'forcing frequency axis of the sweep grid (or the one &forcing value)')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, 'm', err, &
-                    'base displacement amplitude axis, peak to peak (or the one &forcing value)')
-      if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/x_variable', sf%x_variable, err, 'deck variable of the x axis')
-      if (write_failed(h5, err)) return
-      call h5%write_text('/sweep/y_variable', sf%y_variable, err, 'deck variable of the y axis')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_x', sf%grid_x, unit_string(sf%x_units), err, &
-                    'x axis values (' // sf%x_variable // ')')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/grid_y', sf%grid_y, unit_string(sf%y_units), err, &
-                    'y axis values (' // sf%y_variable // ')')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_index', sf%shard_index, '1', err, &
-                    'shard I of this file (1 for a whole or merged sweep)')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/shard_count', sf%shard_count, '1', err, 'number N of shards')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y), '1', err, &
-                    'points of the whole sweep, n_x x n_y')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/point_index', sf%points, '1', err, 'point number p = i_x + ' &
-         // '(i_y - 1) n_x of each point of the file (x fastest)')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/x', x, unit_string(sf%x_units), err, 'x axis value of the point')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/y', y, unit_string(sf%y_units), err, 'y axis value of the point')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/frequency_hz', f, 'Hz', err, 'forcing frequency of the point')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/amplitude_pp', a, 'm', err, 'base displacement amplitude of the ' &
-         // 'point, peak to peak');  if (write_failed(h5, err)) return
+      call h5%put('/sweep/grid_frequency_hz', sf%grid_frequency_hz)
+      call h5%put('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp)
+      call h5%put('/sweep/x_variable', sf%x_variable)
+      call h5%put('/sweep/y_variable', sf%y_variable)
+      call h5%put('/sweep/grid_x', sf%grid_x, units=unit_string(sf%x_units), fill=sf%x_variable)
+      call h5%put('/sweep/grid_y', sf%grid_y, units=unit_string(sf%y_units), fill=sf%y_variable)
+      call h5%put('/sweep/shard_index', sf%shard_index)
+      call h5%put('/sweep/shard_count', sf%shard_count)
+      call h5%put('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y))
+      call h5%put('/sweep/point_index', sf%points)
+      call h5%put('/sweep/x', x, units=unit_string(sf%x_units))
+      call h5%put('/sweep/y', y, units=unit_string(sf%y_units))
+      call h5%put('/sweep/frequency_hz', f)
+      call h5%put('/sweep/amplitude_pp', a)
+      allocate(iv(size(int_names), m), rv(size(real_names), m))
+      do j = 1, m
+         iv(:, j) = int_fields(results(sf%points(j)))
+         rv(:, j) = real_fields(results(sf%points(j)))
+      end do
       do k = 1, size(int_names)
-         call h5%write('/sweep/' // trim(int_names(k)), [(int_field(results(sf%points(j)), k), &
-                       j = 1, m)], trim(int_units(k)), err, trim(int_long(k)))
-         if (write_failed(h5, err)) return
+         call h5%put('/sweep/' // trim(int_names(k)), iv(k, :))
       end do
       do k = 1, size(real_names)
-         call h5%write('/sweep/' // trim(real_names(k)), [(real_field(results(sf%points(j)), &
-                       k), j = 1, m)], trim(real_units(k)), err, trim(real_long(k)))
-         if (write_failed(h5, err)) return
+         call h5%put('/sweep/' // trim(real_names(k)), rv(k, :))
       end do
-      call h5%write('/sweep/label_text', labels, '1', err, 'label: period_<p>, chaotic, ' &
-         // 'undecided, unsettled or failed');  if (write_failed(h5, err)) return
-      call h5%write('/sweep/certificate_text', certs, '1', err, 'certificate: certified, ' &
-         // 'disputed or none');  if (write_failed(h5, err)) return
+      call h5%put('/sweep/label_text', labels)
+      call h5%put('/sweep/certificate_text', certs)
       do k = 1, size(text_names)
-         call h5%write('/sweep/' // trim(text_names(k)), texts(results, sf%points, k), '1', &
-                       err, trim(text_long(k)))
-         if (write_failed(h5, err)) return
+         call h5%put('/sweep/' // trim(text_names(k)), texts(results, sf%points, k))
       end do
-      call h5%write('/sweep/impacts/count', impact_counts(results, sf%points, ns), '1', err, &
-                    'contact onsets of each stop in the record', 'point stop')
-      if (write_failed(h5, err)) return
-      do j = 1, size(stat_names)
-         call h5%write('/sweep/impacts/' // trim(stat_names(j)), &
-                       impact_stat(results, sf%points, j, ns), trim(stat_units(j)), err, &
-                       trim(stat_long(j)), 'point stop')
-         if (write_failed(h5, err)) return
+      call h5%put('/sweep/impacts/count', impact_counts(results, sf%points, ns))
+      do k = 1, size(stat_names)
+         call h5%put('/sweep/' // trim(stat_names(k)), impact_stat(results, sf%points, k, ns))
       end do
-      do j = 1, size(wear_names)
-         call h5%write('/sweep/wear/' // trim(wear_names(j)), &
-                       impact_stat(results, sf%points, 5 + j, ns), trim(wear_units(j)), err, &
-                       trim(wear_long(j)), 'point stop')
-         if (write_failed(h5, err)) return
+      call h5%put('/sweep/poincare/strain', per_point(results, sf%points, 1, nr))
+      call h5%put('/sweep/poincare/strain_rate', per_point(results, sf%points, 2, nr))
+      call h5%put('/sweep/lyapunov_running', per_point(results, sf%points, 3, nl))
+      call write_starts(h5, sf, results)
+      call set%close_h5(h5)
+   end subroutine sweep_h5
+
+   !> One per-period series of every point of the file, (n, points): 1 the Poincare strain,
+   !> 2 its rate, 3 the running Lyapunov estimate; NaN past a point's own.
+   function per_point(results, points, which, n) result(v)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: which                       !! the series
+      integer, intent(in) :: n                           !! its length
+      real(dp) :: v(n, size(points))
+      integer :: j
+      do j = 1, size(points)
+         select case (which)
+         case (1);  v(:, j) = padded(results(points(j))%p_strain, n)
+         case (2);  v(:, j) = padded(results(points(j))%p_strain_rate, n)
+         case default;  v(:, j) = padded(results(points(j))%lyapunov_running, n)
+         end select
       end do
-      allocate(r2(nr, m))
-      do j = 1, m
-         r2(:, j) = padded(results(sf%points(j))%p_strain, nr)
-      end do
-      call h5%write('/sweep/poincare/strain', r2, '1', err, 'root strain at the Poincare ' &
-         // 'section, every recorded period of the final record', 'point period')
-      if (write_failed(h5, err)) return
-      do j = 1, m
-         r2(:, j) = padded(results(sf%points(j))%p_strain_rate, nr)
-      end do
-      call h5%write('/sweep/poincare/strain_rate', r2, 's-1', err, 'root strain rate at the ' &
-         // 'Poincare section, every recorded period of the final record', 'point period')
-      if (write_failed(h5, err)) return
-      deallocate(r2);  allocate(r2(nl, m))
-      do j = 1, m
-         r2(:, j) = padded(results(sf%points(j))%lyapunov_running, nl)
-      end do
-      call h5%write('/sweep/lyapunov_running', r2, 's-1', err, 'running estimate of the ' &
-         // 'largest Lyapunov exponent after each period (NaN past the point''s own)', &
-         'point period')
-      if (write_failed(h5, err)) return
+   end function per_point
+
+   !> /sweep/starts and /sweep/attractors.
+   subroutine write_starts(h5, sf, results)
+      type(h5_writer_t), intent(inout) :: h5             !! writer
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :)
+      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :)
       call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
                         a_label, a_frac, a_lyap)
-      call h5%write('/sweep/starts/kind', sf%start_kind, '1', err, "kind of each start: " &
-                    // "'deck', 'rest', 'up', 'down' or 'random'")
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/label', s_label, '1', err, 'label code of every start (' &
-                    // label_codes // ')', 'point start')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/attractor', s_attr, '1', err, 'attractor number each ' &
-                    // 'start reached (0: failed)', 'point start')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/starts/lyapunov', s_lyap, 's-1', err, 'largest Lyapunov ' &
-                    // 'exponent of every start', 'point start')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/label', a_label, '1', err, 'label code of each ' &
-                    // 'distinct attractor (0 past n_attractors)', 'point attractor')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/fraction', a_frac, '1', err, 'fraction of the ' &
-                    // 'starts that reached each attractor (NaN past n_attractors)', &
-                    'point attractor')
-      if (write_failed(h5, err)) return
-      call h5%write('/sweep/attractors/lyapunov', a_lyap, 's-1', err, 'largest Lyapunov ' &
-                    // 'exponent of each attractor''s first start (NaN past n_attractors)', &
-                    'point attractor')
-      if (write_failed(h5, err)) return
-      call h5%close(err)
-   end subroutine sweep_h5
+      call h5%put('/sweep/starts/kind', sf%start_kind)
+      call h5%put('/sweep/starts/label', s_label)
+      call h5%put('/sweep/starts/attractor', s_attr)
+      call h5%put('/sweep/starts/lyapunov', s_lyap)
+      call h5%put('/sweep/attractors/label', a_label)
+      call h5%put('/sweep/attractors/fraction', a_frac)
+      call h5%put('/sweep/attractors/lyapunov', a_lyap)
+   end subroutine write_starts
 
    !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
    !> with its axis values and the point's label and certificate), under the set's temporary
    !> names. Columns 1 and 2 are the x and y axis values (frequency and amplitude_pp by
    !> default).
-   subroutine sweep_tables(set, sf, results, err)
-      type(output_set_t), intent(in) :: set              !! files 2 and 3
+   subroutine sweep_tables(set, sf, results)
+      type(output_set_t), intent(inout) :: set           !! the set
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
-      type(error_t), allocatable, intent(out) :: err     !! I/O failure
       integer, parameter :: nc = 21
       integer :: m, ns, nr, nl, j, p
       real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
@@ -649,14 +493,13 @@ contains
          'm3/s', '-', '-']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
-      call write_table(set%temp(2), sf%title // ': sweep points (label: p = period,' &
+      call set%table('.sweep.dat', sf%title // ': sweep points (label: p = period,' &
          // ' 0 undecided, -1 chaotic, -2 unsettled, -3 failed; certificate: 1 certified,' &
          // ' 2 disputed, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
          // ' from ' // num(minval(sf%grid_x)) // ' to ' // num(maxval(sf%grid_x)) // ' ' &
          // one_word(xu) // ', ' // str(size(sf%grid_y)) // ' ' // trim(yn) // ' from ' &
          // num(minval(sf%grid_y)) // ' to ' // num(maxval(sf%grid_y)) // ' ' // one_word(yu), &
-         names, units, cols, err, in_place=.true.)
-      if (allocated(err)) return
+         names, units, cols)
       deallocate(cols);  allocate(cols(m * nr, 6))
       do j = 1, m
          p = sf%points(j)
@@ -667,10 +510,9 @@ contains
          cols((j - 1) * nr + 1:j * nr, 5) = results(p)%label
          cols((j - 1) * nr + 1:j * nr, 6) = results(p)%certificate
       end do
-      call write_table(set%temp(3), sf%title // ': Poincare points of every sweep point', &
+      call set%table('.bifurcation.dat', sf%title // ': Poincare points of every sweep point', &
          [character(len=24) :: xn, yn, 'strain', 'strain_rate', 'label', 'certificate'], &
-         [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols, err, &
-         in_place=.true.)
+         [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols)
    end subroutine sweep_tables
 
    !> A deck variable's unit as UDUNITS-2 ('-' is '1', a pure number).
@@ -738,128 +580,122 @@ contains
       type(sweep_file_t), intent(out) :: sf                        !! description
       type(point_result_t), allocatable, intent(inout) :: results(:) !! points land here
       type(error_t), allocatable, intent(out) :: err               !! I/O failure
+      character(len=*), parameter :: here = 'gapbeam_sweep_output:read_sweep: '
+      character(len=*), parameter :: stat_names(10) = [character(len=26) :: 'impacts/count', &
+         'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
+         'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
+         'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
       type(h5_reader_t) :: h5
-      integer :: total, j, p, k, n
-      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :)
-      real(dp), allocatable :: rv(:, :), cnt(:, :), pk(:, :), rms(:, :), cf(:, :), imp(:, :), &
-         wr(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), s_lyap(:, :), a_frac(:, :), &
-         a_lyap(:, :), one(:), wn(:, :), sd(:, :), fw(:, :), wv(:, :)
-      integer, allocatable :: ione(:)
+      type(stat_t) :: st(size(stat_names))
       type(text_list_t) :: tv(size(text_names))
+      integer :: total, j, n, k
+      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:)
+      real(dp), allocatable :: rv(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), &
+         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:)
       character(len=:), allocatable :: kinds(:), axis_order
+      logical :: aligned
       call h5%open(path, err);  if (allocated(err)) return
       call h5%read_attr('/', 'axis_order', axis_order, err)
       if (allocated(err)) then
-         call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' was written ' &
-            // 'by an older gapbeam (no axis_order attribute; its impact arrays are ' &
-            // 'transposed): merge it with the version that wrote it')
-         goto 9
+         call fatal_error(err, here // path // ' was written by an older gapbeam (no ' &
+            // 'axis_order attribute; its impact arrays are transposed): merge it with the ' &
+            // 'version that wrote it')
+         call h5%close()
+         return
       end if
-      call h5%read_text('/deck', sf%deck_text, err);  if (allocated(err)) goto 9
-      call h5%read_text('/sweep/title', sf%title, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/grid_frequency_hz', sf%grid_frequency_hz, err)
-      if (allocated(err)) goto 9
-      call h5%read('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp, err)
-      if (allocated(err)) goto 9
-      call h5%read_text('/sweep/x_variable', sf%x_variable, err);  if (allocated(err)) goto 9
-      call h5%read_text('/sweep/y_variable', sf%y_variable, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/grid_x', sf%grid_x, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/grid_y', sf%grid_y, err);  if (allocated(err)) goto 9
-      call h5%read_units('/sweep/grid_x', sf%x_units, err);  if (allocated(err)) goto 9
-      call h5%read_units('/sweep/grid_y', sf%y_units, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/shard_index', sf%shard_index, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/shard_count', sf%shard_count, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/n_points_total', total, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/point_index', sf%points, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/x', xv, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/y', yv, err);  if (allocated(err)) goto 9
+      call h5%read_text('/deck', sf%deck_text)
+      call h5%read_text('/sweep/title', sf%title)
+      call h5%read('/sweep/grid_frequency_hz', sf%grid_frequency_hz)
+      call h5%read('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp)
+      call h5%read_text('/sweep/x_variable', sf%x_variable)
+      call h5%read_text('/sweep/y_variable', sf%y_variable)
+      call h5%read('/sweep/grid_x', sf%grid_x)
+      call h5%read('/sweep/grid_y', sf%grid_y)
+      call h5%read_units('/sweep/grid_x', sf%x_units)
+      call h5%read_units('/sweep/grid_y', sf%y_units)
+      call h5%read('/sweep/shard_index', sf%shard_index)
+      call h5%read('/sweep/shard_count', sf%shard_count)
+      call h5%read('/sweep/n_points_total', total)
+      call h5%read('/sweep/point_index', sf%points)
+      call h5%read('/sweep/x', xv)
+      call h5%read('/sweep/y', yv)
       n = size(sf%points)
+      aligned = size(xv) == n .and. size(yv) == n
       allocate(iv(n, size(int_names)), rv(n, size(real_names)))
       do k = 1, size(int_names)
-         call h5%read('/sweep/' // trim(int_names(k)), ione, err);  if (allocated(err)) goto 9
-         if (size(ione) /= n) goto 8
-         iv(:, k) = ione
+         call h5%read('/sweep/' // trim(int_names(k)), ione)
+         aligned = aligned .and. size(ione) == n
+         if (aligned) iv(:, k) = ione
       end do
       do k = 1, size(real_names)
-         call h5%read('/sweep/' // trim(real_names(k)), one, err);  if (allocated(err)) goto 9
-         if (size(one) /= n) goto 8
-         rv(:, k) = one
+         call h5%read('/sweep/' // trim(real_names(k)), one)
+         aligned = aligned .and. size(one) == n
+         if (aligned) rv(:, k) = one
       end do
       do k = 1, size(text_names)
-         call h5%read('/sweep/' // trim(text_names(k)), tv(k)%v, err)
-         if (allocated(err)) goto 9
-         if (size(tv(k)%v) /= n) goto 8
+         call h5%read('/sweep/' // trim(text_names(k)), tv(k)%v)
+         aligned = aligned .and. size(tv(k)%v) == n
       end do
-      call h5%read('/sweep/impacts/count', cnt, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/impacts/peak_force', pk, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/impacts/rms_force', rms, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/impacts/contact_fraction', cf, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/impacts/impulse_per_period', imp, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/impacts/work_rate', wr, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/poincare/strain', ps, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/poincare/strain_rate', pr, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/lyapunov_running', lr, err);  if (allocated(err)) goto 9
-      if (h5%exists('/sweep/wear/normal_work_rate')) then
-         call h5%read('/sweep/wear/normal_work_rate', wn, err);  if (allocated(err)) goto 9
-         call h5%read('/sweep/wear/sliding_distance', sd, err);  if (allocated(err)) goto 9
-         call h5%read('/sweep/wear/friction_work_rate', fw, err);  if (allocated(err)) goto 9
-         call h5%read('/sweep/wear/wear_volume_rate', wv, err);  if (allocated(err)) goto 9
-      else
-         allocate(wn, sd, fw, wv, mold=wr)
-         wn = 0.0_dp;  sd = 0.0_dp;  fw = 0.0_dp;  wv = 0.0_dp
-      end if
-      call h5%read('/sweep/starts/kind', kinds, err);  if (allocated(err)) goto 9
-      sf%start_kind = kinds
-      call h5%read('/sweep/starts/label', s_label, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/starts/attractor', s_attr, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/starts/lyapunov', s_lyap, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/attractors/label', a_label, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/attractors/fraction', a_frac, err);  if (allocated(err)) goto 9
-      call h5%read('/sweep/attractors/lyapunov', a_lyap, err);  if (allocated(err)) goto 9
-      if (.not. allocated(results)) allocate(results(total))
-      if (size(results) /= total) then
-         call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ' has ' &
-            // str(total) // ' points in all, the other files ' // str(size(results)))
-         goto 9
-      end if
-      do j = 1, n
-         p = sf%points(j)
-         if (p < 1 .or. p > total) then
-            call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ': point ' &
-               // 'index ' // str(p) // ' outside 1..' // str(total))
-            goto 9
+      do k = 1, size(stat_names)   ! the wear outputs are zero in files written before them
+         if (k < 7 .or. h5%exists('/sweep/wear/normal_work_rate')) then
+            call h5%read('/sweep/' // trim(stat_names(k)), st(k)%v)
+         else
+            allocate(st(k)%v, mold=st(1)%v)
+            st(k)%v = 0.0_dp
          end if
-         do k = 1, size(int_names)
-            call set_int_field(results(p), k, iv(j, k))
-         end do
-         do k = 1, size(real_names)
-            call set_real_field(results(p), k, rv(j, k))
-         end do
-         do k = 1, size(text_names)
-            call set_text_field(results(p), k, trim(tv(k)%v(j)))
-         end do
-         results(p)%x = xv(j);  results(p)%y = yv(j)
-         results(p)%n_impacts = nint(cnt(:, j))
-         results(p)%peak_force = pk(:, j);  results(p)%rms_force = rms(:, j)
-         results(p)%contact_fraction = cf(:, j);  results(p)%impulse_per_period = imp(:, j)
-         results(p)%work_rate = wr(:, j);  results(p)%p_strain = ps(:, j)
-         results(p)%p_strain_rate = pr(:, j)
-         ! the running estimate without the padding past the point's own periods
-         results(p)%lyapunov_running = lr(1:min(size(lr, 1), &
-                                          max(0, results(p)%lyapunov_periods)), j)
-         results(p)%start_label = s_label(:, j);  results(p)%start_attractor = s_attr(:, j)
-         results(p)%start_lyapunov = s_lyap(:, j)
-         k = results(p)%n_attractors
-         results(p)%attractor_label = a_label(1:k, j)
-         results(p)%attractor_fraction = a_frac(1:k, j)
-         results(p)%attractor_lyapunov = a_lyap(1:k, j)
-         results(p)%normal_work_rate = wn(:, j);  results(p)%sliding_distance = sd(:, j)
-         results(p)%friction_work_rate = fw(:, j);  results(p)%wear_volume_rate = wv(:, j)
+         aligned = aligned .and. size(st(k)%v, 2) == n
       end do
-      goto 9
-8     call fatal_error(err, 'gapbeam_sweep_output:read_sweep: ' // path // ': a per-point ' &
-         // 'dataset of /sweep does not have one entry per point')
-9     call h5%close()
+      call h5%read('/sweep/poincare/strain', ps)
+      call h5%read('/sweep/poincare/strain_rate', pr)
+      call h5%read('/sweep/lyapunov_running', lr)
+      call h5%read('/sweep/starts/kind', kinds)
+      call h5%read('/sweep/starts/label', s_label)
+      call h5%read('/sweep/starts/attractor', s_attr)
+      call h5%read('/sweep/starts/lyapunov', s_lyap)
+      call h5%read('/sweep/attractors/label', a_label)
+      call h5%read('/sweep/attractors/fraction', a_frac)
+      call h5%read('/sweep/attractors/lyapunov', a_lyap)
+      sf%has_model = h5%exists('/model')
+      call h5%close(err)
+      if (allocated(err)) return
+      sf%start_kind = kinds
+      if (.not. allocated(results)) allocate(results(total))
+      if (.not. aligned .or. size(ps, 2) /= n .or. size(s_label, 2) /= n .or. &
+          size(a_label, 2) /= n) then
+         call fatal_error(err, here // path // ': a per-point dataset of /sweep does not have ' &
+            // 'one entry per point')
+      else if (size(results) /= total) then
+         call fatal_error(err, here // path // ' has ' // str(total) // ' points in all, the ' &
+            // 'other files ' // str(size(results)))
+      else if (any(sf%points < 1 .or. sf%points > total)) then
+         call fatal_error(err, here // path // ': a point index outside 1..' // str(total))
+      end if
+      if (allocated(err)) return
+      do j = 1, n
+         associate (r => results(sf%points(j)))
+            call set_int_fields(r, iv(j, :))
+            call set_real_fields(r, rv(j, :))
+            do k = 1, size(text_names)
+               call set_text_field(r, k, trim(tv(k)%v(j)))
+            end do
+            r%x = xv(j);  r%y = yv(j)
+            r%n_impacts = nint(st(1)%v(:, j))
+            r%peak_force = st(2)%v(:, j);  r%rms_force = st(3)%v(:, j)
+            r%contact_fraction = st(4)%v(:, j);  r%impulse_per_period = st(5)%v(:, j)
+            r%work_rate = st(6)%v(:, j);  r%normal_work_rate = st(7)%v(:, j)
+            r%sliding_distance = st(8)%v(:, j);  r%friction_work_rate = st(9)%v(:, j)
+            r%wear_volume_rate = st(10)%v(:, j)
+            r%p_strain = ps(:, j);  r%p_strain_rate = pr(:, j)
+            ! the running estimate without the padding past the point's own periods
+            r%lyapunov_running = lr(1:min(size(lr, 1), max(0, r%lyapunov_periods)), j)
+            r%start_label = s_label(:, j);  r%start_attractor = s_attr(:, j)
+            r%start_lyapunov = s_lyap(:, j)
+            k = r%n_attractors
+            r%attractor_label = a_label(1:k, j)
+            r%attractor_fraction = a_frac(1:k, j)
+            r%attractor_lyapunov = a_lyap(1:k, j)
+         end associate
+      end do
    end subroutine read_sweep
 
    !> Merge shard files into OUT (prefix without '.h5'): all from one deck, shards 1..N each

@@ -1,10 +1,14 @@
-!> The continuation job (issue 14): run the continuation a deck asks for, print the branches,
-!> the bifurcations and the curves, and write PREFIX.h5 and the text tables.
+!> The continuation job: run the continuation a deck asks for, print the branches, the
+!> bifurcations and the curves, and write PREFIX.h5 and the text tables (one output set: all
+!> in place, or none changed), with the deck's parameters and model.
 module gapbeam_continuation_job
    use, intrinsic :: iso_fortran_env, only: output_unit
-   use gapbeam_kinds, only: dp
+   use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
+   use gapbeam_model, only: model_t
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_continuation_types, only: continuation_result_t
    use gapbeam_continuation, only: run_continuation
    use gapbeam_continuation_output, only: write_continuation
@@ -19,6 +23,8 @@ contains
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(error_t), allocatable, intent(out) :: err   !! failure
       type(continuation_result_t) :: res
+      type(model_t) :: model
+      real(dp), allocatable :: u0(:), v0(:)
       character(len=200) :: line
       integer :: k, n_stable
       associate (c => deck%continuation)
@@ -31,6 +37,8 @@ contains
             // '), ' // trim(c%parameter2) // ' from ' // str(c%parameter2_min) // ' to ' &
             // str(c%parameter2_max)
       end associate
+      call build_model(deck, model, u0, v0, err)     ! the deck's model, for /model
+      if (allocated(err)) return
       call run_continuation(deck, res, err)
       if (allocated(err)) return
       do k = 1, size(res%branches)
@@ -67,7 +75,9 @@ contains
          // str(res%map_evaluations) // ' map evaluations, ' // str(res%periods_integrated) &
          // ' forcing periods integrated'
       call write_continuation(trim(deck%job%output), trim(deck%job%title), deck%text, &
-         trim(deck%continuation%overlay), res, deck%output%write_text, err)
+         trim(deck%continuation%overlay), res, deck%output%write_text, err, &
+         run_parameters(deck, model%stop_stiffness, model%f1_open_hz, &
+         model%omega_max / (2.0_dp * pi), model%n), model, stiffness_units(deck))
       if (allocated(err)) return
       if (deck%output%write_text) then
          write(output_unit, '(a)') 'files: ' // trim(deck%job%output) // '.h5, .branches.dat, ' &

@@ -22,7 +22,7 @@ module gapbeam_jobs
    use gapbeam_starts, only: start_list, random_state, group_attractors
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
-   use gapbeam_parameters, only: run_parameters, parameter_set_t
+   use gapbeam_parameters, only: forcing_text
    use gapbeam_studies, only: work_precision, stability_study
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
@@ -127,15 +127,6 @@ contains
       end select
    end function method_text
 
-   !> The run's parameters with what the built model resolved.
-   function model_parameters(dk, model) result(p)
-      type(deck_t), intent(in) :: dk                   !! deck
-      type(model_t), intent(in) :: model               !! the model built from it
-      type(parameter_set_t) :: p
-      p = run_parameters(dk, model%stop_stiffness, model%f1_open_hz, &
-                         model%omega_max / (2.0_dp * pi), model%n)
-   end function model_parameters
-
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
       character(len=:), allocatable :: t
@@ -149,6 +140,7 @@ contains
       type(error_t), allocatable, intent(out) :: e
       real(dp) :: value, f1
       type(structure_t) :: st
+      type(system_t) :: sys
       character(len=:), allocatable :: units
       call describe_structure(dk%structure)
       call calibrate_parameter(dk%structure, dk%calibrate%parameter, dk%calibrate%index, &
@@ -176,7 +168,8 @@ contains
       write(output_unit, '(a)') 'calibrated ' // trim(dk%calibrate%parameter) // ' = ' &
          // str(value) // ' ' // units // ' gives f1 = ' // str(f1) // ' Hz (target ' &
          // str(dk%calibrate%target_f1_hz) // ' Hz)'
-      call write_calibration(dk, value, units, f1, e)
+      call assemble(st, sys)
+      call write_calibration(dk, sys, value, units, f1, e)
    end subroutine run_calibrate
 
    !> The deck variable a calibration starts from, with its value ('&beam width = 0.01').
@@ -217,8 +210,7 @@ contains
       ref = trim(dk%study%series(1))
       if (any(dk%study%series == 'auto')) ref = 'auto'
       write(output_unit, '(a)') work_precision_summary(results, ref)
-      call write_work_precision(trim(dk%job%output), trim(dk%job%title), dk%text, results, &
-                                ref, e, model_parameters(dk, model))
+      call write_work_precision(dk, model, results, ref, e)
    end subroutine run_work_precision
 
    subroutine run_stability(dk, e)
@@ -241,16 +233,19 @@ contains
             // ' s theory (' // str(steps(k)%limit) // '/omega_max), ratio ' &
             // str(steps(k)%measured / steps(k)%theory)
       end do
-      call write_stability(trim(dk%job%output), trim(dk%job%title), dk%text, methods, omega_dt, &
-                           rho, steps, model%omega_max, e, model_parameters(dk, model))
+      call write_stability(dk, model, methods, omega_dt, rho, steps, e)
    end subroutine run_stability
 
    subroutine run_model_size(dk, e)
       type(deck_t), intent(in) :: dk
       type(error_t), allocatable, intent(out) :: e
       type(candidate_t), allocatable :: cands(:)
+      type(model_t) :: model
+      real(dp), allocatable :: u0(:), v0(:)
       integer :: best, k
       call describe_structure(dk%structure)
+      call build_model(dk, model, u0, v0, e)          ! the deck's model, for the file
+      if (allocated(e)) return
       write(output_unit, '(a)') 'model size: ' // str(size(dk%model_size%elements)) &
          // ' meshes and ' // str(2 * size(dk%model_size%modes)) // ' modal models against ' &
          // 'the ' // str(maxval(dk%model_size%elements)) // '-element model'
@@ -274,8 +269,7 @@ contains
       else
          write(output_unit, '(a)') 'recommended: none meets every tolerance'
       end if
-      call write_model_size(trim(dk%job%output), trim(dk%job%title), dk%text, cands, best, e, &
-                            run_parameters(dk))
+      call write_model_size(dk, model, cands, best, e)
    end subroutine run_model_size
 
    !> The label of a transient run, its evidence and its certificate, on standard output.
@@ -399,8 +393,7 @@ contains
          // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
          '                    ', dk%reduction%static_correction)) // ': ' // str(model%n) &
          // ' coordinates'
-      write(output_unit, '(a)') 'forcing: ' // str(dk%forcing%frequency_hz) // ' Hz, ' &
-         // str(dk%forcing%amplitude_pp * 1.0e3_dp) // ' mm peak to peak; f1 (stops open) = ' &
+      write(output_unit, '(a)') 'forcing: ' // forcing_text(dk) // '; f1 (stops open) = ' &
          // str(model%f1_open_hz) // ' Hz; highest mode ' &
          // str(model%omega_max / (2.0_dp * pi)) &
          // ' Hz'

@@ -24,9 +24,11 @@ module gapbeam_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, write_sweep
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
-   use gapbeam_parameters, only: run_parameters
+   use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_kinds, only: pi
    use gapbeam_clock, only: process_cpu_seconds
+   use gapbeam_shards, only: shard_deal_t, deal_shards, shard_items, deal_signature, deal_summary
+   use gapbeam_stop_signal, only: stop_requested
    implicit none
    private
    public :: run_sweep_job, sweep_prefix
@@ -71,6 +73,7 @@ contains
       integer(int64) :: c0, c1, rate
       real(dp) :: elapsed, cpu0
       character(len=:), allocatable :: prefix, report
+      type(shard_deal_t) :: deal
 
       complete = .false.
       n_failed = 0
@@ -81,8 +84,9 @@ contains
       call make_plan(deck, plan, err)
       if (allocated(err)) return
       np = n_points(plan);  ni = n_items(plan)
-      mine = pack([(k, k = 1, ni)], [(mod(group_of_item(plan, k) - 1, batch%shard_count) + 1 &
-                  == batch%shard_index, k = 1, ni)])
+      call deal_shards(plan, batch, deal, err)
+      if (allocated(err)) return
+      mine = shard_items(plan, deal, batch%shard_index)
       allocate(slots(np * plan%ns), done(np * plan%ns))
       done = .false.
       prefix = sweep_prefix(deck, batch)
@@ -93,7 +97,7 @@ contains
       if (deck%sweep%checkpoint) then
          call checkpoint_open(ck, prefix // '.checkpoint', deck%text // new_line('a') &
             // '! shard ' // str(batch%shard_index) // ' of ' &
-            // str(batch%shard_count), slots, done, n_loaded, report, err)
+            // str(batch%shard_count) // deal_signature(deal), slots, done, n_loaded, report, err)
          if (allocated(err)) return
          if (len(report) > 0) then
             write(error_unit, '(a)') 'sweep: checkpoint: ' // replace_new_lines(report, &
@@ -125,6 +129,8 @@ contains
          // str(batch%shard_index) // ' of ' // str(batch%shard_count) // ': ' &
          // str(n_total) // ' runs, ' // str(n_done) // ' already in the checkpoint; ' &
          // str(threads) // ' threads'
+      if (len(deal_summary(deal, batch%shard_index)) > 0) write(output_unit, '(a)') &
+         deal_summary(deal, batch%shard_index)
 
       first = 1
       call meter%start('sweep', trim(merge('points', 'runs  ', plan%ns == 1)), &
@@ -154,11 +160,12 @@ contains
          first = last + 1
          call system_clock(c1)
          elapsed = real(c1 - c0, dp) / real(rate, dp)
-         if (batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .and. &
-             first <= size(todo)) then
+         if ((batch%time_limit_s > 0.0_dp .and. elapsed >= batch%time_limit_s .or. &
+              stop_requested()) .and. first <= size(todo)) then
             call meter%finish(real(n_done, dp))
             call checkpoint_close(ck, delete=.false.)
-            write(output_unit, '(a)') 'sweep: time limit reached after ' // str(n_done) // '/' &
+            write(output_unit, '(a)') 'sweep: ' // trim(merge('stopped by SIGTERM', &
+               'time limit reached', stop_requested())) // ' after ' // str(n_done) // '/' &
                // str(n_total) // ' runs; the checkpoint ' // prefix // '.checkpoint keeps ' &
                // 'them: run the same command again to finish'
             return
@@ -196,6 +203,7 @@ contains
       sf%points = pts
       sf%parameters = run_parameters(deck, base%stop_stiffness, base%f1_open_hz, &
                                      base%omega_max / (2.0_dp * pi), base%n)
+      sf%model = base;  sf%stiffness_units = stiffness_units(deck)
       sf%cpu_seconds = process_cpu_seconds() - cpu0   ! inside the wall-time window
       call system_clock(c1)
       sf%wall_seconds = real(c1 - c0, dp) / real(rate, dp)

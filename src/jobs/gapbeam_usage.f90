@@ -14,10 +14,10 @@ contains
    !> The usage lines (also the start of the help).
    function usage_lines() result(t)
       character(len=:), allocatable :: t
-      t = 'usage: gapbeam DECK [--shard I/N] [--time-limit S] [--quiet] [--progress S] ' &
-         // '[OVERRIDE ...]' // nl &
-         // '       gapbeam merge OUT.h5 SHARD.h5 ...' // nl &
-         // '       gapbeam --help | --version'
+      t = 'usage: gapbeam DECK [--shard I/N] [--shard-costs FILE.h5] [--time-limit S] [--quiet] ' &
+         // '[--progress S] [OVERRIDE ...]' // nl &
+         // '       gapbeam merge [--quiet] OUT.h5 SHARD.h5 ...' // nl &
+         // '       gapbeam --help | --version | --help-deck [GROUP] | --help-outputs [ANALYSIS | tsv]'
    end function usage_lines
 
    !> The whole help text.
@@ -31,14 +31,23 @@ contains
          // '  OVERRIDE          a namelist fragment read after the deck, e.g.' // nl &
          // '                    "&forcing frequency_hz=10.2 /" (later values win)' // nl &
          // '  --shard I/N       run shard I of N of a sweep (then: gapbeam merge)' // nl &
+         // '  --shard-costs F   deal the points to the shards by their costs in F.h5, an ' &
+         // 'earlier' // nl // '                    sweep of the same grid (default: round ' &
+         // 'robin)' // nl &
          // '  --time-limit S    stop a sweep cleanly after S seconds of wall time, ' &
-         // 'checkpoint kept' // nl &
+         // 'checkpoint kept' // nl // '                    (so does SIGTERM, after the chunk ' &
+         // 'in progress)' // nl &
          // '  --quiet, -q       no progress lines on standard error' // nl &
          // '  --progress S      seconds between progress lines (default: 1 on a terminal, ' &
          // 'where the' // nl &
          // '                    line is rewritten in place; 10 otherwise, one line each)' // nl &
          // '  merge             join the shard files of a sweep into OUT.h5' // nl &
-         // '  --help, -h        this text;  --version, -V  version and build' // nl // nl &
+         // '  --help, -h        this text;  --version, -V  version and build' // nl &
+         // '  --help-deck [GROUP]  every deck variable (of one group): unit, default, what ' &
+         // 'is allowed' // nl &
+         // '  --help-outputs    every dataset the program writes: path, shape, units, ' &
+         // 'meaning' // nl // '                    (of one analysis; tsv: one line each, ' &
+         // 'tab-separated)' // nl // nl &
          // 'Results: PREFIX.h5 (HDF5, every dataset with units and long_name), gnuplot-ready ' &
          // 'PREFIX.*.dat' // nl &
          // 'tables, PREFIX.xdmf for ParaView (with &output state_history); PREFIX from &job ' &
@@ -46,7 +55,8 @@ contains
          // "output is 'output: PREFIX'." // nl // nl &
          // 'Exit status: 0 done; 1 error (one line "error: ..." on standard error); 2 usage;' &
          // nl // '3 a sweep stopped by --time-limit (run the same command again to finish); ' &
-         // '4 the output' // nl // 'prefix is locked by another run.' // nl // nl &
+         // '4 the output' // nl // 'prefix is locked by another run; 5 a sweep or merge ' &
+         // 'wrote its files, but some points failed.' // nl // nl &
          // 'Environment: OMP_NUM_THREADS (sweep threads), GAPBEAM_BACKTRACE=1 (backtrace on ' &
          // 'errors),' // nl // 'GAPBEAM_GIT_COMMIT (recorded in the HDF5 files; set by ' &
          // 'scripts/run.sh).' // nl // nl &

@@ -8,6 +8,7 @@ module gapbeam_deck_parameter
    use gapbeam_error, only: error_t
    use gapbeam_deck, only: deck_t
    use gapbeam_deck_variable, only: deck_variable_t, set_deck_value
+   use gapbeam_deck_table, only: max_frequency_hz, min_amplitude_pp
    use gapbeam_model, only: model_t
    use gapbeam_model_builder, only: build_model
    use gapbeam_reduction_rule, only: reduction_info_t
@@ -18,7 +19,10 @@ module gapbeam_deck_parameter
 contains
 
    !> The model of `deck` with vars(k) = values(k); `base` (the model of `deck` itself) is
-   !> copied instead of a rebuild when every variable is a forcing variable.
+   !> copied instead of a rebuild when every variable is a forcing variable. There the
+   !> frequency and the amplitude are checked against their ranges (gapbeam_deck_table) but
+   !> for the amplitude's upper bound: a base motion too large for the scale rule diverges, a
+   !> failed point of a sweep.
    subroutine model_with_values(deck, vars, values, model, err, base)
       type(deck_t), intent(in) :: deck                   !! deck
       type(deck_variable_t), intent(in) :: vars(:)       !! variables (checked on this deck)
@@ -34,13 +38,13 @@ contains
          model = base
          do k = 1, size(vars)
             if (vars(k)%name == 'frequency_hz') then
-               if (.not. (values(k) > 0.0_dp)) then
+               if (.not. (values(k) > 0.0_dp .and. values(k) <= max_frequency_hz)) then
                   call set_deck_value(d, vars(k), values(k), err)   ! the range message
                   return
                end if
                model%omega = 2.0_dp * pi * values(k)
             else
-               if (.not. (values(k) >= 0.0_dp)) then
+               if (.not. (values(k) == 0.0_dp .or. values(k) >= min_amplitude_pp)) then
                   call set_deck_value(d, vars(k), values(k), err)
                   return
                end if
