@@ -24,6 +24,8 @@ program test_reduction
    use gapbeam_sweep_job, only: run_sweep_job
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
    use gapbeam_files, only: remove_file, file_exists
+   use gapbeam_reduction_rule, only: reduction_info_t
+   use gapbeam_reduction_check, only: reduction_check_t, check_reduction, check_lines
    implicit none
    character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
    character(len=*), parameter :: tube = 'inputs/tube_multispan.nml'
@@ -38,6 +40,7 @@ program test_reduction
    call loads_projected()
    call reduced_small_tubes()
    call sweep_of_reduced_tube()
+   call auto_rule()
    call finish('test_reduction')
 
 contains
@@ -470,6 +473,96 @@ contains
          all(got(k)%friction_work_rate == want(k)%friction_work_rate) .and. &
          got(k)%label == want(k)%label, k = 1, size(want))])
    end function same_points
+
+   !> kind = 'auto' on the shipped tube deck: the cut-off is the rule's (4 x the contact
+   !> frequency at tolerance 1e-4, 4 x 10^0.6 x it at 1e-5), the contact frequency is the
+   !> Rayleigh quotient of the static shape under a force at a baffle; every point of a sweep
+   !> keeps the deck's modes. The convergence check on the rattling tube: its richer run is the
+   !> deck run with the richer cut-off over the same periods.
+   subroutine auto_rule()
+      type(deck_t) :: deck
+      type(model_t) :: model, full, mr
+      type(reduction_info_t) :: info, info5
+      type(transient_result_t) :: res, rr
+      type(reduction_check_t) :: chk
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:), psi(:), kf(:, :), b(:, :)
+      real(dp) :: ks, ms, fc
+      integer :: j, info_l, r, d
+      logical :: ok
+      call read_deck(tube, [character(len=1) ::], deck, err)
+      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err, info)
+      call check('the shipped tube deck asks for the reduction by the rule and builds', &
+                 .not. allocated(err) .and. deck%reduction%kind == 'auto')
+      if (allocated(err)) return
+      call note("tube deck, kind = 'auto': cut-off " // str(info%cutoff_hz) // ' Hz, contact ' &
+         // 'frequency ' // str(info%contact_hz) // ' Hz, ' // str(info%modes_per_plane) &
+         // ' modes + ' // str(info%n_static) // ' static modes per plane, ' &
+         // str(info%n_reduced) // ' coordinates of ' // str(info%n_full))
+      ! the contact frequency of every ring dof from the full model, independently
+      call build_full_model(deck%structure, deck%stops, deck%damping, deck%forcing, full, err)
+      if (allocated(err)) return
+      fc = 0.0_dp
+      do r = 1, full%n_rings
+         do d = 1, 2
+            j = full%r_dof(d, r)
+            kf = full%sys%k
+            allocate(b(full%n, 1), source=0.0_dp)
+            b(j, 1) = 1.0_dp
+            call dpotrf('U', full%n, kf, full%n, info_l)
+            call dpotrs('U', full%n, 1, kf, full%n, b, full%n, info_l)
+            psi = b(:, 1)
+            deallocate(b)
+            ks = 1.0_dp / psi(j)
+            ms = dot_product(psi, matmul(full%sys%m, psi)) / psi(j)**2
+            fc = max(fc, sqrt((ks + max(full%r_k(r), full%r_kt(r))) / ms) / (2.0_dp * pi))
+         end do
+      end do
+      call check_close('the contact frequency is the stiffest support''s Rayleigh quotient', &
+                       info%contact_hz, fc, rtol=1.0e-10_dp)
+      call check_close('cut-off = 4 x the contact frequency at tolerance 1e-4', info%cutoff_hz, &
+                       4.0_dp * fc, rtol=1.0e-12_dp)
+      call check('the basis keeps every mode up to the cut-off and none above', &
+                 info%highest_mode_hz <= info%cutoff_hz .and. info%modes_per_plane > 0)
+      deck%solver%tolerance = 1.0e-5_dp
+      call build_model(deck, mr, u0, v0, err, info5)
+      if (allocated(err)) return
+      call check_close('at tolerance 1e-5 the cut-off is 10^0.6 x larger', info5%cutoff_hz, &
+                       10.0_dp**0.6_dp * info%cutoff_hz, rtol=1.0e-12_dp)
+      ! the convergence check of the rattling tube
+      call read_deck(cantilever, [character(len=90) :: &
+         '&solver tolerance = 1.0e-5, transient_periods = 2, record_periods = 4 /'], deck, err)
+      if (allocated(err)) return
+      deck%reduction%kind = 'auto'
+      call build_model(deck, model, u0, v0, err, info)
+      if (.not. allocated(err)) call integrate(model, deck%solver, deck%output, u0, v0, res, err)
+      if (.not. allocated(err)) call check_reduction(deck, info, model, res, 2, chk, err)
+      call check('the convergence check runs', .not. allocated(err))
+      if (allocated(err)) then
+         call note(err%message);  return
+      end if
+      call check('below 1e-4 the rule keeps more modes (rattling tube at 1e-5: every mode), ' &
+                 // 'and the check says there is nothing richer', chk%complete .and. &
+                 info%modes_per_plane == info%modes_available)
+      ! at 1e-4 the rule keeps 3 of the 8 modes per plane: a richer run is compared
+      deck%solver%tolerance = 1.0e-4_dp
+      call build_model(deck, model, u0, v0, err, info)
+      if (.not. allocated(err)) call integrate(model, deck%solver, deck%output, u0, v0, res, err)
+      if (.not. allocated(err)) call check_reduction(deck, info, model, res, 2, chk, err)
+      call check('the convergence check runs at 1e-4', .not. allocated(err))
+      if (allocated(err)) return
+      call run_reduced(cantilever, [character(len=90) :: &
+         '&solver tolerance = 1.0e-4, transient_periods = 2, record_periods = 4 /'], 'modal', &
+         0.0_dp, chk%modes_richer, mr, rr, ok)
+      if (.not. ok) return
+      call note(check_lines(chk, .false.))
+      call check('the check runs a richer basis (more modes per plane)', &
+                 chk%modes_richer > chk%modes .and. chk%n_richer == mr%n)
+      call check_close('the check''s richer run is the deck run with that basis over the same ' &
+         // 'periods', chk%wn_richer(1), rr%normal_work_rate(1), rtol=1.0e-12_dp)
+      call check_close('the check''s own run is the run checked', chk%wn(1), &
+                       res%normal_work_rate(1), rtol=0.0_dp)
+   end subroutine auto_rule
 
    subroutine run(overrides, model, res)
       character(len=*), intent(in) :: overrides(:)

@@ -53,7 +53,7 @@ contains
       end if
       call reduce_model(full, deck%reduction%n_modes, deck%reduction%static_correction, model, &
                         basis, err, cutoff_hz=ri%cutoff_hz, modes_kept=ri%modes_per_plane, &
-                        highest_hz=ri%highest_mode_hz)
+                        highest_hz=ri%highest_mode_hz, modes_available=ri%modes_available)
       if (allocated(err)) then
          err%message = 'group &reduction: ' // err%message
          return

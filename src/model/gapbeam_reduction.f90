@@ -47,7 +47,7 @@ contains
    !> are those up to `cutoff_hz` when it is given and positive (at least one), else the
    !> n_modes lowest.
    subroutine reduce_model(full, n_modes, static_correction, red, basis, err, cutoff_hz, &
-                           modes_kept, highest_hz)
+                           modes_kept, highest_hz, modes_available)
       type(model_t), intent(in) :: full              !! full model (contacts resolved)
       integer, intent(in) :: n_modes                   !! modes kept in each plane
       logical, intent(in) :: static_correction         !! add residual attachment modes
@@ -57,6 +57,7 @@ contains
       real(dp), intent(in), optional :: cutoff_hz      !! keep the modes up to this [Hz]
       integer, intent(out), optional :: modes_kept     !! modes kept in each plane
       real(dp), intent(out), optional :: highest_hz    !! the highest mode kept [Hz]
+      integer, intent(out), optional :: modes_available  !! modes with mass in each plane
       type(modes_t) :: modes(2)
       type(system_t) :: sub
       integer, allocatable :: pinned(:), attach(:), map(:)
@@ -90,6 +91,7 @@ contains
          end if
       end do
       if (present(modes_kept)) modes_kept = keep
+      if (present(modes_available)) modes_available = minval(modes(1:np)%n_modes)
       if (present(highest_hz)) highest_hz = maxval([(modes(pl)%frequency_hz(keep), pl = 1, np)])
       allocate(map(n), source=0)
       allocate(basis(n, 0))
@@ -393,30 +395,37 @@ contains
       red%sys%tip_dof = mapped(full%sys%tip_dof)
       red%sys%tip_dof_v = mapped(full%sys%tip_dof_v)
       red%c_dof = remap(full%c_dof)
-      red%c_tdof = remap(full%c_tdof)
+      red%c_tdof = remap(full%c_tdof, .false.)
       red%slot_dof = remap(full%slot_dof)
       if (full%n_rings > 0) red%r_dof = reshape(remap(reshape(full%r_dof, [2 * full%n_rings])), &
                                                 [2, full%n_rings])
+      ! a planar stop on theta: its node's w is not a coordinate (no orbit is drawn in one plane)
       if (allocated(full%stop_dofs)) red%stop_dofs = reshape(remap(reshape(full%stop_dofs, &
-         [size(full%stop_dofs)])), shape(full%stop_dofs))
+         [size(full%stop_dofs)]), full%sys%planes > 1), shape(full%stop_dofs))
       call solve_modes(red%sys, modes, err);  if (allocated(err)) return
       red%omega_max = sqrt(maxval(modes%omega2))
    contains
-      !> The coordinate of full dof g (0 stays 0); a dof the model uses must be pinned.
-      integer function mapped(g)
+      !> The coordinate of full dof g (0 stays 0); a dof the model uses must be pinned, unless
+      !> `strict` is false (then 0).
+      integer function mapped(g, strict)
          integer, intent(in) :: g
+         logical, intent(in), optional :: strict
          mapped = 0
          if (g <= 0) return
          mapped = map(g)
+         if (present(strict)) then
+            if (.not. strict) return
+         end if
          if (mapped == 0) error stop 'gapbeam_reduction:reduced_model: a dof of the model ' &
             // 'is not a coordinate of the reduced model'
       end function mapped
       !> mapped, elementwise.
-      function remap(g) result(z)
+      function remap(g, strict) result(z)
          integer, intent(in) :: g(:)
+         logical, intent(in), optional :: strict
          integer :: z(size(g)), k
          do k = 1, size(g)
-            z(k) = mapped(g(k))
+            z(k) = mapped(g(k), strict)
          end do
       end function remap
    end subroutine reduced_model
