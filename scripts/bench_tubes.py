@@ -29,7 +29,8 @@ Parts:
             (/run/cpu_seconds) and the contact class of every point: per baffle no contact,
             impacting (in contact less than half the time) or sustained contact, and sticking
             or sliding (the share of the normal work done while slipping, W_f / (mu W_N), below
-            or above one half).
+            or above one half). BENCH_TUBES_MAP, a namelist fragment read after the map deck
+            (for example '&sweep n_frequency = 5, n_y = 3 /'), runs a subset of its points.
 
 Results go to PREFIX.txt (the tables), PREFIX.dat (one line per run, for the chart) and
 PREFIX.png (scripts/tubes_reduction.gp: work-rate error against CPU per simulated second).
@@ -111,14 +112,16 @@ class Runner:
         import h5py
         import numpy as np
         out = os.path.join(self.cache, 'map_' + kind)
-        key = hashlib.sha256(json.dumps([self.exe_key, file_hash(MAP), kind]).encode()) \
-            .hexdigest()[:24]
+        subset = os.environ.get('BENCH_TUBES_MAP', '')
+        key = hashlib.sha256(json.dumps([self.exe_key, file_hash(MAP), kind] + (
+            [subset] if subset else [])).encode()).hexdigest()[:24]
         path = os.path.join(self.cache, 'map_%s_%s.json' % (kind, key))
         if os.path.exists(path) and not self.fresh:
             with open(path) as f:
                 return json.load(f)
         cmd = self.locked([self.gapbeam, MAP, "&job output = '%s' /" % out,
-                           "&reduction kind = '%s' /" % kind, '--quiet'])
+                           "&reduction kind = '%s' /" % kind] + ([subset] if subset else [])
+                          + ['--quiet'])
         t0 = time.time()
         subprocess.run(cmd, check=True, capture_output=True, text=True)
         with h5py.File(out + '.h5', 'r') as h:
@@ -305,7 +308,9 @@ def part_map(run, out):
         lines.append('    %5.2f Hz %6.3f mm  full %-8s reduced %-8s  W_N %9.3e / %9.3e W%s' % (
             full['x'][p], 1e3 * full['y'][p], ' '.join(cf), ' '.join(cr), wf, wr,
             '' if cf == cr else '   <- differs'))
-    out.append('== the tube map (%s, %d points)' % (MAP, n))
+    subset = os.environ.get('BENCH_TUBES_MAP', '')
+    out.append('== the tube map (%s, %d points%s)' % (MAP, n, ', a subset: ' + subset
+                                                       if subset else ''))
     out.append('  full: %.1f s cpu (%.1f s wall); reduced (as shipped): %.1f s cpu (%.1f s '
                'wall); cpu ratio %.2f' % (full['cpu_s'], full['wall_s'], red['cpu_s'],
                                           red['wall_s'], full['cpu_s'] / red['cpu_s']))

@@ -3,7 +3,8 @@
 !> planes, rings, friction, point forces, whirling base motion, several spans): the contact
 !> flexibility and the static response to the point forces exact with any cut-off, the loads
 !> projected right (harmonic response against the full model), reduced against full runs of
-!> the small two-plane decks (every mode kept: the same trajectory; a cut-off: work rates
+!> the small two-plane decks and a 12-element multispan tube with everything at once (every
+!> mode kept: the same trajectory, stick-slip and energy balance; a cut-off: work rates
 !> close), the closed-form whirl and stick-slip on reduced models, and a sweep of a reduced
 !> tube (points, shards merged, a stopped and resumed run).
 program test_reduction
@@ -39,6 +40,7 @@ program test_reduction
    call static_flexibility_two_planes()
    call loads_projected()
    call reduced_small_tubes()
+   call reduced_multispan_tube()
    call sweep_of_reduced_tube()
    call auto_rule()
    call finish('test_reduction')
@@ -373,6 +375,82 @@ contains
       call check('rattling tube, 3 modes per plane: the same impacts', &
                  rr%n_impacts(1) == rf%n_impacts(1))
    end subroutine reduced_small_tubes
+
+   !> The multispan tube deck on 12 elements with everything at once: two intermediate ring
+   !> supports with friction (one hole offset), the pinned top, added mass, point forces and a
+   !> whirling base motion. Every mode kept: the full run (orbits, forces, work rates, impacts,
+   !> stick-slip, energy balance); the auto basis: work rates, impacts and peak forces close to
+   !> the full model's, the energy balance closed as tightly.
+   subroutine reduced_multispan_tube()
+      type(model_t) :: mf, mr, ma
+      type(transient_result_t) :: rf, rr, ra, rf4
+      logical :: ok
+      real(dp) :: d, ea
+      integer :: k
+      character(len=160) :: ov(4)
+      ov(1) = '&beam n_elem = 12 / &stops node = 5, 9, gap = 0.1e-3, 0.1e-3, offset_w = ' &
+              // '0.03e-3, 0.0 /'
+      ov(2) = '&point_forces node = 7, 7 / &forcing amplitude_pp = 2.0e-4, direction_deg = ' &
+              // '30.0, phase_v_deg = 90.0 /'
+      ov(3) = '&solver tolerance = 1.0e-6, transient_periods = 1, record_periods = 2 /'
+      ov(4) = '&output history_periods = 2 /'
+      call run_reduced(tube, ov, 'none', 0.0_dp, 0, mf, rf, ok)
+      if (.not. ok) return
+      call run_reduced(tube, ov, 'modal', 1.0e12_dp, 0, mr, rr, ok)
+      if (.not. ok) return
+      d = run_difference(rf, rr)
+      call note('multispan tube, 12 elements, every mode kept (' // str(mr%n) // ' coordinates): ' &
+         // 'largest relative difference ' // str(d) // '; impacts ' // str(rf%n_impacts(1)) &
+         // ', ' // str(rf%n_impacts(2)) // '; stick fractions ' // str(rf%stick_fraction(1)) &
+         // ', ' // str(rf%stick_fraction(2)) // '; events ' // str(int(rf%events)))
+      call check('multispan tube: both supports impact, slide and stick', &
+                 all(rf%n_impacts > 0) .and. all(rf%friction_work_rate > 0.0_dp) &
+                 .and. any(rf%stick_fraction > 0.0_dp))
+      call check_le('multispan tube, every mode kept: the reduced run is the full one', d, &
+                    1.0e-5_dp)
+      call check('multispan tube, every mode kept: the same impacts', &
+                 all(rf%n_impacts == rr%n_impacts))
+      call check_le('multispan tube, every mode kept: the same stick fractions', &
+                    maxval(abs(rf%stick_fraction - rr%stick_fraction)), 1.0e-4_dp)
+      call check_le('multispan tube, every mode kept: energy balance closes as in the full ' &
+                    // 'model', abs(imbalance(rr)), max(1.0e-6_dp, 2.0_dp * abs(imbalance(rf))))
+      ! the basis rule at the default tolerance against the full model at that tolerance
+      ov(3) = '&solver tolerance = 1.0e-4, transient_periods = 1, record_periods = 2 /'
+      call run_reduced(tube, ov, 'none', 0.0_dp, 0, mf, rf4, ok)
+      if (.not. ok) return
+      call run_reduced(tube, ov, 'auto', 0.0_dp, 0, ma, ra, ok)
+      if (.not. ok) return
+      ea = imbalance(ra)
+      call check('multispan tube, auto basis: fewer coordinates than dofs', ma%n < mf%n)
+      do k = 1, 2
+         call note('multispan tube, support ' // str(k) // ', auto basis (' // str(ma%n) &
+            // ' coordinates) / full at 1e-4 / full at 1e-6: normal work rate ' &
+            // str(ra%normal_work_rate(k)) // ' / ' // str(rf4%normal_work_rate(k)) // ' / ' &
+            // str(rf%normal_work_rate(k)) // ' W, friction ' // str(ra%friction_work_rate(k)) &
+            // ' / ' // str(rf4%friction_work_rate(k)) // ' / ' // str(rf%friction_work_rate(k)) &
+            // ' W, peak ' // str(ra%peak_force(k)) // ' / ' // str(rf4%peak_force(k)) // ' / ' &
+            // str(rf%peak_force(k)) // ' N, impacts ' // str(ra%n_impacts(k)) // ' / ' &
+            // str(rf4%n_impacts(k)) // ' / ' // str(rf%n_impacts(k)))
+         call check_le('multispan tube, auto basis: normal work rate within 2 % of the ' &
+            // 'converged full run, support ' // str(k), &
+            abs(ra%normal_work_rate(k) / rf%normal_work_rate(k) - 1.0_dp), 0.02_dp)
+         call check_le('multispan tube, auto basis: friction work rate within 2 %, support ' &
+            // str(k), abs(ra%friction_work_rate(k) / rf%friction_work_rate(k) - 1.0_dp), 0.02_dp)
+         call check_le('multispan tube, auto basis: peak force within 2 %, support ' // str(k), &
+            abs(ra%peak_force(k) / rf%peak_force(k) - 1.0_dp), 0.02_dp)
+         call check('multispan tube, auto basis: the same impacts as the full model at its ' &
+                    // 'tolerance, support ' // str(k), ra%n_impacts(k) == rf4%n_impacts(k))
+      end do
+      call check_le('multispan tube, auto basis: energy imbalance below 1e-4 of the input', &
+                    abs(ea), 1.0e-4_dp)
+   end subroutine reduced_multispan_tube
+
+   !> Energy imbalance of a run relative to its input work.
+   real(dp) function imbalance(r)
+      type(transient_result_t), intent(in) :: r
+      imbalance = (r%input_work - r%rayleigh_dissipation - r%contact_damping_dissipation &
+                   - r%friction_dissipation - r%stored_energy_change) / abs(r%input_work)
+   end function imbalance
 
    !> A sweep (clearance of the ring, two points) of the rattling tube reduced to 3 modes per
    !> plane, through the job driver as the executable runs it: each point equals the reduced
