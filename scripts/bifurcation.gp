@@ -59,7 +59,10 @@ xmin = STATS_min_x;  xmax = STATS_max_x
 ymin = STATS_min_y;  ymax = STATS_max_y
 stats datafile using (cval($1, $2)) nooutput
 cmin = STATS_min;  cmax = STATS_max
-stats datafile using (disputed(0)) nooutput
+# disputed points (not dots: a point has a dot per recorded period, its rows consecutive)
+lastx = -1.0e300
+newpoint(x) = (isnew = (x != lastx) ? 1 : 0, lastx = x, isnew)
+stats datafile using (disputed(0) ? newpoint(xval($1, $2)) : 0) nooutput
 ndisputed = int(STATS_sum)
 stats datafile using (failed(0)) nooutput
 nfailed = int(STATS_sum)
@@ -77,7 +80,7 @@ set output outfile
 set title sprintf("%s\nBifurcation diagram: Poincare root strain once per forcing period (%d points)", \
    plottitle, npts)
 set xlabel byfreq ? label1 : label2
-set ylabel "root strain at the Poincare phase ε [µε]"
+set ylabel "root strain ε [µε]"
 set format x "%g"
 set format y "%g"
 set grid lc rgb "#d0d0d0"
@@ -117,7 +120,7 @@ if (colour) {
       set label 1 sprintf("%g %s", cv, cunit) at graph 0.03, graph 0.92 left front font ",9" \
          textcolor rgb "#404040"
       if (k > npanel - ncols) { set xlabel byfreq ? label1 : label2 } else { set xlabel "" }
-      if ((k - 1) % ncols == 0) { set ylabel "ε [µε]" } else { set ylabel "" }
+      if ((k - 1) % ncols == 0) { set ylabel "root strain ε [µε]" } else { set ylabel "" }
       plot datafile using (same(cval($1, $2), cv) ? xval($1, $2) : 1/0):($3*1.0e6) \
          with points pt 7 ps dotsize lc rgb "#1f4e9c" notitle
    }
@@ -127,10 +130,11 @@ if (colour) {
    plot datafile using (xval($1, $2)):($3*1.0e6) with points pt 7 ps dotsize lc rgb "#1f4e9c" notitle, \
       for [q = 1:(ndisputed > 0 ? 1 : 0)] datafile using (xval($1, $2)):(disputed(0) ? \
       $3*1.0e6 : 1/0) with points pt 6 ps 3*dotsize lc rgb "black" \
-      title sprintf("disputed certificate (%d dots)", ndisputed), \
+      title sprintf("ringed: %d point%s whose check run (perturbed start, tighter accuracy) gives another label", \
+         ndisputed, (ndisputed == 1) ? "" : "s"), \
       for [q = 1:(nfailed > 0 ? 1 : 0)] datafile using (xval($1, $2)):(failed(0) ? \
       ymin - 0.5*pad(ymin, ymax, 0.05) : 1/0) with points pt 2 ps 1.5 lc rgb "black" \
-      title "failed point"
+      title "failed point (the run stopped: its error is in the file)"
 }
 
 unset output

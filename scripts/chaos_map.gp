@@ -131,6 +131,7 @@ plot for [w in present] datafile \
         with points pt 6 ps ringsize lc rgb "black" title ringtitle, \
      for [q = 1:(ndisputed > 0 ? 1 : 0)] datafile using 1:(disputed(0) ? $2*scale2 : 1/0) \
         with points pt 2 ps 2.0*ringsize lw 2 lc rgb "black" \
-        title sprintf("disputed certificate (%d)", ndisputed)
+        title sprintf("x: %d point%s whose check run gives another label", ndisputed, \
+           (ndisputed == 1) ? "" : "s")
 
 unset output

@@ -10,7 +10,8 @@
 #   optional), sweepfile (a sweep's PREFIX.bifurcation.dat, optional: x = its column 1 [Hz],
 #   or column 2 in mm when xcol=2), xcol (1 or 2, default 1), outfile (PNG, required),
 #   plottitle (optional), xlabel_text (optional, default from the file's parameter line),
-#   sweep_amp (optional: only the sweep points of this amplitude_pp [m], for a grid sweep).
+#   sweep_amp (optional: only the sweep points of this amplitude_pp [m], for a grid sweep),
+#   sweepname (optional: the sweep's prefix, named in the title).
 # PREFIX.branches.dat columns: 1 parameter, 2 strain [-], 3 strain rate [1/s], 4 tip [m],
 #   5 stable (1 stable, 0 unstable; a new block wherever it changes), 6 branch,
 #   7 period; one block (blank lines) per branch and section point.
@@ -35,15 +36,18 @@ have_sweep = exists("sweepfile") && strlen(sweepfile) > 0 ? (system(sprintf("tes
 if (!exists("bifile")) { bifile = "" }
 have_bif = exists("bifile") && strlen(bifile) > 0 ? (system(sprintf("grep -qv '^#' '%s' 2>/dev/null && echo 1 || echo 0", bifile)) eq "1") : 0
 
+set encoding utf8
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) {
    set terminal pngcairo noenhanced size 1100,700 font ",11" dashed
 } else {
    set terminal png noenhanced size 1100,700
 }
 set output outfile
-set title plottitle . "\nbifurcation diagram: stable orbits solid, unstable dashed; grey: brute-force sweep"
+if (!exists("sweepname") || strlen(sweepname) == 0) { sweepname = sweepfile }
+set title plottitle . "\nbifurcation diagram: stable orbits solid, unstable dashed" . \
+   (have_sweep ? "; grey: the Poincare points of the sweep " . sweepname : "")
 set xlabel xlabel_text
-set ylabel "root strain at the Poincare section [microstrain]"
+set ylabel "root strain ε [µε]"
 set grid lc rgb "#e0e0e0"
 set key outside right top vertical Left reverse samplen 2 spacing 1.1
 set datafile missing "NaN"
@@ -53,7 +57,7 @@ pc(p) = (p == 1) ? 0x1f4e9c : (p == 2) ? 0x2ca02c : (p == 4) ? 0xff7f0e : (p == 
 sx(x) = (xcol == 2) ? x*1.0e3 : x
 
 keep_amp(a) = (sweep_amp < 0 || abs(a - sweep_amp) <= 1.0e-6*abs(sweep_amp)) ? 1 : 0
-s_sweep = "sweepfile using (keep_amp($2) ? sx(column(xcol)) : 1/0):($3*1.0e6) with points pt 7 ps 0.2 lc rgb '#b0b0b0' title 'brute-force sweep', "
+s_sweep = "sweepfile using (keep_amp($2) ? sx(column(xcol)) : 1/0):($3*1.0e6) with points pt 7 ps 0.2 lc rgb '#b0b0b0' title 'sweep (Poincaré points)', "
 s_bif = "bifile using 2:($9 == 1 ? $3*1.0e6 : 1/0) with points pt 6 ps 1.3 lc rgb 'black' title 'period doubling', " . \
    "bifile using 2:((strcol(1) eq 'saddle_node') ? $3*1.0e6 : 1/0) with points pt 8 ps 1.3 lc rgb 'black' title 'saddle-node', " . \
    "bifile using 2:((strcol(1) eq 'neimark_sacker') ? $3*1.0e6 : 1/0) with points pt 12 ps 1.4 lc rgb '#d62728' title 'Neimark-Sacker', " . \

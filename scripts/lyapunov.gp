@@ -81,7 +81,7 @@ set output outfile
 set title sprintf("%s\nLargest Lyapunov exponent of each of %d sweep points (%d chaotic), error bars: its standard error", \
    plottitle, npts, nchaos)
 set xlabel byfreq ? label1 : label2
-set ylabel "largest Lyapunov exponent [1/s]"
+set ylabel "largest Lyapunov exponent λ [1/s]"
 set format x "%g"
 set format y "%g"
 set grid lc rgb "#d8d8d8"
@@ -142,7 +142,7 @@ if (nc <= 1) {
    nfailed = int(STATS_sum)
    set palette defined (-1 "#2166ac", -0.5 "#92c5de", 0 "#f7f7f7", 0.5 "#f4a582", 1 "#b2182b")
    set cbrange [-lmax : lmax]
-   set cblabel "largest Lyapunov exponent [1/s]"
+   set cblabel "largest Lyapunov exponent λ [1/s]"
    set colorbox vertical user origin screen 0.885, screen 0.2 size screen 0.02, screen 0.62
    set rmargin at screen 0.84
    set xrange [fmin - 1.05*hf : fmax + 1.05*hf]

@@ -157,9 +157,19 @@ case ${analysis} in
             skip "${dat}"
             continue
          fi
-         if [[ ${kind} == history ]]; then script=strain_history.gp; else script=poincare.gp; fi
+         extra=""
+         if [[ ${kind} == history ]]; then
+            script=strain_history.gp
+            # the event-located largest force of each stop (/impacts/peak_force), when python3
+            # with h5py can read it: the sampled history under-reads short impacts
+            peaks=$(python3 -c 'import sys, h5py; print(" ".join("%.9g" % x for x in h5py.File(sys.argv[1], "r")["impacts/peak_force"][()]))' \
+               "${prefix}.h5" 2>/dev/null || true)
+            if [[ -n ${peaks} ]]; then extra="; peaks=$(gp_quote "${peaks}")"; fi
+         else
+            script=poincare.gp
+         fi
          render "${script}" "${prefix}.${kind}.png" \
-            "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")"
+            "datafile=$(gp_quote "${dat}"); plottitle=$(gp_quote "$(dat_title "${dat}")")${extra}"
       done
       # the orbits at the supports, two-plane runs
       if has_data "${prefix}.orbit.dat" && has_data "${prefix}.supports.dat"; then
@@ -292,7 +302,7 @@ case ${analysis} in
       amp=$(sed -n 's/^# branches at: &forcing amplitude_pp = //p' "${branches}" | head -n 1)
       [[ -n ${amp} ]] || amp=-1
       render continuation.gp "${prefix}.diagram.png" \
-         "datafile=$(gp_quote "${branches}"); bifile=$(gp_quote "${prefix}.bifurcations.dat"); sweepfile=$(gp_quote "${sweep_bif}"); sweep_amp=${amp}; plottitle=$(gp_quote "${title}")"
+         "datafile=$(gp_quote "${branches}"); bifile=$(gp_quote "${prefix}.bifurcations.dat"); sweepfile=$(gp_quote "${sweep_bif}"); sweepname=$(gp_quote "${overlay}"); sweep_amp=${amp}; plottitle=$(gp_quote "${title}")"
       if has_data "${prefix}.multipliers.dat"; then
          render multipliers.gp "${prefix}.multipliers.png" \
             "datafile=$(gp_quote "${prefix}.multipliers.dat"); plottitle=$(gp_quote "${title}")"

@@ -13,13 +13,19 @@
 #                                bifurcation diagram with its period-doubling cascade and chaotic
 #                                bands, and the hysteresis between the two directions
 #   paper_10p5hz, paper_10p2hz, paper_9p8hz   the paper's three 4-element cases
-#                                (inputs/moon_shaw_*.nml), the 9.8 Hz one with its state history
-#                                (&output state_history: results/main/paper_9p8hz.xdmf for
-#                                ParaView, paper_9p8hz.animation.gif)
+#                                (inputs/moon_shaw_*.nml: lumped mass, translational masses
+#                                only), the 9.8 Hz one with its state history (&output
+#                                state_history: results/main/paper_9p8hz.xdmf for ParaView,
+#                                paper_9p8hz.animation.gif)
+#   paper_*_half_element, line_4mm_up_half_element   the three cases and the up sweep again
+#                                with the former mass rule (the rotary inertia of the rigid half
+#                                element, b = 6.6477523e-3 m): the sensitivity that
+#                                docs/paper_regimes.md found
 # then scripts/main_summary.py (the paper's claims, inputs/paper_claims.txt, against the labels in
 # the result files: summary.txt, printed) and the summary figure results/main/summary.png
-# (scripts/summary.gp), beside every run's own figures (scripts/plot.sh). The two sweeps run side
-# by side (one thread each), the three cases after the down sweep; the up sweep shows its progress.
+# (scripts/summary.gp), beside every run's own figures (scripts/plot.sh). The up and down sweeps run side
+# by side (one thread each), the six cases after the down sweep, the second up sweep after the
+# first; the first up sweep shows its progress.
 # The last line says how long the job took.
 #
 # One DECK: each OVERRIDE is a namelist fragment passed to the program verbatim after the deck (an
@@ -118,6 +124,9 @@ if [[ ${main_job} -eq 1 ]]; then
    mkdir -p "${out}"
    SECONDS=0
    line="&sweep frequency_start_hz = 8.4, frequency_end_hz = 11.0, n_frequency = 261, checkpoint = .false. /"
+   # the lumped mass's rotary inertia of the rigid half element, with the width that gives
+   # f1 = 4.3 Hz with it (inputs/derive_width.nml): the sensitivity of docs/paper_regimes.md
+   half_element="&beam rotary_inertia = 'half_element', width = 6.6477523e-3 /"
    printf 'main: the paper'"'"'s three cases and the 4.0 mm line, 8.4-11.0 Hz up and down (2 x 261 points), into %s/\n' "${out}"
    # the down sweep, then the three cases, in the background (logs in results/main/*.log)
    (
@@ -130,6 +139,10 @@ if [[ ${main_job} -eq 1 ]]; then
          if [[ ${c} == 9p8hz ]]; then extra=("&output state_history = .true. /"); fi
          OMP_NUM_THREADS=1 "${exe}" "inputs/moon_shaw_${c}.nml" "${extra[@]}" \
             "&job output = '${out}/paper_${c}' /" --quiet >"${out}/paper_${c}.log" 2>&1
+         # the same case with the former mass rule (rigid half element, its own width)
+         OMP_NUM_THREADS=1 "${exe}" "inputs/moon_shaw_${c}.nml" "${half_element}" \
+            "&job output = '${out}/paper_${c}_half_element' /" --quiet \
+            >"${out}/paper_${c}_half_element.log" 2>&1
       done
    ) &
    background=$!
@@ -137,6 +150,10 @@ if [[ ${main_job} -eq 1 ]]; then
    OMP_NUM_THREADS=1 GFORTRAN_UNBUFFERED_PRECONNECTED=y "${exe}" inputs/sweep_line_4mm.nml \
       "${line}" "&job title = 'Reference beam, 4.0 mm p-p, 8.4-11.0 Hz, swept up', output = '${out}/line_4mm_up' /" \
       >"${out}/line_4mm_up.log" || status=$?
+   # the up sweep again with the former mass rule: the paper's "period four becomes chaotic"
+   OMP_NUM_THREADS=1 "${exe}" inputs/sweep_line_4mm.nml "${line}" "${half_element}" \
+      "&job title = 'Reference beam with the rigid half element rotary inertia, 4.0 mm p-p, 8.4-11.0 Hz, swept up', output = '${out}/line_4mm_up_half_element' /" \
+      --quiet >"${out}/line_4mm_up_half_element.log" 2>&1 || status=$?
    wait "${background}" || status=$?
    if [[ ${status} -ne 0 ]]; then
       printf 'run: error: a run of the main job failed (status %d); its log in %s/*.log:\n' \
@@ -149,8 +166,10 @@ if [[ ${main_job} -eq 1 ]]; then
    done
    PYTHONPATH="${root}/python${PYTHONPATH:+:${PYTHONPATH}}" PYTHONDONTWRITEBYTECODE=1 \
       python3 scripts/main_summary.py "${out}" || exit 1
-   for p in line_4mm_up line_4mm_down; do "${plot}" --format "${fmt}" sweep "${out}/${p}" || exit 1; done
-   for c in 10p5hz 10p2hz 9p8hz; do
+   for p in line_4mm_up line_4mm_down line_4mm_up_half_element; do
+      "${plot}" --format "${fmt}" sweep "${out}/${p}" || exit 1
+   done
+   for c in 10p5hz 10p2hz 9p8hz 10p5hz_half_element 10p2hz_half_element 9p8hz_half_element; do
       "${plot}" --format "${fmt}" transient "${out}/paper_${c}" || exit 1
    done
    part="${out}/summary.${fmt}.part"

@@ -1,8 +1,11 @@
 # scripts/summary.gp - the main job's summary figure: what gapbeam is for, on one page.
 #
 #   Top row: the Poincare maps of the paper's three 4-element cases (10.5 Hz at 3.7 mm, 10.2 and
-#   9.8 Hz at 4.0 mm p-p), each titled with this model's label and Lyapunov exponent and the
-#   paper's claim. Second row: their root strain over 5 forcing periods.
+#   9.8 Hz at 4.0 mm p-p) with the reference decks (lumped mass, translational masses only), each
+#   titled with this model's label, Lyapunov exponent and certificate, the paper's claim, and the
+#   label the same case gets with the rigid half element's rotary inertia (the sensitivity of
+#   docs/paper_regimes.md). Second row: their root strain over the first 5 forcing periods of
+#   the record, against the simulation time t (as in every figure: /history/time).
 #   Bottom left: the bifurcation diagram along 4.0 mm p-p, frequency swept up (blue) and down
 #   (orange), the up sweep's chaotic bands shaded, the paper's two 4 mm cases marked; under it the
 #   largest Lyapunov exponent along the up sweep. Bottom right: the paper's claims against this
@@ -25,6 +28,9 @@ load dir . "/summary_vars.gp"
 if (!exists("label1")) { label1 = "?"; lambda1 = "" }
 if (!exists("label2")) { label2 = "?"; lambda2 = "" }
 if (!exists("label3")) { label3 = "?"; lambda3 = "" }
+if (!exists("alt1")) { alt1 = "" }
+if (!exists("alt2")) { alt2 = "" }
+if (!exists("alt3")) { alt3 = "" }
 if (!exists("bands")) { bands = "" }
 if (!exists("band_step")) { band_step = 0.01 }
 
@@ -34,6 +40,8 @@ array labels[3]
 array lambdas[3]
 array papers[3]
 array verdicts[3]
+array alts[3]
+alts[1] = alt1; alts[2] = alt2; alts[3] = alt3
 cases[1] = case1; cases[2] = case2; cases[3] = case3
 labels[1] = label1; labels[2] = label2; labels[3] = label3
 lambdas[1] = lambda1; lambdas[2] = lambda2; lambdas[3] = lambda3
@@ -54,7 +62,7 @@ do for [k = 1:3] {
    x0 = px0 + (k - 1)*(pw + pgap)
    set lmargin at screen x0 + 0.035
    set rmargin at screen x0 + pw
-   set tmargin at screen 0.875
+   set tmargin at screen 0.86
    set bmargin at screen 0.655
    f = dir . "/" . pre[k] . ".poincare.dat"
    set autoscale xy
@@ -67,10 +75,11 @@ do for [k = 1:3] {
    set xrange [xc - xh : xc + xh]
    set yrange [yc - yh : yc + yh]
    vcol = (verdicts[k] eq "agrees") ? "#1a7f37" : "#b00020"
-   set title sprintf("%s: gapbeam %s\n%s; %s", cases[k], labels[k], lambdas[k], papers[k]) \
-      font ",11" textcolor rgb vcol
+   set title sprintf("%s: gapbeam %s\n%s; %s%s", cases[k], labels[k], lambdas[k], papers[k], \
+      (strlen(alts[k]) > 0) ? "\nrigid half element: " . alts[k] : "") font ",10" \
+      textcolor rgb vcol
    set xlabel "root strain ε [µε]" offset 0, 0.4
-   set ylabel (k == 1) ? "dε/dt [µε/s]" : ""
+   set ylabel (k == 1) ? "root strain rate dε/dt [µε/s]" : ""
    plot f using ($1*1.0e6):($2*1.0e6) with points pt 7 ps ((n > 50) ? 0.35 : 1.2) \
       lc rgb "#1f4e9c"
    # strain history: the first 5 forcing periods of the record
@@ -82,12 +91,12 @@ do for [k = 1:3] {
    t0 = STATS_min
    stats f every ::0::1 using 5 nooutput
    period = STATS_max - STATS_min
-   set xrange [0 : 5*period]
+   set xrange [t0 : t0 + 5*period]
    unset title
    set autoscale y
-   set xlabel "time from the start of the record [s]" offset 0, 0.4
-   set ylabel (k == 1) ? "ε [µε]" : ""
-   plot h using ($1 - t0):($2*1.0e6) with lines lw 1.3 lc rgb "#1f4e9c"
+   set xlabel "time t [s]" offset 0, 0.4
+   set ylabel (k == 1) ? "root strain ε [µε]" : ""
+   plot h using 1:($2*1.0e6) with lines lw 1.3 lc rgb "#1f4e9c"
 }
 
 # --- bottom left: bifurcation diagram along 4 mm, and the exponent ---
@@ -110,7 +119,7 @@ set yrange [emin - epad : emax + epad]
 set title "Bifurcation diagram at 4.0 mm p-p: swept up (blue) and down (orange); shaded: chaotic (up)" font ",11"
 set xlabel ""
 set format x ""
-set ylabel "ε at the section [µε]"
+set ylabel "root strain ε [µε]"
 nb = words(bands)/2
 do for [b = 1:nb] {
    set object 100 + b rectangle from real(word(bands, 2*b - 1)) - band_step/2, graph 0 \
@@ -133,7 +142,7 @@ set bmargin at screen 0.06
 unset title
 set format x "%g"
 set xlabel "forcing frequency [Hz]"
-set ylabel "λ [1/s]"
+set ylabel "largest Lyapunov\nexponent λ [1/s]"
 set autoscale y
 set xzeroaxis lt 1 lw 1.2 lc rgb "black"
 plot up . ".sweep.dat" using 1:5 with linespoints pt 7 ps 0.4 lw 1 lc rgb "#1f4e9c", \
@@ -155,13 +164,17 @@ unset grid
 set xrange [0 : 1]
 set yrange [0 : 1]
 set title "The paper against this model (labels from the result files)" font ",12"
+# rows placed by their line counts (rowlines<i>, from main_summary.py), a blank line between
+rowy = 1.0
 do for [i = 1:nclaims] {
    eval sprintf("rowtext = row%d", i)
    eval sprintf("v = verdict%d", i)
-   set label 10 + i rowtext at graph 0.0, graph 1.0 - (i - 1)*0.235 left front font ",10" \
+   nl = exists(sprintf("rowlines%d", i)) ? value(sprintf("rowlines%d", i)) : 5
+   set label 10 + i rowtext at graph 0.0, graph rowy left front font ",10" \
       textcolor rgb ((v eq "agrees") ? "#1a7f37" : "#b00020")
+   rowy = rowy - (nl + 0.6)*0.036
 }
-set label 30 "green: agrees with the paper; red: differs. The regime of this beam is\nvery sensitive to the mesh, the damping and the time step (docs/validation.md)." \
+set label 30 "green: agrees with the paper; red: differs. The regime is very sensitive to the\nlumped mass's rotary inertia and to the mesh (docs/paper_regimes.md)." \
    at graph 0.0, graph -0.03 left front font ",9" textcolor rgb "#505050"
 plot NaN notitle
 unset multiplot

@@ -17,7 +17,9 @@
 # on the debug-built `gapbeam` (found with `fpm run --runner echo gapbeam`), scripts/test_slurm.sh
 # (the Slurm campaign of docs/running.md against a real single-node Slurm that it installs and
 # starts, about 2.5 minutes; skipped with a NOTE where Slurm cannot be had, a failure under
-# CI=true), and
+# CI=true), scripts/test_paraview.sh (the XDMF files in ParaView's two readers and a headless
+# scene; it installs python3-paraview and xvfb with apt-get where it can, else prints a NOTE and
+# skips), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
 # docs/outputs.md; PYTHONPATH=python, nothing is pip-installed). Everything goes to the terminal.
@@ -32,8 +34,8 @@
 #   GAPBEAM_TEST_FLAGS    compiler flags (default below); the same string must be given to every
 #                         fpm command, or fpm builds into another folder
 #   GAPBEAM_TEST_TIMEOUT  seconds allowed per test program, and for test_cli.sh,
-#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh, test_users.sh and
-#                         test_reader.py
+#                         test_sweep_kill.sh, test_faults.sh, test_fuzz.sh, test_users.sh,
+#                         test_paraview.sh and test_reader.py
 #                         (default 900)
 #   GAPBEAM_FUZZ_JOBS     parallel runs of the fuzz test (default 2)
 #   OMP_NUM_THREADS       passed through untouched; OPENBLAS_NUM_THREADS is set to 1
@@ -152,7 +154,7 @@ if [[ -n ${gapbeam_exe} ]]; then
 fi
 count test_sweep_kill.sh "${log}" "${status}"
 
-for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh; do
+for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh test_paraview.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0

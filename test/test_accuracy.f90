@@ -13,7 +13,7 @@ program test_accuracy
    use gapbeam_results, only: transient_result_t
    use gapbeam_test_runs, only: run_deck
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    !> 5 forcing periods from rest, every sample kept (the first impact is at 0.157 s)
    character(len=*), parameter :: horizon = '&solver transient_periods = 0, ' &
       // 'record_periods = 5 / &output history_periods = 5, samples_per_period = 64 /'

@@ -11,8 +11,18 @@ program test_contact
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: str
    use gapbeam_testing, only: check, check_close, check_le, finish, note
-   use gapbeam_contact_law, only: contact_force, solve_scalar_contact
-   use gapbeam_description, only: law_bilinear, law_hertz, law_code
+   use gapbeam_description, only: law_bilinear, law_hertz, law_code, stop_law_words
+   use gapbeam_law, only: law_slot_t, law_caps_t
+   use gapbeam_laws, only: builtin_laws, law_words_of => law_words, law_index, add_law
+   use gapbeam_deck, only: deck_t
+   use gapbeam_model, only: model_t
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_error, only: error_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_integrator, only: integrator_t, make_integrator
+   use gapbeam_test_runs, only: load_deck
+   use gapbeam_test_law, only: hunt_crossley_law_t
    implicit none
    real(dp), parameter :: tol = 1.0e-12_dp          ! implicit relation, relative
    real(dp), parameter :: kh_range(6) = [1.0e-6_dp, 1.0e-3_dp, 1.0_dp, 1.0e3_dp, 1.0e6_dp, &
@@ -28,12 +38,45 @@ program test_contact
    call solve_hertz()
    call solve_open()
    call solve_monotone()
+   call a_law_from_the_tests()
    call finish('test_contact')
 
 contains
 
-   !> law_code maps the deck words to the law codes.
+   !> The law of a code from the registry: its force (the test's shorthand).
+   elemental real(dp) function contact_force(law, k, c, p, d, dd) result(f)
+      integer, intent(in) :: law                  !! law code
+      real(dp), intent(in) :: k, c, p, d, dd      !! parameters, penetration, rate
+      type(law_slot_t), allocatable :: laws(:)
+      laws = builtin_laws()
+      f = laws(law)%law%force(k, c, p, d, dd)
+   end function contact_force
+
+   !> The law of a code from the registry: its exact condensed solve.
+   real(dp) function solve_scalar_contact(law, k, c, p, d_star, v_star, h, kappa) result(f)
+      integer, intent(in) :: law                  !! law code
+      real(dp), intent(in) :: k, c, p             !! parameters
+      real(dp), intent(in) :: d_star, v_star, h, kappa   !! see contact_law_t%solve
+      type(law_slot_t), allocatable :: laws(:)
+      laws = builtin_laws()
+      f = laws(law)%law%solve(k, c, p, d_star, v_star, h, kappa)
+   end function solve_scalar_contact
+
+   !> law_code maps the deck words to the law codes: the positions in the registry.
    subroutine law_words()
+      type(law_slot_t), allocatable :: laws(:)
+      type(law_caps_t) :: cb, ch
+      laws = builtin_laws()
+      cb = laws(law_bilinear)%law%caps();  ch = laws(law_hertz)%law%caps()
+      call check("the registry's law law_bilinear is 'bilinear', law_hertz 'hertz'", &
+         cb%name == 'bilinear' .and. ch%name == 'hertz')
+      call check('stop_law_words (the deck reader''s list) = the registry''s names: ' &
+         // law_words_of(), stop_law_words == law_words_of())
+      call check('bilinear caps: piecewise linear, damper, rings; Hertz: exponent in [1, 10], ' &
+         // 'no damper, not piecewise linear', cb%piecewise_linear .and. cb%uses_damping .and. &
+         cb%rings .and. .not. ch%piecewise_linear .and. .not. ch%uses_damping .and. &
+         ch%uses_exponent .and. ch%exponent_min == 1.0_dp .and. ch%exponent_max == 10.0_dp)
+      call check("law_index('nonesuch') = 0", law_index('nonesuch') == 0)
       call check("law_code('bilinear') = law_bilinear", law_code('bilinear') == law_bilinear)
       call check("law_code('hertz') = law_hertz", law_code('hertz') == law_hertz)
       call check("law_code('Hertz') = 0 (words are lower case)", law_code('Hertz') == 0)
@@ -267,4 +310,96 @@ contains
       call note('Hertz p = 2, k = 1e12, h = 1e-4: f(d* = 1e-2) = ' // str(f_stiff(n)) &
          // ' N, d = ' // str(d_star(n) - h * f_stiff(n)) // ' m')
    end subroutine solve_monotone
+
+   !> A law that is not built in (test/gapbeam_test_law: Hunt-Crossley, f = d^p (k + c d')):
+   !> one `add_law` to a model and every integrator dispatches to its formulas. Newmark (its
+   !> condensed `solve`) and rk45 (its `force`) converge to the same trajectory, which is not
+   !> the Hertz one (no silent fallback to another law's formulas); the energy meter closes
+   !> the balance with its `elastic` and `energy`; the exact integrator, 'auto' and a ring
+   !> support read its capabilities; nothing in src/ or app/ names it.
+   subroutine a_law_from_the_tests()
+      type(deck_t) :: deck
+      type(model_t) :: model, hz
+      type(transient_result_t) :: rn, rr, rh
+      type(solver_settings_t) :: cfg
+      type(error_t), allocatable :: err
+      class(integrator_t), allocatable :: integ
+      real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: dnr, dnh, f, imbalance
+      integer :: code, status
+      character(len=*), parameter :: sdof = 'test/decks/sdof_impact.nml'
+      call load_deck(sdof, [character(len=160) :: "&beam rotary_inertia = 'half_element' /", &
+         "&stops law = 'hertz', stiffness = 3.0e4, exponent = 1.5 /", &
+         "&solver method = 'newmark', tolerance = 1.0e-6, transient_periods = 0, " &
+         // "record_periods = 3 /", "&output history_periods = 3, energy_balance = .true. /"], &
+         deck, model, u0, v0, err)
+      if (allocated(err)) then
+         call check('load ' // sdof, .false., err%message);  return
+      end if
+      hz = model
+      code = add_law(model%laws, hunt_crossley_law_t())     ! the one registry line
+      model%c_law(1) = code;  model%c_c(1) = 2.5e5_dp
+      call check('add_law gives the new law the next code (3)', code == 3)
+      ! the condensed solve satisfies its own relation
+      f = model%laws(code)%law%solve(3.0e4_dp, 2.5e5_dp, 1.5_dp, 1.0e-4_dp, 0.05_dp, 1.0e-2_dp, &
+                                     2.0e3_dp)
+      call check_le('Hunt-Crossley solve: |f - law(d* - h f, v* - kappa h f)| / f', &
+         abs(f - model%laws(code)%law%force(3.0e4_dp, 2.5e5_dp, 1.5_dp, 1.0e-4_dp &
+         - 1.0e-2_dp * f, 0.05_dp - 2.0e3_dp * 1.0e-2_dp * f)) / f, tol)
+      cfg = deck%solver
+      call integrate(model, cfg, deck%output, u0, v0, rn, err)
+      if (allocated(err)) then
+         call check('Newmark runs the test law', .false., err%message);  return
+      end if
+      call check('Newmark runs the test law', .true.)
+      cfg%method = 'rk45';  cfg%tolerance = 1.0e-10_dp
+      call integrate(model, cfg, deck%output, u0, v0, rr, err)
+      if (allocated(err)) then
+         call check('rk45 runs the test law', .false., err%message);  return
+      end if
+      call check('rk45 runs the test law', .true.)
+      call integrate(hz, deck%solver, deck%output, u0, v0, rh, err)
+      if (allocated(err)) return
+      dnr = maxval(abs(rn%u - rr%u)) / maxval(abs(rr%u))
+      dnh = maxval(abs(rn%u - rh%u)) / maxval(abs(rr%u))
+      call check_le('Newmark (the law''s solve) and rk45 (its force) agree: relative ' &
+         // 'difference of the final displacement', dnr, 1.0e-4_dp)
+      call check('... and differ from the Hertz law''s run (' // str(dnh) // '): its damper ' &
+         // 'acts', dnh > 100.0_dp * dnr .and. dnh > 1.0e-3_dp)
+      imbalance = rn%input_work - rn%rayleigh_dissipation - rn%contact_damping_dissipation &
+         - rn%friction_dissipation - rn%stored_energy_change
+      call check('the energy meter uses its damper and energy: contact damper work ' &
+         // str(rn%contact_damping_dissipation) // ' J > 0', rn%contact_damping_dissipation &
+         > 0.0_dp)
+      call check_le('... and the balance closes: |imbalance| / input work', &
+         abs(imbalance) / max(abs(rn%input_work), tiny(1.0_dp)), 1.0e-3_dp)
+      ! capabilities: the exact integrator refuses it, 'auto' does not choose it
+      cfg = deck%solver;  cfg%method = 'exact'
+      call make_integrator(model, cfg, integ, err)
+      call check('the exact integrator refuses the test law', allocated(err))
+      if (allocated(err)) call check("... naming it and why: " // err%message, &
+         index(err%message, 'hunt_crossley') > 0 .and. index(err%message, 'piecewise') > 0)
+      cfg%method = 'auto'
+      call make_integrator(model, cfg, integ, err)
+      call check("'auto' chooses Newmark for it: " // integ%reason, .not. allocated(err) &
+         .and. integ%method == 'newmark' .and. index(integ%reason, 'Hunt-Crossley') > 0)
+      ! a ring support's normal law must be one whose entry allows it
+      call load_deck('test/decks/tube_cantilever.nml', [character(len=40) :: &
+         '&output write_text = .false. /'], deck, model, &
+                     u0, v0, err)
+      if (allocated(err)) then
+         call check('load tube_cantilever', .false., err%message);  return
+      end if
+      code = add_law(model%laws, hunt_crossley_law_t())
+      model%r_law(1) = code
+      call make_integrator(model, deck%solver, integ, err)
+      call check('a ring support with the test law is refused: its entry says rings = .false.', &
+         allocated(err))
+      if (allocated(err)) call check('... ' // err%message, index(err%message, &
+         'hunt_crossley') > 0)
+      call execute_command_line("grep -rqi 'hunt_crossley\|hunt-crossley' src app", &
+                                exitstat=status)
+      call check('no source file in src/ or app/ names the test law (grep exit ' &
+         // str(status) // ')', status == 1)
+   end subroutine a_law_from_the_tests
 end program test_contact

@@ -21,7 +21,7 @@ program test_continuation
    use gapbeam_hdf5_input, only: h5_reader_t
    use gapbeam_files, only: remove_file, file_exists
    implicit none
-   character(len=*), parameter :: ref = 'inputs/sweep_line_4mm.nml'
+   character(len=*), parameter :: ref = 'test/decks/sweep_line_4mm_half_element.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_continuation.nml'
    ! the single dof of sdof_continuation.nml: k = 3 EI / L^3, m = rho A L / 2, c = gamma k
    real(dp), parameter :: ei1 = 200.0e9_dp * 0.01_dp * 5.0e-4_dp**3 / 12
@@ -35,6 +35,8 @@ program test_continuation
    call sdof_given_start_and_differences()
    call reference_line_against_sweep()
    call folds_against_up_down_sweeps()
+   call period_reduced_to_the_orbits_own()
+   call start_at_a_bound()
    call finish('test_continuation')
 
 contains
@@ -47,8 +49,8 @@ contains
       character(len=*), parameter :: ex = "&solver method = 'exact' /"
       call bad('unknown variable name', [character(len=200) :: job, ex, &
          "&continuation parameter = '&forcing freq', parameter_min = 8, parameter_max = 11 /"], &
-         [character(len=40) :: 'sweep_line_4mm.nml', '&continuation', 'parameter', 'freq', &
-         'frequency_hz'])
+         [character(len=40) :: 'sweep_line_4mm_half_element.nml', '&continuation', 'parameter', &
+         'freq', 'frequency_hz'])
       call bad('empty range', [character(len=200) :: job, ex, &
          "&continuation parameter_min = 11.0, parameter_max = 8.0 /"], &
          [character(len=40) :: '&continuation', 'parameter_min', 'parameter_max', '11', '8'])
@@ -431,6 +433,48 @@ contains
       call check('SDOF: one grazing found', count(res%bif_kind == 'grazing') == 1)
       call written_and_read_back(res)
    end subroutine sdof_against_closed_form
+
+   !> &continuation period = 2 on a period-1 orbit: continued as period 1, with a note (it
+   !> used to be reported as a period-2 branch whose multipliers were the squares of the
+   !> period-1 ones).
+   subroutine period_reduced_to_the_orbits_own()
+      type(deck_t) :: deck
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      call read_deck(sdof, [character(len=200) :: "&continuation period = 2, parameter_max " &
+         // "= 4.0 /"], deck, err)
+      if (.not. allocated(err)) call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('period = 2 on a period-1 orbit runs', .false., err%message);  return
+      end if
+      call check('period = 2 on a period-1 orbit: the branch is a period-1 branch', &
+         res%branches(1)%period == 1 .and. all(res%period == 1))
+      call check('... with a note saying so: ' // res%note, index(res%note, 'repeats after 1') &
+         > 0 .and. index(res%note, 'period-1') > 0)
+   end subroutine period_reduced_to_the_orbits_own
+
+   !> A continuation from the lower bound of its variable (&stops gap(1) from 0): the
+   !> derivative in the variable is one-sided there, and the branch ends at the bound going
+   !> down (it used to stop with "gap(1) = -1E-009: must be >= 0", an internal value).
+   subroutine start_at_a_bound()
+      type(deck_t) :: deck
+      type(continuation_result_t) :: res
+      type(error_t), allocatable :: err
+      call read_deck(sdof, [character(len=200) :: '&stops gap = 0.0 /', &
+         "&continuation parameter = '&stops gap(1)', parameter_min = 0.0, parameter_max = " &
+         // "1.5e-5, direction = 'both' /"], deck, err)
+      if (.not. allocated(err)) call run_continuation(deck, res, err)
+      if (allocated(err)) then
+         call check('a continuation from gap(1) = 0, its bound, runs', .false., err%message)
+         return
+      end if
+      call check('a continuation from gap(1) = 0, its bound, runs: ' &
+         // str(res%branches(1)%last - res%branches(1)%first + 1) // ' points up to ' &
+         // str(maxval(res%parameter)) // ' m', res%n > 5 .and. maxval(res%parameter) > 1.0e-5_dp &
+         .and. minval(res%parameter) >= 0.0_dp)
+      call check('... and its down side ends at the bound: ' // trim(res%branches(1)%ended), &
+         index(res%branches(1)%ended, 'reached the lower bound') > 0)
+   end subroutine start_at_a_bound
 
    !> The result files: PREFIX.h5 read back (parameter with its unit, multipliers, stable,
    !> bifurcation kinds) and the four tables written; then deleted.

@@ -24,6 +24,7 @@ program test_labels
    use gapbeam_sweep_output, only: sweep_file_t, read_sweep
    use gapbeam_files, only: remove_file, file_exists
    use gapbeam_blas_threads, only: serial_blas
+   use gapbeam_point, only: label_point, integrator_cache_t
    implicit none
    character(len=*), parameter :: sdof = 'test/decks/sdof_impact.nml'
    !> lambda at 19.2 Hz: mean of two runs of 100000 periods (6.2569 +- 0.0290 and
@@ -40,6 +41,8 @@ program test_labels
    call coexisting_attractors_at_a_hysteresis_point()
    call starts_and_certificates_do_not_depend_on_threads()
    call map_over_a_design_variable()
+   call one_pipeline_for_the_transient_job_and_the_sweep()
+   call extensions_reuse_the_integrators()
    call finish('test_labels')
 
 contains
@@ -216,7 +219,8 @@ contains
          ! (a local first: gfortran mishandles deferred-length results in array constructors)
          solver = "&solver method = 'newmark', step_control = 'fixed', steps_per_period = " &
             // str(steps(k)) // ', transient_periods = 200, record_periods = 100 /'
-         call load_or_stop('test_labels', 'inputs/moon_shaw_10p5hz.nml', [character(len=200) :: solver, &
+         call load_or_stop('test_labels', 'test/decks/moon_shaw_10p5hz_half_element.nml', &
+            [character(len=200) :: solver, &
             '&diagnostics lyapunov_periods = 50, lyapunov_max_periods = 50 /'], &
             deck, model, u0, v0)
          pr = point_result_t()
@@ -348,4 +352,78 @@ contains
       has = index(err%message, text) > 0
    end function has
 
+
+   !> The transient job (label_point, point 1) and a one-point sweep at the deck's own values
+   !> (run_items) run the same point pipeline: the same starts (deck, rest, random), labels,
+   !> exponents, Poincare points and certificate, bit for bit.
+   subroutine one_pipeline_for_the_transient_job_and_the_sweep()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(sweep_plan_t) :: plan
+      type(point_result_t) :: pj
+      type(point_result_t), allocatable :: slots(:)
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: failures(:)
+      real(dp), allocatable :: u0(:), v0(:)
+      type(point_result_t) :: ps
+      integer :: k
+      logical :: same
+      character(len=200), parameter :: ov(4) = [character(len=200) :: &
+         '&forcing frequency_hz = 21.0 /', '&solver transient_periods = 100, ' &
+         // 'record_periods = 100 /', "&diagnostics starts = 'deck', 'rest', 'random', " &
+         // 'random_starts = 2, lyapunov_periods = 50, lyapunov_max_periods = 200 /', &
+         '&sweep frequency_hz = 21.0 /']
+      call load_or_stop('test_labels', sdof, ov, deck, model, u0, v0)
+      call label_point(model, deck%solver, deck%output, deck%diagnostics, u0, v0, 1, res, pj, &
+                       err, failures)
+      if (allocated(err)) then
+         call check('the transient job''s pipeline runs', .false., err%message);  return
+      end if
+      call load_or_stop('test_labels', sdof, [character(len=200) :: ov, &
+         "&job analysis = 'sweep' /"], deck, model, u0, v0)
+      call make_plan_or_stop('test_labels', deck, plan)
+      allocate(slots(n_points(plan) * plan%ns))
+      call run_items(deck, model, plan, [(k, k = 1, n_items(plan))], u0, v0, slots)
+      ps = combine_point(deck, plan, slots, 1)
+      same = pj%label == ps%label .and. pj%lyapunov == ps%lyapunov .and. &
+         all(pj%p_strain == ps%p_strain) .and. pj%certificate == ps%certificate .and. &
+         pj%perturbed_lyapunov == ps%perturbed_lyapunov .and. &
+         pj%accuracy_lyapunov == ps%accuracy_lyapunov .and. &
+         pj%n_attractors == ps%n_attractors .and. all(pj%start_label == ps%start_label) .and. &
+         all(pj%start_lyapunov == ps%start_lyapunov)
+      call check('the transient job and a one-point sweep give the same point bit for bit (' &
+         // str(size(pj%start_label)) // ' starts, ' // label_text(pj%label) // ', ' &
+         // str(pj%n_attractors) // ' attractor(s))', same)
+   end subroutine one_pipeline_for_the_transient_job_and_the_sweep
+
+   !> A diagnosis that extends its transient (the settling test) and runs its exponent builds
+   !> one integrator per settings, not one per extension: the cache holds the run's and the
+   !> exponent's, and a second diagnosis of the same model builds nothing more.
+   subroutine extensions_reuse_the_integrators()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(point_result_t) :: pr
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
+      type(integrator_cache_t) :: cache
+      real(dp), allocatable :: u0(:), v0(:)
+      call load_or_stop('test_labels', sdof, [character(len=200) :: '&stops gap = 1.0 /', &
+         '&damping mass_coefficient = 0.2 /', '&forcing frequency_hz = 10.0, amplitude_pp = ' &
+         // '1.0e-4 /', "&initial kind = 'given', node = 2, dof = 'w', displacement = " &
+         // '1.0e-3, velocity = 0.0 /', '&solver transient_periods = 20, record_periods = 100 /', &
+         '&diagnostics transient_max_periods = 5000, certify = .false. /'], deck, model, u0, v0)
+      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err, &
+                    cache=cache)
+      if (allocated(err)) then
+         call check('the long transient runs', .false., err%message);  return
+      end if
+      call check('a diagnosis with ' // str((pr%transient_periods - 20) / 100) // ' extensions ' &
+         // 'builds two integrators (the run''s and the exponent''s): ' // str(cache%n), &
+         pr%transient_periods > 200 .and. cache%n == 2)
+      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err, &
+                    cache=cache)
+      call check('a second diagnosis of the model builds none', .not. allocated(err) .and. &
+         cache%n == 2 .and. res%factorizations == 0)
+   end subroutine extensions_reuse_the_integrators
 end program test_labels

@@ -13,7 +13,7 @@ program test_newmark
    use gapbeam_lapack, only: dgesv
    use gapbeam_test_runs, only: run_deck
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    character(len=*), parameter :: sdof = 'test/decks/sdof_bilinear.nml'
    character(len=*), parameter :: nostop = "&stops rule_factor = 0.0, stiffness = 1.0, " &
       // "gap = 10.0 /"
@@ -27,6 +27,7 @@ program test_newmark
    call half_step_efficiency()
    call attractor_against_finer_step()
    call symmetric_two_sided_stop()
+   call fine_grid_over_a_long_horizon()
    call finish('test_newmark')
 
 contains
@@ -436,4 +437,24 @@ contains
       sy = maxval(r%strain_rate) - minval(r%strain_rate)
       period_of = detect_period(r%p_strain, r%p_strain_rate, 12, 1.0e-3_dp, 100, sx, sy)
    end function period_of
+
+   !> A tick grid finer than the time resolves (T/100 with 40 halvings over 260 periods:
+   !> 2.9e16 ticks > 2^53) used to stop with 'times must lie on the step grid' or take steps
+   !> of zero length ('not finite at t = ..., dt = 0'): the halvings are now lowered to fit the
+   !> horizon and the run gives the same attractor as with the default 20 halvings.
+   subroutine fine_grid_over_a_long_horizon()
+      type(model_t) :: model
+      type(transient_result_t) :: r40, r20
+      logical :: ok
+      character(len=*), parameter :: base = "&solver method = 'newmark', step_control = " &
+         // "'half_step', steps_per_period = 100, transient_periods = 250, record_periods = 10, "
+      call run(ref, [character(len=200) :: base // 'max_halvings = 40 /'], model, r40, ok)
+      call check('T/100 with 40 halvings over 260 periods runs (no grid error, no zero step)', &
+         ok)
+      if (.not. ok) return
+      call run(ref, [character(len=200) :: base // 'max_halvings = 20 /'], model, r20)
+      call check_le('... and ends on the orbit of the 20-halving run: largest Poincare ' &
+         // 'difference / strain range', maxval(abs(r40%p_strain - r20%p_strain)) &
+         / (r20%strain_max - r20%strain_min), 1.0e-6_dp)
+   end subroutine fine_grid_over_a_long_horizon
 end program test_newmark

@@ -28,7 +28,7 @@ program test_reduction
    use gapbeam_reduction_rule, only: reduction_info_t
    use gapbeam_reduction_check, only: reduction_check_t, check_reduction, check_lines
    implicit none
-   character(len=*), parameter :: ref = 'inputs/moon_shaw_10p5hz.nml'
+   character(len=*), parameter :: ref = 'test/decks/moon_shaw_10p5hz_half_element.nml'
    character(len=*), parameter :: tube = 'inputs/tube_multispan.nml'
    character(len=*), parameter :: cantilever = 'test/decks/tube_cantilever.nml'
    character(len=*), parameter :: whirl = 'test/decks/tube_whirl.nml'

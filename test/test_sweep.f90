@@ -82,7 +82,7 @@ contains
       type(transient_result_t) :: res
       type(error_t), allocatable :: err
       real(dp), allocatable :: u0(:), v0(:)
-      call load('inputs/moon_shaw_10p5hz.nml', [character(len=200) :: &
+      call load('test/decks/moon_shaw_10p5hz_half_element.nml', [character(len=200) :: &
          '&solver transient_periods = 300, record_periods = 100 /'], deck, model)
       call initial_vectors(model, deck%initial, u0, v0)
       call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)

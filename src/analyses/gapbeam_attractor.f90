@@ -33,8 +33,9 @@ module gapbeam_attractor
    use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t, output_settings_t
    use gapbeam_results, only: lyapunov_t, transient_result_t, point_result_t
    use gapbeam_diagnostics, only: period_search, classify, window_difference, repeat_distance
-   use gapbeam_integrator, only: integrator_t, make_integrator, start_state, resolve_method
-   use gapbeam_transient, only: integrate
+   use gapbeam_integrator, only: integrator_t, start_state, resolve_method
+   use gapbeam_capabilities, only: method_caps_t, method_caps
+   use gapbeam_transient, only: integrate, integrator_cache_t
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_progress, only: monitor_t
    implicit none
@@ -65,8 +66,10 @@ contains
    !> `res` is the final record (its history, Poincare points and impact statistics). A
    !> `monitor` is told the forcing periods integrated: the runs', and the exponent's two
    !> trajectories (2 per period); the extensions and an adaptive exponent make them more
-   !> than the deck's transient, record and lyapunov periods.
-   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err, monitor)
+   !> than the deck's transient, record and lyapunov periods. Every run and the exponent use
+   !> the integrators of `cache` (this model's; a local one when absent): one integrator per
+   !> settings for the whole diagnosis, nothing rebuilt for an extension.
+   subroutine diagnose(model, cfg, out, diag, u0, v0, res, pr, err, monitor, cache)
       type(model_t), intent(in) :: model                !! model
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(output_settings_t), intent(in) :: out         !! what to record
@@ -76,6 +79,9 @@ contains
       type(point_result_t), intent(inout) :: pr          !! label, evidence, statistics
       type(error_t), allocatable, intent(out) :: err     !! solver failure
       class(monitor_t), intent(inout), optional, target :: monitor   !! told the progress
+      type(integrator_cache_t), intent(inout), optional, target :: cache   !! integrators
+      type(integrator_cache_t), target :: own
+      type(integrator_cache_t), pointer :: ic
       type(solver_settings_t) :: more
       type(shifted_monitor_t) :: watch
       real(dp), allocatable :: u(:), v(:)
@@ -85,6 +91,8 @@ contains
       logical :: settled
 
       cpu0 = thread_cpu_seconds()
+      ic => own
+      if (present(cache)) ic => cache
       period = 2.0_dp * pi / model%omega
       tol = auto_period_tolerance(model, cfg, diag)
       budget = transient_budget(cfg, diag)
@@ -110,10 +118,10 @@ contains
             added = added + cfg%record_periods
          end do
          if (present(monitor)) then
-            call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch)
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch, ic)
             watch%offset = watch%offset + 2.0_dp * real(pr%lyapunov_periods, dp)
          else
-            call exponent(model, cfg, diag, res%u, res%v, pr, err, section)
+            call exponent(model, cfg, diag, res%u, res%v, pr, err, section, cache=ic)
          end if
          if (allocated(err)) return
          ! the exponent's own periods (the trajectory continued) must show the same attractor:
@@ -183,11 +191,11 @@ contains
          type(solver_settings_t), intent(in) :: c     !! settings of this run
          real(dp), intent(in) :: ua(:), va(:)         !! start
          if (present(monitor)) then
-            call integrate(model, c, out, ua, va, res, err, monitor=watch)
+            call integrate(model, c, out, ua, va, res, err, monitor=watch, cache=ic)
             watch%offset = watch%offset + real(c%transient_periods, dp) &
                            + real(c%record_periods, dp)
          else
-            call integrate(model, c, out, ua, va, res, err)
+            call integrate(model, c, out, ua, va, res, err, cache=ic)
          end if
       end subroutine run
    end subroutine diagnose
@@ -263,7 +271,7 @@ contains
 
    !> The exponent from (u, v) into pr (0 +- 0 over 0 periods when none is asked); pr%u_end,
    !> pr%v_end: the reference state after the exponent's periods.
-   subroutine exponent(model, cfg, diag, u, v, pr, err, section, monitor)
+   subroutine exponent(model, cfg, diag, u, v, pr, err, section, monitor, cache)
       type(model_t), intent(in) :: model                 !! model
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
@@ -273,6 +281,7 @@ contains
       !> root strain and its rate at the end of each of the exponent's periods (2, N)
       real(dp), allocatable, intent(out), optional :: section(:, :)
       class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
+      type(integrator_cache_t), intent(inout), optional :: cache   !! this model's integrators
       type(lyapunov_t) :: lyap
       if (present(section)) allocate(section(2, 0))
       pr%u_end = u;  pr%v_end = v
@@ -280,7 +289,7 @@ contains
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       if (diag%lyapunov_periods > 0) then
          call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
-                               pr%period, monitor)
+                               pr%period, monitor, cache)
          if (allocated(err)) return
          if (present(section)) section = lyap%section
          pr%lyapunov = lyap%exponent
@@ -306,26 +315,28 @@ contains
       pr%p_strain = res%p_strain;  pr%p_strain_rate = res%p_strain_rate
    end subroutine copy_statistics
 
-   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for the
+   !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for an
    !> exact integrator and for fixed steps (a periodic orbit of a deterministic map repeats to
-   !> round-off), 10 x the tolerance for error control (rk_rtol for rk45), 1e-3 for the
-   !> paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
+   !> round-off), 10 x the tolerance for error control (rk_rtol for an embedded pair, rk45),
+   !> 1e-3 for the paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
    real(dp) function auto_period_tolerance(model, cfg, diag) result(tol)
       type(model_t), intent(in) :: model                 !! model (its stop laws)
       type(solver_settings_t), intent(in) :: cfg         !! solver settings
       type(diagnostics_settings_t), intent(in) :: diag   !! settings
       type(solver_settings_t) :: eff
+      type(method_caps_t) :: c
       character(len=:), allocatable :: reason
       if (diag%period_tolerance > 0.0_dp) then
          tol = diag%period_tolerance
          return
       end if
       call resolve_method(model, cfg, eff, reason)
-      if (eff%method == 'exact' .or. eff%step_control == 'fixed') then
+      c = method_caps(eff%method)
+      if (c%exact .or. eff%step_control == 'fixed') then
          tol = 1.0e-6_dp
       else if (eff%step_control == 'half_step') then
          tol = 1.0e-3_dp
-      else if (eff%method == 'rk45') then
+      else if (c%estimator == 'embedded') then
          tol = 10.0_dp * eff%rk_rtol
       else
          tol = 10.0_dp * eff%tolerance
@@ -359,7 +370,7 @@ contains
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
    !> standard error meets the target of `diag` (or its most periods).
    subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period, &
-                               monitor)
+                               monitor, cache)
       type(model_t), intent(in) :: model               !! model
       type(solver_settings_t), intent(in) :: cfg       !! solver settings (steps_per_period)
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
@@ -370,7 +381,10 @@ contains
       !> period of the orbit (0 or absent: none): blocks are whole multiples of it
       integer, intent(in), optional :: orbit_period
       class(monitor_t), intent(inout), optional :: monitor   !! told 2k after period k
-      class(integrator_t), allocatable :: integ
+      !> this model's integrators (the pair's is built once and reused)
+      type(integrator_cache_t), intent(inout), optional, target :: cache
+      type(integrator_cache_t), target :: own
+      class(integrator_t), pointer :: integ
       type(state_t) :: sa, sb
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
       real(dp) :: d0, d, period, x_norm, target, sigma, lambda
@@ -380,7 +394,11 @@ contains
       n_max = lyapunov_budget(diag)
       q = 1
       if (present(orbit_period)) q = max(1, orbit_period)
-      call make_integrator(model, lyapunov_settings(cfg), integ, err)
+      if (present(cache)) then
+         call cache%get(model, lyapunov_settings(cfg), integ, err)
+      else
+         call own%get(model, lyapunov_settings(cfg), integ, err)
+      end if
       if (allocated(err)) return
       x_norm = energy_norm(model, u, v)
       if (x_norm == 0.0_dp) x_norm = 1.0_dp
@@ -447,18 +465,20 @@ contains
       u_end = ua;  v_end = va
    end subroutine largest_lyapunov
 
-   !> The settings of the two trajectories: fixed steps with events; the explicit methods are
-   !> only conditionally stable at T/steps_per_period, so the exponent (a property of the model)
-   !> is then taken with the trapezoidal rule.
+   !> The settings of the two trajectories: fixed steps with events; a method whose registry
+   !> entry names another for the exponent (the explicit methods, only conditionally stable at
+   !> T/steps_per_period) hands it to that one, with the trapezoidal rule's parameters (the
+   !> exponent is a property of the model).
    pure function lyapunov_settings(cfg) result(one)
       type(solver_settings_t), intent(in) :: cfg   !! the run's settings
       type(solver_settings_t) :: one
+      type(method_caps_t) :: c
       one = cfg
-      select case (cfg%method)
-      case ('rk4', 'rk45', 'central_difference')
-         one%method = 'newmark';  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
+      c = method_caps(cfg%method)
+      if (len_trim(c%lyapunov_with) > 0) then
+         one%method = c%lyapunov_with;  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
          one%stop_solution = 'condensed'
-      end select
+      end if
       one%step_control = 'fixed'
       one%locate_events = .true.
    end function lyapunov_settings

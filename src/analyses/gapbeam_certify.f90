@@ -21,9 +21,10 @@ module gapbeam_certify
    use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
    use gapbeam_results, only: point_result_t, transient_result_t, label_text, label_failed, &
       certificate_certified, certificate_disputed
-   use gapbeam_description, only: law_bilinear
-   use gapbeam_integrator, only: resolve_method
+   use gapbeam_capabilities, only: method_caps_t, method_table, is_exact
+   use gapbeam_integrator, only: resolve_method, refusal
    use gapbeam_attractor, only: diagnose
+   use gapbeam_transient, only: integrator_cache_t
    use gapbeam_starts, only: uniform_numbers, attractor_distance
    use gapbeam_clock, only: thread_cpu_seconds
    implicit none
@@ -35,7 +36,8 @@ module gapbeam_certify
 contains
 
    !> Run both checks of a diagnosed point `pr` (started from (u0, v0)) and set its certificate.
-   subroutine certify_point(model, cfg, out, diag, u0, v0, seed, pr)
+   !> `cache`: the point's integrators (the perturbed start reuses the run's).
+   subroutine certify_point(model, cfg, out, diag, u0, v0, seed, pr, cache)
       type(model_t), intent(in) :: model                 !! model of the point
       type(solver_settings_t), intent(in) :: cfg         !! the run's settings
       type(output_settings_t), intent(in) :: out         !! recording settings
@@ -43,6 +45,7 @@ contains
       real(dp), intent(in) :: u0(:), v0(:)               !! the run's start
       integer, intent(in) :: seed                        !! generator stream of this point
       type(point_result_t), intent(inout) :: pr          !! diagnosed point; certificate set
+      type(integrator_cache_t), intent(inout), optional :: cache   !! this model's integrators
       type(solver_settings_t) :: tight
       type(point_result_t) :: chk
       type(transient_result_t) :: res
@@ -58,14 +61,14 @@ contains
       call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed)
       pr%accuracy_method = ''
       if (needed) then
-         call diagnose(model, tight, out, diag, u0, v0, res, chk, err)
-         if (allocated(err) .and. tight%method == 'exact') then
+         call diagnose(model, tight, out, diag, u0, v0, res, chk, err, cache=cache)
+         if (allocated(err) .and. is_exact(tight%method)) then
             ! the exact integrator refused this model: tighten the run's own method instead
             call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed, &
                                    no_exact=.true.)
             deallocate(err)
             chk = point_result_t()
-            call diagnose(model, tight, out, diag, u0, v0, res, chk, err)
+            call diagnose(model, tight, out, diag, u0, v0, res, chk, err, cache=cache)
          end if
          pr%accuracy_method = what
          call record_check(pr, chk, err, 'accuracy', what, diag, reason)
@@ -83,7 +86,7 @@ contains
          du = du * diag%certify_perturbation;  dv = dv * diag%certify_perturbation
       end if
       chk = point_result_t()
-      call diagnose(model, cfg, out, diag, u0 + du, v0 + dv, res, chk, err)
+      call diagnose(model, cfg, out, diag, u0 + du, v0 + dv, res, chk, err, cache=cache)
       call record_check(pr, chk, err, 'perturbed', 'a start perturbed by ' &
          // num(diag%certify_perturbation) // ' of the state norm', diag, reason)
       if (len(reason) == 0) then
@@ -151,18 +154,29 @@ contains
       character(len=:), allocatable, intent(out) :: what !! the check in words
       logical, intent(out) :: needed                     !! a check is possible
       logical, intent(in), optional :: no_exact          !! never the exact integrator
-      type(solver_settings_t) :: eff
+      type(solver_settings_t) :: eff, ex
+      type(method_caps_t), allocatable :: t(:)
       character(len=:), allocatable :: reason
       logical :: exact_ok
+      integer :: j
       call resolve_method(model, cfg, eff, reason)
       tight = eff
-      needed = eff%method /= 'exact'
+      needed = .not. is_exact(eff%method)
       what = ''
       if (.not. needed) return
-      exact_ok = all(model%c_law == law_bilinear)
+      ! an exact method of the registry that can integrate the model (its laws piecewise
+      ! linear, nothing it does not handle)
+      t = method_table()
+      exact_ok = .false.
+      do j = 1, size(t)
+         if (.not. t(j)%exact) cycle
+         ex = eff;  ex%method = t(j)%name
+         exact_ok = len(refusal(model, ex)) == 0
+         if (exact_ok) exit
+      end do
       if (present(no_exact)) exact_ok = exact_ok .and. .not. no_exact
       if (exact_ok) then
-         tight%method = 'exact'
+         tight = ex
          what = 'the exact integrator'
          return
       end if

@@ -16,7 +16,7 @@ submodule (gapbeam_continuation) gapbeam_continuation_branches
    use gapbeam_transition, only: setup_linear_parts, reduce_state
    use gapbeam_periodic, only: newton_orbit, transient_orbit, energy_size
    use gapbeam_continuation_problem, only: problem_t, point_t, map_at, correct_point, &
-      tangent_of, measure_point, test_value, wdot, null_vector
+      tangent_of, measure_point, test_value, wdot, null_vector, below_range
    use gapbeam_bifurcation_curves, only: follow_curves, bif_t
    implicit none
 
@@ -122,6 +122,47 @@ contains
       pb%n = 2 * pb%lp0%nr
    end subroutine start_problem
 
+   !> An orbit found with p periods that repeats after a divisor q < p of them (a period-1
+   !> orbit asked as period 2) is a period-q orbit: continued as such, with a note (on p
+   !> periods its multipliers would be the q-period ones to the power p/q, and a period
+   !> doubling, mu = -1, could not be seen).
+   subroutine own_period(pb, lam0, x, p, p0, err)
+      type(problem_t), intent(inout) :: pb              !! problem
+      real(dp), intent(in) :: lam0                      !! value of the variable
+      real(dp), intent(inout) :: x(:)                   !! the orbit's section state
+      integer, intent(inout) :: p                       !! its periods (reduced)
+      type(point_t), intent(inout) :: p0                !! start point (monodromy redone)
+      type(error_t), allocatable, intent(out) :: err    !! failure of the reduced orbit
+      real(dp), allocatable :: px(:), it(:, :)
+      real(dp) :: size0, tol
+      integer :: q, asked
+      if (p < 2) return
+      allocate(px(pb%n), it(pb%n, p))
+      call pb%center%m%evaluate(x, px, err, iterates=it)
+      pb%evaluations = pb%evaluations + 1;  pb%periods = pb%periods + p
+      if (allocated(err)) return
+      size0 = max(energy_size(pb%lp0, x), tiny(1.0_dp))
+      tol = max(1.0e-6_dp, 100.0_dp * pb%cfg%tolerance)
+      do q = 1, p / 2
+         if (mod(p, q) /= 0) cycle
+         if (energy_size(pb%lp0, it(:, q) - x) > tol * size0) cycle
+         asked = p
+         p = q
+         call map_at(pb, pb%center, [lam0], p, err);  if (allocated(err)) return
+         call newton_orbit(pb%center%m, x, pb%cfg%tolerance, 3 * pb%cfg%max_iterations, &
+                           p0%jac, err, p0%iterations)
+         pb%evaluations = pb%evaluations + pb%center%m%evaluations
+         pb%periods = pb%periods + p * pb%center%m%evaluations
+         if (allocated(err)) return
+         pb%note = 'the start orbit found with ' // str(asked) // ' periods repeats after ' &
+            // str(q) // ' (distance ' // str(energy_size(pb%lp0, it(:, q) - x) / size0) &
+            // ' of its size): continued as a period-' // str(q) // ' orbit (on ' &
+            // str(asked) // ' periods its multipliers would be squared and a period ' &
+            // 'doubling could not be detected)'
+         return
+      end do
+   end subroutine own_period
+
    !> The start orbit: transient or given state, period, Newton; tangent towards increasing
    !> values of the variable; the metric's energy scale.
    subroutine start_orbit(pb, p0, err)
@@ -166,6 +207,7 @@ contains
             // deck_variable_label(pb%var(1)) // ' = ' // str(lam0) // ': ' // err%message
          return
       end if
+      call own_period(pb, lam0, x, p, p0, err);  if (allocated(err)) return
       pb%e_ref = max(energy_size(pb%lp0, x), tiny(1.0_dp))
       p0%y = [x, lam0]
       p0%p = p
@@ -250,7 +292,14 @@ contains
          if (allocated(err)) then
             ds = 0.5_dp * ds
             if (ds < ds_min) then
-               ended = 'step below step_min at ' // str(pa%y(n + 1)) // ': ' // err%message
+               if (pa%t(n + 1) < 0.0_dp .and. below_range(pb%var(1), pa%y(n + 1) &
+                   - 1.0e-6_dp * pb%scale(1))) then
+                  ! started at (or came to) the variable's bound and heads below it
+                  ended = 'reached the lower bound of ' // deck_variable_label(pb%var(1)) &
+                     // ' (' // str(pb%var(1)%lower) // ') at ' // str(pa%y(n + 1))
+               else
+                  ended = 'step below step_min at ' // str(pa%y(n + 1)) // ': ' // err%message
+               end if
                exit
             end if
             deallocate(err)
@@ -706,6 +755,8 @@ contains
       real(dp) :: nan
       nan = transfer(-2251799813685248_int64, 1.0_dp)
       n = pb%n
+      res%note = ''
+      if (allocated(pb%note)) res%note = pb%note
       res%parameter_name = deck_variable_label(pb%var(1))
       res%parameter_units = trim(pb%var(1)%units)
       res%parameter2_name = ''

@@ -17,9 +17,11 @@
 !> **Corrector.** From a point y_a with unit tangent t, the point at arclength sigma solves
 !> G(y) = 0 and <t, y - y_a>_W = sigma by Newton's method from y_a + sigma t, with the
 !> Jacobian [P_x - I, P_lambda; (W t)'], P_x the monodromy (exact or by differences) and
-!> P_lambda by central differences of the map in lambda (step 1e-6 S). The next tangent
-!> solves [P_x - I, P_lambda; (W t_prev)'] t = (0, 1), normalised: it keeps its orientation
-!> through folds.
+!> P_lambda by central differences of the map in lambda (step 1e-6 S; one-sided, of second
+!> order, where lambda - h would leave the variable's range: a start at its bound). The next
+!> tangent
+!> !> solves [P_x - I, P_lambda; (W t_prev)'] t = (0, 1), normalised: it keeps its
+!> orientation through folds.
 module gapbeam_continuation_problem
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
@@ -36,7 +38,7 @@ module gapbeam_continuation_problem
    implicit none
    private
    public :: problem_t, point_t, map_at, orbit_eval, wdot, wvec, correct_point, tangent_of, &
-      measure_point, solve_linear, test_value, test_kinds, null_vector
+      measure_point, solve_linear, test_value, test_kinds, null_vector, below_range
 
    integer, parameter :: test_kinds = 5   !! fold, branch point, period doubling, NS, grazing
 
@@ -65,6 +67,7 @@ module gapbeam_continuation_problem
       type(cached_map_t) :: center, aux             !! maps at y and at perturbed values
       integer :: evaluations = 0                    !! maps evaluated (p periods each)
       integer :: periods = 0                        !! forcing periods integrated
+      character(len=:), allocatable :: note         !! about the start ('' none)
    end type problem_t
 
    !> A converged orbit with what is measured on it.
@@ -118,7 +121,8 @@ contains
    end subroutine map_at
 
    !> P(x) at y = (x, lam...), with the monodromy and the derivatives in the variables
-   !> (central differences) when asked.
+   !> (central differences; at a variable's lower bound one-sided, (-3 P(l) + 4 P(l + h)
+   !> - P(l + 2h)) / 2h, as exact to second order) when asked.
    subroutine orbit_eval(pb, y, p, px, err, jac, dpdl, iterates)
       type(problem_t), intent(inout) :: pb                 !! problem
       real(dp), intent(in) :: y(:)                         !! (x, lambda(1:nl))
@@ -143,13 +147,32 @@ contains
          lam = y(n + 1:);  lam(k) = lam(k) + h
          call map_at(pb, pb%aux, lam, p, err);  if (allocated(err)) return
          call pb%aux%m%evaluate(y(1:n), pp, err);  if (allocated(err)) return
-         lam(k) = lam(k) - 2.0_dp * h
-         call map_at(pb, pb%aux, lam, p, err);  if (allocated(err)) return
-         call pb%aux%m%evaluate(y(1:n), pm, err);  if (allocated(err)) return
+         if (below_range(pb%var(k), y(n + k) - h)) then
+            ! at the bound: one-sided, second order, from P(l), P(l + h), P(l + 2h)
+            lam(k) = lam(k) + h
+            call map_at(pb, pb%aux, lam, p, err);  if (allocated(err)) return
+            call pb%aux%m%evaluate(y(1:n), pm, err);  if (allocated(err)) return
+            dpdl(:, k) = (-3.0_dp * px + 4.0_dp * pp - pm) / (2.0_dp * h)
+         else
+            lam(k) = lam(k) - 2.0_dp * h
+            call map_at(pb, pb%aux, lam, p, err);  if (allocated(err)) return
+            call pb%aux%m%evaluate(y(1:n), pm, err);  if (allocated(err)) return
+            dpdl(:, k) = (pp - pm) / (2.0_dp * h)
+         end if
          call count_map(pb, p, 2)
-         dpdl(:, k) = (pp - pm) / (2.0_dp * h)
       end do
    end subroutine orbit_eval
+
+   !> Is x outside the allowed range of variable `var` (below its lower bound)?
+   pure logical function below_range(var, x)
+      type(deck_variable_t), intent(in) :: var   !! variable
+      real(dp), intent(in) :: x                  !! value
+      if (var%strict) then
+         below_range = .not. (x > var%lower)
+      else
+         below_range = .not. (x >= var%lower)
+      end if
+   end function below_range
 
    !> Count map evaluations (of p periods each).
    subroutine count_map(pb, p, k)

@@ -16,6 +16,7 @@ module gapbeam_stability
    use gapbeam_linalg, only: dense_to_band
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_integrator, only: stepper_t, make_stepper
+   use gapbeam_capabilities, only: method_caps_t, method_caps
    implicit none
    private
    public :: spectral_radius, test_problem, largest_stable_step, step_is_stable
@@ -51,13 +52,19 @@ contains
       class(stepper_t), allocatable :: st
       type(model_t) :: model
       type(solver_settings_t) :: c
+      type(method_caps_t) :: mc
       type(state_t) :: s0, s1
       real(dp) :: amp(3, 3), ratio, wr(3), wi(3), vl(1, 3), vr(1, 3), work(64), h
       logical :: ok
       integer :: j, m, info
       c = cfg
-      if (c%method == 'rk45') c%method = 'rk4'     ! the embedded pair's 5th-order step differs;
-                                                   ! the stability study uses fixed-step RK4
+      ! a method charted through another's matrix (rk45: its 5th-order step differs from a
+      ! fixed step; the study uses fixed-step RK4)
+      mc = method_caps(c%method)
+      if (len_trim(mc%stability_with) > 0) then
+         c%method = mc%stability_with
+         mc = method_caps(c%method)
+      end if
       model = test_problem(1.0_dp)
       call make_stepper(c%method, st, err);  if (allocated(err)) return
       h = x
@@ -66,12 +73,7 @@ contains
       s0%t = 0.0_dp;  s0%dt_prev = h
       call st%prepare(model, c, h, err);  if (allocated(err)) return
       ! acceleration-carrying methods use (u, v, h^2 a) as the state
-      select case (c%method)
-      case ('newmark', 'hht', 'generalized_alpha')
-         m = 3
-      case default
-         m = 2
-      end select
+      m = merge(3, 2, mc%carries_acceleration)
       amp = 0.0_dp
       do j = 1, m
          s0%u = 0.0_dp;  s0%v = 0.0_dp;  s0%a = 0.0_dp

@@ -16,12 +16,14 @@ module gapbeam_studies
    use gapbeam_model, only: model_t, energy_norm
    use gapbeam_settings, only: solver_settings_t, output_settings_t, study_settings_t
    use gapbeam_results, only: transient_result_t, series_result_t, stable_step_t
-   use gapbeam_description, only: law_bilinear
+   use gapbeam_capabilities, only: method_caps_t, method_table, method_caps, method_exists, &
+      exact_method, is_exact
+   use gapbeam_integrator, only: refusal
    use gapbeam_transient, only: integrate
    use gapbeam_stability, only: spectral_radius, largest_stable_step
    implicit none
    private
-   public :: work_precision, stability_study
+   public :: work_precision, stability_study, stability_series
 
 contains
 
@@ -34,6 +36,7 @@ contains
       type(solver_settings_t), intent(out) :: cfg
       real(dp), intent(out) :: param
       character(len=:), allocatable, intent(out) :: pname
+      type(method_caps_t) :: c
       integer :: n
       cfg = base
       known = .true.
@@ -53,12 +56,6 @@ contains
          cfg%method = 'newmark'
       case ('newmark_fixed_no_events')
          cfg%method = 'newmark';  cfg%locate_events = .false.
-      case ('hht', 'generalized_alpha', 'central_difference', 'rk4')
-         cfg%method = name
-      case ('linear_acceleration')
-         cfg%method = 'newmark';  cfg%newmark_alpha = 1.0_dp / 6.0_dp
-      case ('fox_goodwin')
-         cfg%method = 'newmark';  cfg%newmark_alpha = 1.0_dp / 12.0_dp
       case ('rk45', 'newmark_error', 'hht_error', 'generalized_alpha_error', 'auto')
          ! error control at tolerance rtol_start 10^-(k-1)
          select case (name)
@@ -76,12 +73,21 @@ contains
          cfg%tolerance = st%rtol_start * 10.0_dp**(-(k - 1))
          cfg%rk_atol = 0.0_dp
          param = cfg%tolerance;  pname = 'tolerance'
-      case ('exact')
-         cfg%method = 'exact';  param = 0.0_dp;  pname = '-'
       case default
-         known = .false.
+         ! any method of the registry by its name: fixed steps (an exact one: no parameter)
+         known = method_exists(name)
+         if (known) then
+            c = method_caps(name)
+            cfg%method = name
+            if (c%newmark_delta >= 0.0_dp) cfg%newmark_delta = c%newmark_delta
+            if (c%newmark_alpha >= 0.0_dp) cfg%newmark_alpha = c%newmark_alpha
+            if (c%exact) then
+               param = 0.0_dp;  pname = '-'
+            end if
+         end if
       end select
-      if (cfg%method /= 'newmark') cfg%stop_solution = 'condensed'
+      c = method_caps(cfg%method)
+      if (.not. c%fixed_point) cfg%stop_solution = 'condensed'
    end function series_setting
 
    !> The work-precision study of the deck's case.
@@ -98,15 +104,16 @@ contains
       type(transient_result_t) :: ref, res
       type(error_t), allocatable :: e
       real(dp) :: param, t, norm_ref, srange
-      character(len=:), allocatable :: pname
+      character(len=:), allocatable :: pname, why
       integer :: s, k, nl
-      if (any(model%c_law /= law_bilinear)) then
-         call fatal_error(err, "work_precision: the reference is the exact integrator, which " &
-            // "needs bilinear stops (law = 'bilinear'); this model has a Hertz stop")
+      o = out;  o%history_periods = st%periods     ! the whole horizon sampled
+      cfg = base;  cfg%method = exact_method();  cfg%step_control = 'fixed'
+      why = refusal(model, cfg)
+      if (len(why) > 0) then
+         call fatal_error(err, 'work_precision: the reference is the exact integrator, ' &
+            // 'which refuses this model: ' // why)
          return
       end if
-      o = out;  o%history_periods = st%periods     ! the whole horizon sampled
-      cfg = base;  cfg%method = 'exact'
       cfg%transient_periods = 0;  cfg%record_periods = st%periods
       call integrate(model, cfg, o, u0, v0, ref, err)
       if (allocated(err)) return
@@ -115,7 +122,8 @@ contains
       allocate(results(size(st%series)))
       do s = 1, size(st%series)
          nl = st%levels
-         if (st%series(s) == 'exact' .or. st%series(s) == 'auto') nl = 1  ! auto: exact here
+         ! an exact method has no parameter to vary; 'auto' is the exact one here
+         if (is_exact(st%series(s)) .or. st%series(s) == 'auto') nl = 1
          results(s)%name = trim(st%series(s))
          allocate(results(s)%parameter(nl), results(s)%seconds(nl), results(s)%error(nl), &
                   results(s)%poincare_error(nl), results(s)%steps(nl), results(s)%status(nl), &
@@ -195,7 +203,7 @@ contains
    subroutine stability_study(model, st, methods, omega_dt, rho, steps, err)
       type(model_t), intent(in) :: model                  !! model for the stable steps
       type(study_settings_t), intent(in) :: st             !! chart range
-      character(len=*), intent(in) :: methods(:)           !! series words (no 'exact')
+      character(len=*), intent(in) :: methods(:)           !! series words (stability_series)
       real(dp), allocatable, intent(out) :: omega_dt(:)    !! chart abscissae [-]
       real(dp), allocatable, intent(out) :: rho(:, :)      !! (points, methods) [-]
       type(stable_step_t), allocatable, intent(out) :: steps(:)  !! conditionally stable ones
@@ -204,12 +212,9 @@ contains
       type(study_settings_t) :: one
       real(dp) :: param
       character(len=:), allocatable :: pname
-      integer :: i, m, ns
+      type(method_caps_t), allocatable :: t(:)
+      integer :: i, m, ns, j
       logical :: known
-      real(dp), parameter :: limits(4) = [2.0_dp, 3.4641016151377544_dp, 2.449489742783178_dp, &
-                                          2.8284271247461903_dp]
-      character(len=*), parameter :: conditional(4) = [character(len=20) :: &
-         'central_difference', 'linear_acceleration', 'fox_goodwin', 'rk4']
       one = st;  one%base_steps = 64
       allocate(omega_dt(st%n_omega_dt), rho(st%n_omega_dt, size(methods)))
       do i = 1, st%n_omega_dt
@@ -218,7 +223,8 @@ contains
       end do
       do m = 1, size(methods)
          known = series_setting(trim(methods(m)), 1, one, base, cfg, param, pname)
-         if (.not. known .or. cfg%method == 'exact') then
+         if (known) known = .not. is_exact(cfg%method)
+         if (.not. known) then
             call fatal_error(err, "stability: no amplification matrix for '" // trim(methods(m)) &
                // "'")
             return
@@ -228,15 +234,50 @@ contains
             if (allocated(err)) return
          end do
       end do
-      allocate(steps(4))
-      do ns = 1, 4
-         known = series_setting(trim(conditional(ns)), 1, one, base, cfg, param, pname)
-         steps(ns)%name = trim(conditional(ns))
-         steps(ns)%limit = limits(ns)
-         steps(ns)%theory = limits(ns) / model%omega_max
+      ! the largest stable step of every conditionally stable method of the registry (those
+      ! charted through another method's amplification matrix aside)
+      t = method_table()
+      t = pack(t, [(t(j)%stability_limit > 0.0_dp .and. len_trim(t(j)%stability_with) == 0, &
+                    j = 1, size(t))])
+      allocate(steps(size(t)))
+      do ns = 1, size(t)
+         known = series_setting(trim(t(ns)%name), 1, one, base, cfg, param, pname)
+         steps(ns)%name = trim(t(ns)%name)
+         steps(ns)%limit = t(ns)%stability_limit
+         steps(ns)%theory = t(ns)%stability_limit / model%omega_max
          call largest_stable_step(model, cfg, 0.5_dp * steps(ns)%theory, 3000, 1.0e-4_dp, &
                                   steps(ns)%measured, err)
          if (allocated(err)) return
       end do
    end subroutine stability_study
+
+   !> The series of the stability study: every one of `series` that names a one-step method
+   !> (its fixed-step amplification matrix; an exact method has none and is left out), or an
+   !> error naming the first series that names no method ('auto' chooses one per model).
+   subroutine stability_series(series, methods, err)
+      character(len=*), intent(in) :: series(:)                !! the deck's series words
+      character(len=32), allocatable, intent(out) :: methods(:) !! those charted
+      type(error_t), allocatable, intent(out) :: err           !! a series without a method
+      type(study_settings_t) :: st
+      type(solver_settings_t) :: cfg, base
+      real(dp) :: param
+      character(len=:), allocatable :: pname
+      logical :: keep(size(series))
+      integer :: j
+      do j = 1, size(series)
+         keep(j) = series_setting(trim(series(j)), 1, st, base, cfg, param, pname)
+         if (keep(j)) keep(j) = method_exists(cfg%method)
+         if (.not. keep(j)) then
+            call fatal_error(err, 'group &study: series(' // str(j) // ") = '" &
+               // trim(series(j)) // "': analysis = 'stability' charts the amplification " &
+               // 'matrix of one method, and this series names none (' &
+               // "'auto' chooses one per model): give &study series, e.g. 'newmark_fixed', " &
+               // "'hht', 'generalized_alpha', 'central_difference', 'rk4' (without &study " &
+               // 'series the list is the work-precision study''s, which starts with ''auto'')')
+            return
+         end if
+         keep(j) = .not. is_exact(cfg%method)
+      end do
+      methods = pack(series, keep)
+   end subroutine stability_series
 end module gapbeam_studies

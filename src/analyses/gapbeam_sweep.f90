@@ -28,15 +28,12 @@ module gapbeam_sweep
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variables, check_deck_variable, &
       deck_variables_label
    use gapbeam_deck_parameter, only: model_with_values
-   use gapbeam_attractor, only: diagnose
-   use gapbeam_certify, only: certify_point
-   use gapbeam_starts, only: start_list, random_state, group_attractors
+   use gapbeam_point, only: start_vector, label_start, integrator_cache_t
+   use gapbeam_starts, only: start_list, group_attractors
    implicit none
    private
    public :: sweep_plan_t, make_plan, n_points, n_items, n_groups, group_of_item, item_slots, &
       group_points, slot_index, point_values, run_slot, run_items, combine_point
-
-   integer, parameter :: stream_random = 1000000   !! generator streams of the random starts
 
    !> What a sweep runs: its axes, its starts, its groups.
    type :: sweep_plan_t
@@ -173,11 +170,12 @@ contains
       y = plan%y((p - 1) / plan%nx + 1)
    end subroutine point_values
 
-   !> Run slot s (point p, start k) from the state its kind asks for: (u_prev, v_prev) for
-   !> 'up' / 'down' (the previous point's final state, or the deck's start at a line's first
-   !> point), the deck's (u0, v0), rest, or a seeded random state. The first start is
-   !> certified when the deck asks. A failure is recorded in the slot (status 1, its message,
-   !> label 'failed'); nothing is printed.
+   !> Run slot s (point p, start k): the point's model (the deck's with the axis values set),
+   !> the start its kind asks for (gapbeam_point: start_vector; (u_prev, v_prev) for 'up' /
+   !> 'down': the previous point's final state, or the deck's start at a line's first point),
+   !> then the point pipeline (label_start; the first start certified when the deck asks). A
+   !> failure is recorded in the slot (status 1, its message, label 'failed'); nothing is
+   !> printed.
    subroutine run_slot(deck, base, plan, s, u0, v0, u_prev, v_prev, sr)
       type(deck_t), intent(in) :: deck                   !! deck
       type(model_t), intent(in) :: base                  !! model of the deck itself
@@ -189,9 +187,9 @@ contains
       type(model_t) :: model
       type(transient_result_t) :: res
       type(output_settings_t) :: o
+      type(integrator_cache_t) :: cache
       type(error_t), allocatable :: err
       real(dp), allocatable :: u(:), v(:)
-      real(dp) :: amplitude
       integer :: p, k
       p = mod(s - 1, plan%np) + 1
       k = (s - 1) / plan%np + 1
@@ -200,27 +198,15 @@ contains
                              base)
       if (.not. allocated(err)) then
          sr%f1_open_hz = model%f1_open_hz
-         select case (plan%kinds(k))
-         case ('up', 'down')
-            u = u_prev;  v = v_prev
-         case ('rest')
-            allocate(u(size(u0)), v(size(v0)), source=0.0_dp)
-         case ('random')
-            amplitude = deck%diagnostics%random_amplitude
-            if (.not. (amplitude > 0.0_dp)) amplitude = 2.0_dp * model%half_amplitude
-            call random_state(model, deck%diagnostics%random_seed, &
-               stream_random + plan%ns * (p - 1) + k, amplitude, u, v, err)
-         case default
-            u = u0;  v = v0
-         end select
+         call start_vector(model, deck%diagnostics, plan%kinds(k), p, plan%ns, k, u0, v0, &
+                           u_prev, v_prev, u, v, err)
       end if
       if (.not. allocated(err)) then
          o = deck%output
          o%history_periods = 0
-         call diagnose(model, deck%solver, o, deck%diagnostics, u, v, res, sr, err)
+         call label_start(model, deck%solver, o, deck%diagnostics, u, v, p, &
+                          k == 1 .and. deck%diagnostics%certify, res, sr, err, cache)
       end if
-      if (.not. allocated(err) .and. k == 1 .and. deck%diagnostics%certify) &
-         call certify_point(model, deck%solver, o, deck%diagnostics, u, v, p, sr)
       if (allocated(err)) then
          sr%status = 1
          sr%message = 'point ' // str(p) // ' (' // trim(plan%label(1)) // ' = ' &

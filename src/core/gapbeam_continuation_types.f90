@@ -109,5 +109,6 @@ module gapbeam_continuation_types
       real(dp) :: seconds = 0.0_dp                   !! elapsed [s]
       integer :: map_evaluations = 0                 !! maps of p periods evaluated
       integer :: periods_integrated = 0              !! forcing periods integrated in all
+      character(len=:), allocatable :: note          !! about the start orbit ('' none)
    end type continuation_result_t
 end module gapbeam_continuation_types

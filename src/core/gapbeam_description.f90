@@ -18,6 +18,7 @@
 !> src/model/gapbeam_ring_contact.f90.
 module gapbeam_description
    use gapbeam_kinds, only: dp, pi
+   use gapbeam_laws, only: law_index
    implicit none
    private
    public :: beam_t, root_t, spring_t, point_mass_t, structure_t, stop_t, damping_t, forcing_t
@@ -34,7 +35,8 @@ module gapbeam_description
    integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
    integer, parameter :: dof_v = 3       !! local dof code of v (second plane, planes = 2)
    integer, parameter :: dof_theta_v = 4 !! local dof code of theta_v = dv/dx (planes = 2)
-   integer, parameter :: law_bilinear = 1   !! code of the bilinear stop law
+   !> codes of the built-in laws (their positions in gapbeam_laws' registry; a test checks)
+   integer, parameter :: law_bilinear = 1
    integer, parameter :: law_hertz = 2      !! code of the Hertz stop law
 
    character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
@@ -256,17 +258,10 @@ contains
       end select
    end function dof_name
 
-   !> Law code of a word; 0 if unknown.
-   pure integer function law_code(word)
-      character(len=*), intent(in) :: word   !! 'bilinear' or 'hertz'
-      select case (trim(word))
-      case ('bilinear')
-         law_code = law_bilinear
-      case ('hertz')
-         law_code = law_hertz
-      case default
-         law_code = 0
-      end select
+   !> Law code of a word (its position in the law registry, gapbeam_laws); 0 if unknown.
+   integer function law_code(word)
+      character(len=*), intent(in) :: word   !! a law's name
+      law_code = law_index(word)
    end function law_code
 
    !> Coefficients (beta, gamma) with zeta(f) = beta/(2 omega) + gamma omega/2 through two pairs.

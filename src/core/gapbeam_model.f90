@@ -10,6 +10,7 @@
 !> gapbeam_ring_contact): sum_r P_r on the (w, v) dofs of their node.
 module gapbeam_model
    use gapbeam_kinds, only: dp
+   use gapbeam_law, only: law_slot_t
    implicit none
    private
    public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd, add_extra_load, &
@@ -57,7 +58,7 @@ module gapbeam_model
       integer, allocatable :: c_dof(:)           !! global dof of each contact
       real(dp), allocatable :: c_sign(:)         !! direction s = +1 or -1
       real(dp), allocatable :: c_gap(:)          !! gap [m]
-      integer, allocatable :: c_law(:)           !! law code
+      integer, allocatable :: c_law(:)           !! law code: index in `laws`
       real(dp), allocatable :: c_k(:)            !! stiffness
       real(dp), allocatable :: c_c(:)            !! damper [N s/m]
       real(dp), allocatable :: c_p(:)            !! Hertz exponent
@@ -79,7 +80,7 @@ module gapbeam_model
       real(dp), allocatable :: r_normal(:, :)    !! (2, n_rings) flat: normal in (w, v)
       real(dp), allocatable :: r_centre(:, :)    !! (2, n_rings) circular: hole centre [m]
       real(dp), allocatable :: r_gap(:)          !! radial gap / gap [m]
-      integer, allocatable :: r_law(:)           !! law code
+      integer, allocatable :: r_law(:)           !! law code: index in `laws`
       real(dp), allocatable :: r_k(:), r_c(:), r_p(:)   !! normal law: stiffness, damper, exponent
       real(dp), allocatable :: r_mu(:)           !! Coulomb coefficient [-]
       real(dp), allocatable :: r_kt(:)           !! stick stiffness [N/m]
@@ -90,6 +91,9 @@ module gapbeam_model
       integer, allocatable :: c_tdof(:)          !! tangent dof of each contact (0: none)
       real(dp) :: omega_max = 0.0_dp             !! highest natural frequency [rad/s]
       real(dp) :: f1_open_hz = 0.0_dp            !! first frequency, stops open [Hz]
+      !> the contact laws, indexed by c_law and r_law (gapbeam_laws: the built-in ones, in the
+      !> order of their codes)
+      type(law_slot_t), allocatable :: laws(:)
    end type model_t
 
 contains

@@ -13,8 +13,10 @@ module gapbeam_parameters
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: str
    use gapbeam_deck, only: deck_t
+   use gapbeam_laws, only: law_caps_of
+   use gapbeam_law, only: law_caps_t
    use gapbeam_description, only: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, &
-      dof_w, dof_v, dof_name, law_code, law_bilinear, forcing_omega
+      dof_w, dof_v, dof_name, law_code, forcing_omega
    implicit none
    private
    public :: parameter_t, parameter_set_t, run_parameters, stiffness_units, forcing_text
@@ -253,15 +255,18 @@ contains
       end if
    end function units_of
 
-   !> Units of the stop stiffnesses: N m-1 or N m rad-1 for bilinear stops of one kind of dof;
-   !> '1' (see the long name) otherwise (Hertz stops: N m-p, with p per stop).
+   !> Units of the stop stiffnesses: N m-1 or N m rad-1 for laws with a linear stiffness
+   !> (bilinear) at stops of one kind of dof; '1' (see the long name) otherwise (Hertz stops:
+   !> N m-p, with p per stop).
    function stiffness_units(deck) result(u)
       type(deck_t), intent(in) :: deck                      !! the deck
       character(len=:), allocatable :: u
+      type(law_caps_t) :: lc
       integer :: j
       u = '1'
       do j = 1, size(deck%stops)
-         if (law_code(deck%stops(j)%law) /= law_bilinear) return
+         lc = law_caps_of(deck%stops(j)%law)
+         if (.not. lc%linear_stiffness) return
       end do
       u = units_of([deck%stops%dof], 'N m-1', 'N m rad-1')
    end function stiffness_units

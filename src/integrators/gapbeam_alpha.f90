@@ -33,6 +33,7 @@ module gapbeam_alpha
 
    !> HHT-alpha or generalized-alpha at one step size.
    type, extends(stepper_t) :: alpha_stepper_t
+      logical :: hht = .false.                 !! HHT (given alpha), else generalized-alpha
       real(dp) :: am = 0.0_dp, af = 0.0_dp, beta = 0.25_dp, gamma = 0.5_dp  !! parameters
       logical :: dense = .true.                !! dense factor (else banded)
       logical :: acceleration_form = .false.   !! solve for a1 (error control)
@@ -50,13 +51,13 @@ module gapbeam_alpha
 
 contains
 
-   !> (alpha_m, alpha_f, beta, gamma) of 'hht' (given alpha) or 'generalized_alpha' (given rho).
-   pure subroutine alpha_parameters(method, hht_alpha, rho_inf, am, af, beta, gamma)
-      character(len=*), intent(in) :: method      !! 'hht' or 'generalized_alpha'
+   !> (alpha_m, alpha_f, beta, gamma) of HHT (given alpha) or generalized-alpha (given rho).
+   pure subroutine alpha_parameters(hht, hht_alpha, rho_inf, am, af, beta, gamma)
+      logical, intent(in) :: hht                  !! HHT, else generalized-alpha
       real(dp), intent(in) :: hht_alpha           !! HHT alpha in [-1/3, 0]
       real(dp), intent(in) :: rho_inf             !! generalized-alpha rho_inf in [0, 1]
       real(dp), intent(out) :: am, af, beta, gamma
-      if (method == 'hht') then
+      if (hht) then
          am = 0.0_dp
          af = -hht_alpha
          gamma = 0.5_dp - hht_alpha
@@ -79,7 +80,7 @@ contains
       type(error_t), allocatable, intent(out) :: err  !! not positive definite
       integer :: n, ns, info, j, kd
       real(dp), allocatable :: kbar(:, :)
-      call alpha_parameters(cfg%method, cfg%hht_alpha, cfg%rho_infinity, self%am, self%af, &
+      call alpha_parameters(self%hht, cfg%hht_alpha, cfg%rho_infinity, self%am, self%af, &
                             self%beta, self%gamma)
       n = model%n;  ns = model%n_slots;  kd = model%sys%kd
       self%dense = use_dense(model, cfg%linear_solver)

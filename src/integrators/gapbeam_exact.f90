@@ -49,7 +49,8 @@
 !> factorizations = configurations built; dt_smallest / dt_largest = shortest / longest
 !> segment.
 !>
-!> Limits: bilinear stops only (the Hertz law is not piecewise linear: rejected with an error);
+!> Limits: piecewise-linear stop laws only (the bilinear law; a law whose caps say otherwise,
+!> such as Hertz, is rejected with an error);
 !> Rayleigh damping C = beta M + gamma K (as every deck builds it); forcing exactly at an
 !> undamped natural frequency of a configuration (no periodic particular solution) is
 !> rejected; at most 62 one-sided contacts.
@@ -60,14 +61,15 @@ module gapbeam_exact
    use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
-   use gapbeam_description, only: law_bilinear
+   use gapbeam_law, only: law_caps_t
    use gapbeam_contact_law, only: contact_force
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_integrator, only: integrator_t, contact_forces_at
    use gapbeam_exact_modes, only: open_modes_t, build_open_modes, to_modal, to_physical
    use gapbeam_exact_config, only: config_t, build_config, mask_text
+   use gapbeam_exact_piece, only: exact_piece_t
    use gapbeam_exact_segment, only: segment_t, start_segment, eval_seg, prune_seg, &
-      segment_values, segment_state, modal_window, sign_after, band, add_fn, mono_quad, &
+      segment_state, modal_window, sign_after, band, add_fn, mono_quad, &
       cubic_root
    implicit none
    private
@@ -83,19 +85,6 @@ module gapbeam_exact
    ! outcome of a sweep over a segment
    integer, parameter :: end_switch = 1, end_horizon = 2, end_anchor = 3
 
-   !> A window of a segment: closed-form dense output.
-   type, extends(piece_t) :: exact_piece_t
-      type(segment_t), pointer :: sg => null()        !! the segment
-      type(config_t), pointer :: cf => null()         !! its configuration
-      type(open_modes_t), pointer :: om => null()     !! open structure
-      type(model_t), pointer :: model => null()       !! model
-      real(dp) :: t0 = 0.0_dp                         !! time of the segment's start [s]
-      real(dp) :: omega = 0.0_dp                      !! forcing [rad/s]
-      integer(int64) :: mask = 0                      !! active contacts
-   contains
-      procedure :: sample => exact_sample
-      procedure :: state_at => exact_state
-   end type exact_piece_t
 
    !> The exact event-driven integrator.
    type, extends(integrator_t) :: exact_integrator_t
@@ -178,6 +167,7 @@ contains
       type(solver_settings_t), intent(in) :: cfg         !! settings (unused)
       type(error_t), allocatable, intent(out) :: err     !! unsupported model, LAPACK failure
       integer :: c, nc, nb, nr
+      type(law_caps_t) :: lc
       self%method = 'exact'
       nc = model%n_contacts
       if (.not. (model%omega > 0.0_dp)) then
@@ -186,11 +176,12 @@ contains
          return
       end if
       do c = 1, nc
-         if (model%c_law(c) /= law_bilinear) then
+         lc = model%laws(model%c_law(c))%law%caps()
+         if (.not. lc%piecewise_linear) then
             call fatal_error(err, 'gapbeam_exact: the exact event-driven integrator needs ' &
-               // 'piecewise-linear stops; stop ' // str(model%c_stop(c)) // ' uses the Hertz ' &
-               // 'law (f = k d^p), which is not piecewise linear: use the Newmark integrator ' &
-               // 'for it')
+               // 'piecewise-linear stops; stop ' // str(model%c_stop(c)) // " uses the law '" &
+               // trim(lc%name) // "' (" // trim(lc%force_text) // '), which is not piecewise ' &
+               // 'linear: use the Newmark integrator for it')
             return
          end if
       end do
@@ -247,9 +238,10 @@ contains
       class(observer_t), intent(inout), optional :: obs   !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err      !! configuration failure
       real(dp), allocatable :: x0(:), dummy(:)
-      integer :: outcome, flips, n
+      integer :: outcome, flips, n, ncfg0
       integer(int64) :: new_mask
       real(dp) :: tau_end, rem
+      ncfg0 = self%ncfg
       call self%begin_advance(state, t_target, obs, x0)
       flips = 0
       do
@@ -282,7 +274,7 @@ contains
       call contact_forces_at(self%model, state%u, state%v, state%f)
       state%f_prev = state%f
       state%dt_prev = 0.0_dp
-      self%factorizations = self%ncfg
+      self%factorizations = self%factorizations + (self%ncfg - ncfg0)
    end subroutine exact_advance
 
    !> Anchor the time, the horizon and the watch instant; the initial contact activity.
@@ -315,8 +307,7 @@ contains
          i = self%model%c_dof(c)
          d = self%model%c_sign(c) * state%u(i) - self%model%c_gap(c)
          dd = self%model%c_sign(c) * state%v(i)
-         if (contact_force(self%model%c_law(c), self%model%c_k(c), self%model%c_c(c), &
-             self%model%c_p(c), d, dd) > 0.0_dp) self%mask = ibset(self%mask, c - 1)
+         if (contact_force(self%model, c, d, dd) > 0.0_dp) self%mask = ibset(self%mask, c - 1)
       end do
    end subroutine begin_advance
 
@@ -972,39 +963,6 @@ contains
       call obs%observe(self%piece)
       self%n_roots = 0
    end subroutine emit_window
-
-   !> Outputs at t from the closed form (every term).
-   subroutine exact_sample(self, t, strain, rate, tip, tip_velocity, force)
-      class(exact_piece_t), intent(in) :: self          !! piece
-      real(dp), intent(in) :: t                         !! instant [s]
-      real(dp), intent(out) :: strain, rate, tip, tip_velocity   !! outputs
-      real(dp), intent(out) :: force(:)                 !! contact force magnitudes [N]
-      real(dp) :: val(0:1, self%om%nb), d, dd
-      integer :: c, b
-      call segment_values(self%sg, t - self%t0, val)
-      strain = val(0, self%om%b_strain);  rate = val(1, self%om%b_strain)
-      tip = val(0, self%om%b_tip);  tip_velocity = val(1, self%om%b_tip)
-      associate (m => self%model)
-         do c = 1, m%n_contacts
-            force(c) = 0.0_dp
-            if (.not. btest(self%mask, c - 1)) cycle
-            b = self%om%cslot(c)
-            d = m%c_sign(c) * val(0, b) - m%c_gap(c)
-            dd = m%c_sign(c) * val(1, b)
-            force(c) = max(0.0_dp, m%c_k(c) * d + m%c_c(c) * dd)
-         end do
-      end associate
-   end subroutine exact_sample
-
-   !> Displacement and velocity of every dof at t from the closed form.
-   subroutine exact_state(self, t, u, v)
-      class(exact_piece_t), intent(in) :: self          !! piece
-      real(dp), intent(in) :: t                         !! instant [s]
-      real(dp), intent(out) :: u(:), v(:)               !! state
-      real(dp) :: eta(self%om%nr), vel(self%om%nr)
-      call segment_state(self%cf, self%sg, t - self%t0, eta, vel)
-      call to_physical(self%om, eta, vel, u, v)
-   end subroutine exact_state
 
    !> A time as whole forcing periods and an offset in [0, T) (a time within 1e-9 T of a
    !> period boundary is on it).

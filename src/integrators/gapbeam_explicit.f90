@@ -30,9 +30,10 @@ module gapbeam_explicit
       procedure :: step => cd_step
    end type central_difference_t
 
-   !> Runge-Kutta on the first-order form: 'rk4' or 'rk45' (Dormand-Prince).
+   !> Runge-Kutta on the first-order form: classical RK4, or Dormand-Prince 5(4) with its
+   !> embedded estimate (the registry sets `embedded` for rk45).
    type, extends(stepper_t) :: runge_kutta_t
-      logical :: embedded = .false.           !! rk45: adaptive with the embedded estimate
+      logical :: embedded = .false.           !! Dormand-Prince with the embedded estimate
       real(dp) :: rtol = 1.0e-6_dp            !! rk45 relative tolerance
       real(dp) :: atol = 1.0e-12_dp           !! rk45 absolute tolerance (SI units of u, v)
       real(dp), allocatable :: mfac(:, :)     !! M^-1
@@ -97,8 +98,8 @@ contains
       integer :: c, i
       do c = 1, model%n_contacts
          i = model%c_dof(c)
-         f(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), &
-            model%c_sign(c) * u(i) - model%c_gap(c), model%c_sign(c) * v(i))
+         f(c) = contact_force(model, c, model%c_sign(c) * u(i) - model%c_gap(c), &
+                              model%c_sign(c) * v(i))
          if (c == hold) f(c) = 0.0_dp
          r(i) = r(i) - model%c_sign(c) * f(c)
       end do
@@ -110,6 +111,16 @@ contains
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
+      integer :: i
+      ! M + dt/2 C is regular even where M is not, but a dof without mass has omega = infinity:
+      ! no step is stable
+      do i = 1, model%n
+         if (model%sys%m(i, i) > 0.0_dp) cycle
+         call fatal_error(err, "method 'central_difference': the mass matrix is singular (dof " &
+            // str(i) // ' has no mass); explicit methods need a mass at every dof: use &beam ' &
+            // "rotary_inertia = 'half_element' or 'hrz', or an implicit method")
+         return
+      end do
       call factor_spd('central_difference', model%sys%m + 0.5_dp * dt * model%c, self%fac, err)
       if (allocated(err)) return
       if (.not. allocated(self%w)) allocate(self%w(model%n), self%r(model%n))
@@ -150,7 +161,6 @@ contains
       type(solver_settings_t), intent(in) :: cfg
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
-      self%embedded = cfg%method == 'rk45'
       self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
       call factor_spd(trim(cfg%method), model%sys%m, self%mfac, err)
       if (allocated(err)) return

@@ -17,8 +17,11 @@ module gapbeam_integrator
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
-   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
-   use gapbeam_description, only: dof_name, law_bilinear
+   use gapbeam_model, only: model_t, load_factor, add_extra_load
+   use gapbeam_description, only: dof_name
+   use gapbeam_law, only: law_caps_t
+   use gapbeam_capabilities, only: method_caps_t, needs_t, method_table, method_caps, &
+      model_needs, method_refusal, needs_text
    use gapbeam_observer, only: piece_t, observer_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
@@ -29,11 +32,8 @@ module gapbeam_integrator
    private
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
-      dof_label, resolve_method, tube_refusal, tube_physics_text, ring_load
-
-   !> the tolerance below which 'auto' considers rk45 for a Hertz stop: Newmark's error
-   !> levels off near 1e-8 .. 1e-7 in double precision (work-precision study)
-   real(dp), parameter :: newmark_floor = 1.0e-7_dp
+      dof_label, resolve_method, refusal, tube_physics_text, ring_load
+   public :: method_entry_t, method_registry_t, method_registry, zero_counters
 
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t
@@ -46,6 +46,7 @@ module gapbeam_integrator
       real(dp) :: dt_smallest = huge(1.0_dp)       !! smallest step (segment) [s]
       real(dp) :: dt_largest = 0.0_dp              !! largest step (segment) [s]
       character(len=:), allocatable :: reason      !! why this method ran ('auto')
+      type(method_caps_t) :: caps                  !! what the method can do (the registry's)
    contains
       procedure(init_interface), deferred :: init        !! build for a model
       procedure(advance_interface), deferred :: advance  !! carry a state to a time
@@ -53,6 +54,7 @@ module gapbeam_integrator
       !     (the exact integrator overrides it); the default says there is none
       procedure :: advance_jacobian => advance_jacobian_none
       ! --- end of the continuation hook
+      procedure :: reset_counters => zero_counters       !! counters to zero (a new record)
    end type integrator_t
 
    !> One step of a one-step method at one step size.
@@ -66,6 +68,23 @@ module gapbeam_integrator
       procedure(step_interface), deferred :: step         !! advance one step of size dt
       procedure :: local_error => no_local_error          !! error estimate of the last step
    end type stepper_t
+
+   !> A method of the registry: what it can do (gapbeam_capabilities) and, for a one-step
+   !> method, an unprepared stepper of it (its prototype; not allocated: the exact integrator).
+   type :: method_entry_t
+      type(method_caps_t) :: caps                      !! capabilities
+      class(stepper_t), allocatable :: proto           !! stepper prototype
+   end type method_entry_t
+
+   !> The registry of time integrators: the built-in methods (method_registry()), to which a
+   !> caller (a test) may add its own with `add`.
+   type :: method_registry_t
+      type(method_entry_t), allocatable :: entries(:)  !! the methods
+   contains
+      procedure :: add => registry_add                 !! one more method
+      procedure :: table => registry_table             !! capabilities of every method
+      procedure :: find => registry_find               !! index of a method word (0: none)
+   end type method_registry_t
 
    abstract interface
       !> Build the integrator for a model (keeps its own copy of the model).
@@ -115,161 +134,197 @@ module gapbeam_integrator
    end interface
 
    interface
-      !> An integrator of the settings' method, initialised for the model (the registry).
-      module subroutine make_integrator(model, cfg, integ, err)
+      !> An integrator of the settings' method, initialised for the model: 'auto' resolved,
+      !> refused with the registry's reason when the method cannot integrate the model.
+      !> `registry`: the built-in methods when absent.
+      module subroutine make_integrator(model, cfg, integ, err, registry)
          type(model_t), intent(in) :: model                      !! model
          type(solver_settings_t), intent(in) :: cfg              !! method and settings
          class(integrator_t), allocatable, intent(out) :: integ  !! ready to advance
          type(error_t), allocatable, intent(out) :: err          !! unknown method, set-up
+         type(method_registry_t), intent(in), optional :: registry   !! methods
       end subroutine make_integrator
 
       !> An unprepared stepper of a one-step method word (the registry).
-      module subroutine make_stepper(method, proto, err)
+      module subroutine make_stepper(method, proto, err, registry)
          character(len=*), intent(in) :: method                  !! method word
          class(stepper_t), allocatable, intent(out) :: proto     !! the method's stepper
          type(error_t), allocatable, intent(out) :: err          !! not a one-step method
+         type(method_registry_t), intent(in), optional :: registry   !! methods
       end subroutine make_stepper
+
+      !> The built-in methods: every line of method_table() with its implementation.
+      module function method_registry() result(reg)
+         type(method_registry_t) :: reg                          !! registry
+      end function method_registry
    end interface
 
 contains
 
-   !> The settings a run uses: method 'auto' resolved (the exact integrator when every stop is
-   !> piecewise linear, else Newmark with error control) and step_control 'auto' resolved
-   !> ('error' for the methods with an error estimate, 'fixed' for the others; 'embedded' is
-   !> rk45's name for 'error'); `reason` says which method runs and why.
-   subroutine resolve_method(model, cfg, eff, reason)
-      type(model_t), intent(in) :: model                   !! model (its stop laws)
+   !> The settings a run uses: method 'auto' resolved by the registry (`choose_auto`), a
+   !> variant's preset parameters applied, and step_control 'auto' resolved to the method's
+   !> own (`auto_control`: 'error' for the methods with an error estimate, 'fixed' for the
+   !> others; 'embedded' is the embedded pairs' name for 'error'); `reason` says which method
+   !> runs and why. `table`: the registry's capabilities (default: method_table()).
+   subroutine resolve_method(model, cfg, eff, reason, table)
+      type(model_t), intent(in) :: model                   !! model (its needs)
       type(solver_settings_t), intent(in) :: cfg           !! the deck's settings
-      type(solver_settings_t), intent(out) :: eff         !! the settings that run
+      type(solver_settings_t), intent(out) :: eff          !! the settings that run
       character(len=:), allocatable, intent(out) :: reason !! one line
+      type(method_caps_t), intent(in), optional :: table(:)   !! registry
+      type(method_caps_t), allocatable :: t(:)
+      type(method_caps_t) :: c
+      if (present(table)) then
+         t = table
+      else
+         t = method_table()
+      end if
       eff = cfg
       reason = "method '" // trim(cfg%method) // "' as the deck asks"
-      if (cfg%method == 'auto') then
-         if (cfg%step_control == 'half_step' .or. cfg%step_control == 'fixed' .or. &
-             cfg%stop_solution == 'fixed_point') then
-            ! decks written before 'auto' (whose default was Newmark) keep their method
-            eff%method = 'newmark'
-            reason = "method 'auto': the deck asks for stepping options (step_control = '" &
-               // trim(cfg%step_control) // "', stop_solution = '" // trim(cfg%stop_solution) &
-               // "'), so Newmark"
-         else if (has_tube_physics(model)) then
-            eff%method = 'newmark'
-            reason = "method 'auto': " // tube_physics_text(model) // ', so Newmark with ' &
-               // 'error control at the tolerance'
-         else if (all(model%c_law == law_bilinear)) then
-            eff%method = 'exact'
-            reason = "method 'auto': every stop is piecewise linear, so the exact " &
-               // 'event-driven integrator'
-         else if (cfg%tolerance < newmark_floor .and. rk45_cheaper(model, cfg%tolerance)) then
-            eff%method = 'rk45'
-            reason = "method 'auto': a stop is not piecewise linear (Hertz) and the tolerance " &
-               // 'is below what Newmark reaches in double precision (about 1e-7), so the ' &
-               // 'embedded Runge-Kutta method rk45 (estimated cheaper for this model)'
-         else
-            eff%method = 'newmark'
-            reason = "method 'auto': a stop is not piecewise linear (Hertz), so Newmark with " &
-               // 'error control at the tolerance'
-         end if
-      end if
+      if (cfg%method == 'auto') call choose_auto(model, cfg, t, eff%method, reason)
+      c = method_caps(eff%method, t)
+      if (c%newmark_delta >= 0.0_dp) eff%newmark_delta = c%newmark_delta
+      if (c%newmark_alpha >= 0.0_dp) eff%newmark_alpha = c%newmark_alpha
       select case (eff%step_control)
       case ('auto')
-         select case (eff%method)
-         case ('newmark', 'hht', 'generalized_alpha', 'rk45')
-            eff%step_control = 'error'
-         case default
-            eff%step_control = 'fixed'
-         end select
+         eff%step_control = c%auto_control
       case ('embedded')
          eff%step_control = 'error'
       end select
    end subroutine resolve_method
 
-   !> Why `method` (with the resolved step_control and stop_solution) cannot integrate the
-   !> model, or '' when it can. The exact integrator (and continuation, which uses it) handles
-   !> planar models with frictionless flat stops and base motion along w only; the ring
-   !> contacts (circular clearances, friction) need Newmark under error control, whose steps end
-   !> at every contact and stick-slip switch; two-plane models and point forces run with every
-   !> stepping method except the paper's fixed point.
-   function tube_refusal(model, method, step_control, stop_solution) result(why)
-      type(model_t), intent(in) :: model             !! model
-      character(len=*), intent(in) :: method         !! resolved method word
-      character(len=*), intent(in) :: step_control   !! resolved step control ('auto' allowed)
-      character(len=*), intent(in) :: stop_solution  !! 'condensed' or 'fixed_point'
-      character(len=:), allocatable :: why
-      why = ''
-      if (.not. has_tube_physics(model)) return
-      select case (method)
-      case ('exact')
-         why = "method 'exact' cannot integrate this model: " // tube_physics_text(model) &
-            // "; the exact event-driven integrator (and continuation, which uses it) handles " &
-            // "planar models with frictionless flat stops and base motion along w only: use " &
-            // "method = 'newmark' (or 'auto', which chooses it)"
-      case ('newmark')
-         if (stop_solution == 'fixed_point') then
-            why = "stop_solution = 'fixed_point' cannot integrate this model: " &
-               // tube_physics_text(model) // ": use stop_solution = 'condensed'"
-         else if (model%n_rings > 0 .and. step_control /= 'error' .and. &
-                  step_control /= 'auto') then
-            why = "method 'newmark' with step_control = '" // trim(step_control) // "' cannot " &
-               // 'integrate this model: ' // tube_physics_text(model) // ": use step_control " &
-               // "= 'error' (or 'auto'), whose steps end at every contact and stick-slip switch"
+   !> What method 'auto' runs, from the registry's roles: the 'exact' method when it can
+   !> integrate the model; else the 'default' one (Newmark with error control at the
+   !> tolerance), unless the tolerance is below the default's accuracy floor and a 'fine'
+   !> method can integrate the model at an estimated lower cost. A deck that asks for the
+   !> default's stepping options (step_control 'half_step' or 'fixed', stop_solution
+   !> 'fixed_point': written before 'auto' existed, when Newmark was the default) keeps it.
+   subroutine choose_auto(model, cfg, t, method, reason)
+      type(model_t), intent(in) :: model                   !! model
+      type(solver_settings_t), intent(in) :: cfg           !! the deck's settings
+      type(method_caps_t), intent(in) :: t(:)              !! registry
+      character(len=*), intent(inout) :: method            !! 'auto' in, the choice out
+      character(len=:), allocatable, intent(inout) :: reason !! why
+      type(needs_t) :: nd
+      integer :: j, i_exact, i_fine, i_default
+      i_exact = 0;  i_fine = 0;  i_default = 0
+      do j = size(t), 1, -1
+         select case (t(j)%auto_role)
+         case ('exact');  i_exact = j
+         case ('fine');  i_fine = j
+         case ('default');  i_default = j
+         end select
+      end do
+      if (i_default == 0) error stop 'gapbeam_integrator:choose_auto: no default method in ' &
+         // 'the registry'
+      method = t(i_default)%name
+      nd = model_needs(model)
+      if (cfg%step_control == 'half_step' .or. cfg%step_control == 'fixed' .or. &
+          cfg%stop_solution == 'fixed_point') then
+         reason = "method 'auto': the deck asks for stepping options (step_control = '" &
+            // trim(cfg%step_control) // "', stop_solution = '" // trim(cfg%stop_solution) &
+            // "'), so " // trim(t(i_default)%title)
+      else if (len(needs_text(nd)) > 0 .and. .not. can_run(i_exact)) then
+         reason = "method 'auto': it has " // needs_text(nd) // ', so ' &
+            // trim(t(i_default)%title) // ' with error control at the tolerance'
+      else if (can_run(i_exact)) then
+         method = t(i_exact)%name
+         reason = "method 'auto': every stop is piecewise linear, so " // trim(t(i_exact)%title)
+      else if (cfg%tolerance < t(i_default)%accuracy_floor .and. can_run(i_fine)) then
+         if (.not. cheaper(model, cfg%tolerance, t(i_fine), t(i_default))) then
+            reason = nonlinear_reason()
+            return
          end if
-      case default
-         if (model%n_rings > 0) why = "method '" // trim(method) // "' cannot integrate this " &
-            // 'model: ' // tube_physics_text(model) // ": use method = 'newmark' (or 'auto') " &
-            // "with step_control = 'error' (or 'auto')"
-      end select
-   end function tube_refusal
+         method = t(i_fine)%name
+         reason = "method 'auto': a stop is not piecewise linear (" // law_title() &
+            // ') and the tolerance is below what ' // trim(t(i_default)%title) // ' reaches ' &
+            // 'in double precision (about ' // str(t(i_default)%accuracy_floor) // '), so ' &
+            // trim(t(i_fine)%title) // ' (estimated cheaper for this model)'
+      else
+         reason = nonlinear_reason()
+      end if
 
-   !> What a model has beyond a planar beam with flat frictionless stops, in words.
+   contains
+
+      !> Can method j of the registry integrate the model (j = 0: there is none)?
+      logical function can_run(j)
+         integer, intent(in) :: j
+         can_run = .false.
+         if (j > 0) can_run = len(method_refusal(t(j), nd, t(j)%auto_control, 'condensed', &
+                                                 t)) == 0
+      end function can_run
+
+      !> The title of the first law that is not piecewise linear.
+      function law_title() result(w)
+         character(len=:), allocatable :: w
+         type(law_caps_t) :: lc
+         integer :: k
+         w = trim(nd%nonlinear_law)
+         do k = 1, size(model%laws)
+            lc = model%laws(k)%law%caps()
+            if (lc%name == nd%nonlinear_law) w = trim(lc%title)
+         end do
+      end function law_title
+
+      function nonlinear_reason() result(w)
+         character(len=:), allocatable :: w
+         w = "method 'auto': a stop is not piecewise linear (" // law_title() // '), so ' &
+            // trim(t(i_default)%title) // ' with error control at the tolerance'
+      end function nonlinear_reason
+   end subroutine choose_auto
+
+   !> Why the registry's method (with the resolved step control and stop solution) cannot
+   !> integrate the model, or '' when it can (gapbeam_capabilities: method_refusal).
+   function refusal(model, eff, table) result(why)
+      type(model_t), intent(in) :: model                  !! model
+      type(solver_settings_t), intent(in) :: eff          !! resolved settings
+      type(method_caps_t), intent(in), optional :: table(:)   !! registry
+      character(len=:), allocatable :: why
+      type(method_caps_t) :: c
+      c = method_caps(eff%method, table)
+      why = ''
+      if (len_trim(c%name) == 0) return
+      why = method_refusal(c, model_needs(model), eff%step_control, eff%stop_solution, table)
+   end function refusal
+
+   !> What a model has beyond a planar beam with flat frictionless stops, in words ('it
+   !> has ...'; '' when nothing).
    function tube_physics_text(model) result(t)
       type(model_t), intent(in) :: model            !! model
       character(len=:), allocatable :: t
-      character(len=48) :: items(4)
-      integer :: n, k
-      n = 0
-      if (model%n_rings > 0) then
-         if (any(model%r_circular)) then
-            n = n + 1;  items(n) = 'a circular clearance'
-         end if
-         if (any(model%r_mu > 0.0_dp)) then
-            n = n + 1;  items(n) = 'friction'
-         end if
-      end if
-      if (model%sys%planes > 1) then
-         n = n + 1;  items(n) = 'two planes of motion'
-      end if
-      if (model%extra_load) then
-         n = n + 1;  items(n) = 'loads out of the w plane or point forces'
-      end if
-      t = 'it has'
-      do k = 1, n
-         if (k > 1) t = t // ','
-         t = t // ' ' // trim(items(k))
-      end do
+      t = needs_text(model_needs(model))
+      if (len(t) > 0) t = 'it has ' // t
    end function tube_physics_text
 
-   !> Whether rk45 is expected to cost less than Newmark at `tol` on this model: flops per
-   !> forcing period from the step counts measured on the reference beam (Newmark about
-   !> 100 tol^(-1/2) steps, rk45 60 tol^(-1/5) or its stability limit T |lambda|_max / 3.3,
-   !> whichever is more, |lambda|_max = max(omega_max, beta + gamma omega_max^2): Rayleigh
-   !> damping makes the high modes overdamped and stiff) and the work of a step (Newmark 4 n^2 dense or 40 n banded, rk45 seven
-   !> stages of dense products, 21 n^2). Explicit methods need a mass at every dof.
-   pure logical function rk45_cheaper(model, tol) result(yes)
+   !> Whether the 'fine' (explicit, embedded) method `fine` is expected to cost less than the
+   !> 'default' implicit one at `tol` on this model: flops per forcing period from the step
+   !> counts measured on the reference beam (Newmark about 100 tol^(-1/order) steps, rk45
+   !> 60 tol^(-1/order) or its stability limit T |lambda|_max / limit, whichever is more,
+   !> |lambda|_max = max(omega_max, beta + gamma omega_max^2): Rayleigh damping makes the high
+   !> modes overdamped and stiff) and the work of a step (an implicit step 4 n^2 dense or 40 n
+   !> banded, an explicit one 3 n^2 per stage of dense products). Explicit methods need a mass
+   !> at every dof.
+   pure logical function cheaper(model, tol, fine, default) result(yes)
       type(model_t), intent(in) :: model              !! model
       real(dp), intent(in) :: tol                     !! tolerance
+      type(method_caps_t), intent(in) :: fine         !! the candidate
+      type(method_caps_t), intent(in) :: default      !! the default method
       real(dp) :: n, period, cost_nm, cost_rk
       yes = .false.
       if (.not. allocated(model%sys%m_band)) return
       if (any(model%sys%m_band(model%sys%kd + 1, :) <= 0.0_dp)) return
+      if (fine%order < 1 .or. default%order < 1 .or. .not. (fine%stability_limit > 0.0_dp)) &
+         return
       n = real(model%n, dp)
       period = 2.0_dp * pi / model%omega
-      cost_nm = 100.0_dp * tol**(-0.5_dp) * merge(4.0_dp * n**2, 40.0_dp * n, model%n <= 60)
+      cost_nm = 100.0_dp * tol**(-1.0_dp / default%order) * merge(4.0_dp * n**2, 40.0_dp * n, &
+                                                                 model%n <= 60)
       ! the stiffest eigenvalue: omega_max, or beta + gamma omega_max^2 when overdamped
-      cost_rk = max(60.0_dp * tol**(-0.2_dp), period * max(model%omega_max, model%beta &
-                + model%gamma * model%omega_max**2) / 3.3_dp) * 21.0_dp * n**2
+      cost_rk = max(60.0_dp * tol**(-1.0_dp / fine%order), period * max(model%omega_max, &
+                model%beta + model%gamma * model%omega_max**2) / fine%stability_limit) &
+                * (3.0_dp * fine%stages) * n**2
       yes = cost_rk < cost_nm
-   end function rk45_cheaper
+   end function cheaper
 
    !> The default: a method without a local error estimate.
    !>
@@ -289,6 +344,15 @@ contains
       fda = 0.0_dp;  ev = 0.0_dp;  coef = 0.0_dp
       has = .false.
    end subroutine no_local_error
+
+   !> The counters to zero: what a record reports is then the work of that record (an
+   !> integrator reused for the next run of the same model keeps its factorisations).
+   subroutine zero_counters(self)
+      class(integrator_t), intent(inout) :: self   !! integrator
+      self%steps_accepted = 0;  self%steps_rejected = 0;  self%events = 0
+      self%factorizations = 0;  self%fp_iterations = 0
+      self%dt_smallest = huge(1.0_dp);  self%dt_largest = 0.0_dp
+   end subroutine zero_counters
 
    ! --- continuation hook (issue 14)
    !> Advance and return d x(t_target) / d x(t) in the reduced coordinates of the dofs with
@@ -349,8 +413,8 @@ contains
       integer :: c, i
       do c = 1, model%n_contacts
          i = model%c_dof(c)
-         f(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), &
-            model%c_sign(c) * u(i) - model%c_gap(c), model%c_sign(c) * v(i))
+         f(c) = contact_force(model, c, model%c_sign(c) * u(i) - model%c_gap(c), &
+                              model%c_sign(c) * v(i))
       end do
    end subroutine contact_forces_at
 
@@ -438,4 +502,51 @@ contains
          end do
       end do
    end function dof_label
+
+   !> Add a method (its capabilities and, for a one-step method, its stepper); a method of
+   !> the same name is replaced.
+   subroutine registry_add(self, caps, proto)
+      class(method_registry_t), intent(inout) :: self      !! registry
+      type(method_caps_t), intent(in) :: caps              !! what it can do
+      class(stepper_t), intent(in), optional :: proto      !! its stepper (one-step method)
+      type(method_entry_t), allocatable :: more(:)
+      integer :: j, n
+      if (.not. allocated(self%entries)) allocate(self%entries(0))
+      j = self%find(caps%name)
+      if (j == 0) then
+         n = size(self%entries)
+         allocate(more(n + 1))
+         do j = 1, n
+            more(j)%caps = self%entries(j)%caps
+            if (allocated(self%entries(j)%proto)) call move_alloc(self%entries(j)%proto, &
+                                                                  more(j)%proto)
+         end do
+         call move_alloc(more, self%entries)
+         j = n + 1
+      end if
+      self%entries(j)%caps = caps
+      if (allocated(self%entries(j)%proto)) deallocate(self%entries(j)%proto)
+      if (present(proto)) allocate(self%entries(j)%proto, source=proto)
+   end subroutine registry_add
+
+   !> The capabilities of every method of the registry, in order.
+   function registry_table(self) result(t)
+      class(method_registry_t), intent(in) :: self         !! registry
+      type(method_caps_t), allocatable :: t(:)
+      integer :: j
+      allocate(t(0))
+      if (allocated(self%entries)) t = [(self%entries(j)%caps, j = 1, size(self%entries))]
+   end function registry_table
+
+   !> Index of method `name` in the registry (0: none).
+   integer function registry_find(self, name) result(j)
+      class(method_registry_t), intent(in) :: self         !! registry
+      character(len=*), intent(in) :: name                 !! method word
+      if (allocated(self%entries)) then
+         do j = 1, size(self%entries)
+            if (trim(self%entries(j)%caps%name) == trim(name)) return
+         end do
+      end if
+      j = 0
+   end function registry_find
 end module gapbeam_integrator

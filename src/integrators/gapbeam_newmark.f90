@@ -15,7 +15,7 @@ module gapbeam_newmark
    use gapbeam_linalg, only: dense_matvec, band_matvec, band_solve, dense_to_band
    use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
    use gapbeam_state, only: state_t
-   use gapbeam_contact_law, only: contact_force, solve_scalar_contact, solve_contacts
+   use gapbeam_contact_law, only: contact_force, contact_solve, solve_contacts
    use gapbeam_ring_contact, only: solve_mixed_contacts
    use gapbeam_integrator, only: stepper_t
    use gapbeam_settings, only: solver_settings_t
@@ -73,6 +73,19 @@ contains
       type(solver_settings_t), intent(in) :: cfg       !! settings
       real(dp), intent(in) :: dt                       !! step [s]
       type(error_t), allocatable, intent(out) :: err   !! factorization failure
+      integer :: i
+      ! a conditionally stable member (linear acceleration, Fox-Goodwin, ...) has no stable step
+      ! for a dof without mass (omega = infinity); the unconditionally stable ones run it
+      if (cfg%newmark_alpha < 0.25_dp * (cfg%newmark_delta + 0.5_dp)**2 - 1.0e-12_dp) then
+         do i = 1, model%n
+            if (model%sys%m(i, i) > 0.0_dp) cycle
+            call fatal_error(err, "method 'newmark' with newmark_alpha = " &
+               // str(cfg%newmark_alpha) // ' is only conditionally stable and dof ' // str(i) &
+               // " has no mass (no stable step): use newmark_alpha >= (newmark_delta + 1/2)^2/4" &
+               // " or &beam rotary_inertia = 'half_element' or 'hrz'")
+            return
+         end do
+      end if
       call build_step_op(model, cfg%newmark_delta, cfg%newmark_alpha, dt, &
                          use_dense(model, cfg%linear_solver), self%op, err)
       if (allocated(err)) return
@@ -185,8 +198,7 @@ contains
             vstar(c) = model%c_sign(c) * s1%v(i)
          end do
          if (model%n_contacts == 1 .and. hold == 0) then
-            s1%f(1) = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), &
-                         model%c_p(1), dstar(1), vstar(1), op%h(1, 1), op%c%a1)
+            s1%f(1) = contact_solve(model, 1, dstar(1), vstar(1), op%h(1, 1), op%c%a1)
          else
             s1%f = s0%f                                ! first guess of the Gauss-Seidel sweep
             call solve_contacts(model, op%h, 1.0_dp, op%c%a1, dstar, vstar, s1%f, hold)
@@ -405,8 +417,7 @@ contains
          if (hold) ds = 0.0_dp
          if (ds > 0.0_dp) then
             vs = model%c_sign(1) * (op%c%a1 * u1(i) - hc(i))
-            fc = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), model%c_p(1), &
-                                      ds, vs, op%h(1, 1), op%c%a1)
+            fc = contact_solve(model, 1, ds, vs, op%h(1, 1), op%c%a1)
          else
             fc = 0.0_dp
          end if
@@ -464,8 +475,7 @@ contains
       f1 = 0.0_dp
       if (ds > 0.0_dp) then
          vs = sgn * (a1 * u1(dof) - hc(dof))
-         f1 = solve_scalar_contact(model%c_law(1), model%c_k(1), model%c_c(1), model%c_p(1), &
-                                   ds, vs, h, a1)
+         f1 = contact_solve(model, 1, ds, vs, h, a1)
          xj = sgn * f1
          do i = 1, n
             u1(i) = u1(i) - g(i) * xj
@@ -545,7 +555,7 @@ contains
             i = model%c_dof(c)
             d = model%c_sign(c) * y(i) - model%c_gap(c)
             ddot = model%c_sign(c) * (op%c%a1 * y(i) - hc(i))
-            fnew(c) = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), d, ddot)
+            fnew(c) = contact_force(model, c, d, ddot)
             if (c == held) fnew(c) = 0.0_dp
             change = max(change, abs(fnew(c) - f(c)))
             fmax = max(fmax, fnew(c))
@@ -638,7 +648,7 @@ contains
             i = model%c_dof(c)
             d = model%c_sign(c) * um(i) - model%c_gap(c)
             ddot = model%c_sign(c) * vm(i)
-            fc = contact_force(model%c_law(c), model%c_k(c), model%c_c(c), model%c_p(c), d, ddot)
+            fc = contact_force(model, c, d, ddot)
             am(i) = am(i) - model%c_sign(c) * fc
          end do
          smax = 0.0_dp

@@ -21,8 +21,7 @@
 module gapbeam_wear
    use gapbeam_kinds, only: dp
    use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
-   use gapbeam_description, only: law_bilinear
-   use gapbeam_contact_law, only: contact_force
+   use gapbeam_contact_law, only: contact_force, contact_elastic, contact_energy
    use gapbeam_ring_contact, only: ring_force, ring_geometry, ring_stored_energy, ring_slip, &
       ring_anchor_of, ring_tangent_gap
    use gapbeam_linalg, only: band_matvec, dense_matvec
@@ -120,17 +119,20 @@ contains
       class(wear_meter_t), intent(inout) :: self   !! meter
       real(dp), intent(in) :: wq                   !! quadrature weight times the piece [s]
       integer :: c, i, k, it
-      real(dp) :: d, dd, f
+      real(dp) :: d, dd, f, fe
       associate (m => self%model)
          do c = 1, m%n_contacts
             i = m%c_dof(c);  k = m%c_stop(c)
             d = m%c_sign(c) * self%u(i) - m%c_gap(c)
             dd = m%c_sign(c) * self%v(i)
-            f = contact_force(m%c_law(c), m%c_k(c), m%c_c(c), m%c_p(c), d, dd)
-            ! the damper's share of the work, wherever the spring is compressed (a released
-            ! damped contact, f = 0 at d > 0, returns the spring's energy to nothing)
-            if (self%energy .and. m%c_law(c) == law_bilinear .and. m%c_c(c) > 0.0_dp .and. &
-                d > 0.0_dp) self%e_damp = self%e_damp + wq * (f - m%c_k(c) * d) * dd
+            f = contact_force(m, c, d, dd)
+            ! the damper's share of the work (the force less its elastic part), wherever the
+            ! spring is compressed (a released damped contact, f = 0 at d > 0, returns the
+            ! spring's energy to nothing)
+            if (self%energy .and. d > 0.0_dp) then
+               fe = contact_elastic(m, c, d)
+               if (f /= fe) self%e_damp = self%e_damp + wq * (f - fe) * dd
+            end if
             if (f <= 0.0_dp) cycle
             it = m%c_tdof(c)
             if (it > 0) then
@@ -148,7 +150,7 @@ contains
       real(dp), intent(inout) :: acc_f(:), acc_f2(:), acc_work(:), acc_contact(:)  !! per stop
       integer, intent(inout) :: n_impacts(:)           !! per stop
       real(dp), intent(inout) :: peak(:)               !! per stop [N]
-      real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn
+      real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
       real(dp) :: rho_a(self%model%n_rings), rho_b(self%model%n_rings)
@@ -190,8 +192,10 @@ contains
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
-               if (self%energy .and. m%r_law(r) == law_bilinear .and. m%r_c(r) > 0.0_dp .and. &
-                   d > 0.0_dp) self%e_damp = self%e_damp + wq * (fn - m%r_k(r) * d) * dn
+               if (self%energy .and. d > 0.0_dp) then
+                  fe = m%laws(m%r_law(r))%law%elastic(m%r_k(r), m%r_c(r), m%r_p(r), d)
+                  if (fn /= fe) self%e_damp = self%e_damp + wq * (fn - fe) * dn
+               end if
                if (fn <= 0.0_dp) cycle
                acc_f(k) = acc_f(k) + wq * fn
                acc_f2(k) = acc_f2(k) + wq * fn**2
@@ -242,11 +246,7 @@ contains
          do c = 1, m%n_contacts
             d = m%c_sign(c) * u(m%c_dof(c)) - m%c_gap(c)
             if (d <= 0.0_dp) cycle
-            if (m%c_law(c) == law_bilinear) then
-               e = e + 0.5_dp * m%c_k(c) * d**2
-            else
-               e = e + m%c_k(c) * d**(m%c_p(c) + 1.0_dp) / (m%c_p(c) + 1.0_dp)
-            end if
+            e = e + contact_energy(m, c, d)
          end do
          do r = 1, m%n_rings
             e = e + ring_stored_energy(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &

@@ -7,11 +7,12 @@
 !>    N1 = 1 - 3 xi^2 + 2 xi^3,  N2 = le (xi - 2 xi^2 + xi^3),
 !>    N3 = 3 xi^2 - 2 xi^3,      N4 = le (xi^3 - xi^2).
 !> A fixed dof (dof_of = 0) is zero. Points: x = 0, then `per_element` points on each element
-!> ending at its right node, so the nodes are among them: n = n_elem * per_element + 1.
+!> ending at its right node, so the nodes are among them: n = n_elem * per_element + 1. The
+!> second plane of a two-plane model (v, theta_v = dv/dx) the same way (`plane = 2`).
 module gapbeam_deflection
    use gapbeam_kinds, only: dp
    use gapbeam_model, only: system_t
-   use gapbeam_description, only: dof_w, dof_theta
+   use gapbeam_description, only: dof_w, dof_theta, dof_v, dof_theta_v
    implicit none
    private
    public :: shape_points, deflection, nodal_values
@@ -35,21 +36,28 @@ contains
       end do
    end function shape_points
 
-   !> w at the shape points for the dof vector u [m].
-   pure function deflection(sys, u, per_element) result(w)
+   !> w (or, with plane = 2, v) at the shape points for the dof vector u [m].
+   pure function deflection(sys, u, per_element, plane) result(w)
       type(system_t), intent(in) :: sys              !! assembled structure
       real(dp), intent(in) :: u(:)                   !! dof values (w in m, theta in rad)
       integer, intent(in) :: per_element            !! points per element (>= 1)
+      integer, intent(in), optional :: plane         !! 1 (w, default) or 2 (v)
       real(dp), allocatable :: w(:)
       real(dp) :: we(2), te(2), xi, le
-      integer :: e, k, n_elem
+      integer :: e, k, n_elem, dw, dt
+      dw = dof_w;  dt = dof_theta
+      if (present(plane)) then
+         if (plane == 2) then
+            dw = dof_v;  dt = dof_theta_v
+         end if
+      end if
       n_elem = sys%n_node - 1
       le = sys%element_length
       allocate(w(n_elem * per_element + 1))
-      w(1) = value_of(sys, u, dof_w, 1)
+      w(1) = value_of(sys, u, dw, 1)
       do e = 1, n_elem
-         we = [value_of(sys, u, dof_w, e), value_of(sys, u, dof_w, e + 1)]
-         te = [value_of(sys, u, dof_theta, e), value_of(sys, u, dof_theta, e + 1)]
+         we = [value_of(sys, u, dw, e), value_of(sys, u, dw, e + 1)]
+         te = [value_of(sys, u, dt, e), value_of(sys, u, dt, e + 1)]
          do k = 1, per_element
             xi = real(k, dp) / real(per_element, dp)
             w(1 + (e - 1) * per_element + k) = (1.0_dp - 3.0_dp * xi**2 + 2.0_dp * xi**3) * we(1) &
@@ -76,8 +84,9 @@ contains
       real(dp), intent(in) :: u(:)
       integer, intent(in) :: dof, node
       integer :: g
-      g = sys%dof_of(dof, node)
       value_of = 0.0_dp
+      if (dof > size(sys%dof_of, 1)) return        ! v of a one-plane model
+      g = sys%dof_of(dof, node)
       if (g > 0) value_of = u(g)
    end function value_of
 end module gapbeam_deflection

@@ -5,6 +5,7 @@
 !> it; a read given its own `err` reports there and leaves the state alone. Arrays come back
 !> allocated to the stored (Fortran) shape; fixed-length strings without their NUL padding.
 module gapbeam_hdf5_input
+   use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
@@ -15,7 +16,8 @@ module gapbeam_hdf5_input
       h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
       h5dget_space_f, h5tclose_f, h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, &
       H5T_STRING_F, H5T_FLOAT_F, H5T_INTEGER_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
-      h5aopen_f, h5aclose_f, h5aread_f, h5aexists_f, h5aget_type_f, h5aget_space_f
+      h5aopen_f, h5aclose_f, h5aread_f, h5aexists_f, h5aget_type_f, h5aget_space_f, &
+      haddr_t, h5dget_offset_f, h5tget_order_f, H5T_ORDER_LE_F
    implicit none
    private
    public :: h5_reader_t
@@ -56,6 +58,7 @@ module gapbeam_hdf5_input
       procedure :: read_text => reader_read_text       !! scalar string dataset
       procedure :: read_units => reader_read_units     !! the `units` attribute of a dataset
       procedure :: read_attr => reader_read_attr       !! a string attribute of an object
+      procedure :: data_offset => reader_data_offset   !! byte offset and order of stored values
       procedure :: failed => reader_failed             !! whether a read failed
       procedure :: close => reader_close               !! close; the first failure, if asked
    end type h5_reader_t
@@ -95,6 +98,51 @@ contains
       end if
       call settle(self, e, err)
    end subroutine reader_open
+
+   !> Where the values of a dataset start in the file (bytes from its start) and whether they
+   !> are little-endian, for readers that address them directly (the XDMF files' Format="Binary"
+   !> Seek="..."). The writer stores every dataset contiguously, uncompressed; a failure when
+   !> this one is not (an edited or repacked file).
+   subroutine reader_data_offset(self, path, offset, little_endian, err)
+      class(h5_reader_t), intent(inout) :: self          !! reader with an open file
+      character(len=*), intent(in) :: path               !! dataset, e.g. '/history/shape_w'
+      integer(int64), intent(out) :: offset              !! first byte of the values
+      logical, intent(out) :: little_endian              !! byte order of the values
+      type(error_t), allocatable, intent(out), optional :: err   !! this call's failure
+      type(error_t), allocatable :: e
+      integer(hid_t) :: dset_id, type_id
+      integer(haddr_t) :: addr
+      integer :: hdferr, status, order
+      offset = -1;  little_endian = .true.
+      if (skipped(self, err)) return
+      if (.not. self%is_open) then
+         call fatal_error(e, module_name // ':data_offset: no file is open')
+         call settle(self, e, err)
+         return
+      end if
+      call h5dopen_f(self%file_id, path, dset_id, hdferr)
+      if (hdferr /= 0) then
+         call fatal_error(e, module_name // ':data_offset: cannot open ' // at(path, self%path))
+      else
+         call h5dget_offset_f(dset_id, addr, hdferr)
+         offset = int(addr, int64)
+         if (hdferr /= 0 .or. offset < 0) then
+            call fatal_error(e, module_name // ':data_offset: ' // at(path, self%path) &
+               // ' is not stored contiguously (no byte offset)')
+         else
+            call h5dget_type_f(dset_id, type_id, hdferr)
+            if (hdferr == 0) then
+               call h5tget_order_f(type_id, order, hdferr)
+               call h5tclose_f(type_id, status)
+            end if
+            if (hdferr /= 0) call fatal_error(e, module_name // ':data_offset: cannot get the ' &
+               // 'byte order of ' // at(path, self%path))
+            little_endian = order == H5T_ORDER_LE_F
+         end if
+         call h5dclose_f(dset_id, status)
+      end if
+      call settle(self, e, err)
+   end subroutine reader_data_offset
 
    !> Whether a dataset or group exists (false when a group on the way is missing).
    logical function reader_exists(self, obj_path) result(found)

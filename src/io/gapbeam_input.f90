@@ -22,8 +22,10 @@ module gapbeam_input
    use gapbeam_deck_apply, only: apply_visitor_t, source_where
    use gapbeam_deck_check, only: check_deck_values, deck_names_t, deck_names, group_variables
    use gapbeam_deck_table, only: walk_deck
+   use gapbeam_capabilities, only: solver_refusal, method_caps, method_caps_t
+   use gapbeam_laws, only: stop_law_refusal
    use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v, &
-      law_code, law_hertz, rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name
+      rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name
    use gapbeam_deck, only: deck_t
    implicit none
    private
@@ -553,51 +555,29 @@ contains
       end associate
    end subroutine check_settings
 
-   !> What the methods and the contact laws can do: the combinations the reader refuses.
-   !> (One place, so that a registry of capabilities can take it over.)
+   !> What the methods and the contact laws can do: the combinations the reader refuses, as
+   !> their registry entries say (gapbeam_capabilities, gapbeam_laws).
    subroutine check_capabilities(deck, err)
       type(deck_t), intent(in) :: deck
       type(error_t), allocatable, intent(inout) :: err
       integer :: i
-      character(len=:), allocatable :: ix
+      character(len=:), allocatable :: why
+      type(method_caps_t) :: mc
       if (allocated(err)) return
-      associate (s => deck%solver)
-         select case (s%method)
-         case ('auto', 'newmark', 'hht', 'generalized_alpha')
-            if (s%step_control == 'embedded') call fatal_error(err, "group &solver: " &
-               // "step_control = 'embedded' needs method = 'rk45' (the implicit methods use " &
-               // "'auto', 'error', 'fixed' or 'half_step')")
-            if (s%method /= 'newmark' .and. s%method /= 'auto' .and. s%step_control == &
-                'half_step') call fatal_error(err, "group &solver: step_control = 'half_step' " &
-               // "is the Newmark residual rule (method = 'newmark'); method = '" &
-               // trim(s%method) // "' uses 'auto', 'error' or 'fixed'")
-            if (s%method /= 'newmark' .and. s%method /= 'auto' .and. s%stop_solution == &
-                'fixed_point') call fatal_error(err, "group &solver: stop_solution = " &
-               // "'fixed_point' is the Newmark solver's (method = 'newmark'); method = '" &
-               // trim(s%method) // "' uses the condensed solution")
-         case ('rk45')
-            if (s%step_control == 'fixed' .or. s%step_control == 'half_step') &
-               call fatal_error(err, "group &solver: method = 'rk45' runs with its own error " &
-               // "estimate (step_control = 'auto', 'error' or 'embedded'), got '" &
-               // trim(s%step_control) // "'")
-         case ('central_difference', 'rk4')
-            if (s%step_control /= 'fixed' .and. s%step_control /= 'auto') &
-               call fatal_error(err, "group &solver: method = '" // trim(s%method) // "' runs " &
-               // "with step_control = 'fixed' (or 'auto'), got '" // trim(s%step_control) // "'")
-         end select
-      end associate
+      ! combinations of method, step control and stop solution: what the method's registry
+      ! entry takes (gapbeam_capabilities)
+      why = solver_refusal(deck%solver%method, deck%solver%step_control, &
+                           deck%solver%stop_solution)
+      if (len(why) > 0) call fatal_error(err, 'group &solver: ' // why)
+      ! what each stop's law takes (its registry entry, gapbeam_laws): exponent, damper, ring
       do i = 1, size(deck%stops)
-         ix = '(' // str(i) // ')'
+         if (allocated(err)) exit
          associate (s => deck%stops(i))
-            if (law_code(s%law) == law_hertz .and. s%damping > 0.0_dp) &
-               call fatal_error(err, 'group &stops: damping' // ix // ' = ' // str(s%damping) &
-               // ": a contact damper is only available with law='bilinear'")
-            if (law_code(s%law) == law_hertz .and. s%friction > 0.0_dp .and. &
-                .not. (s%tangential_stiffness > 0.0_dp)) call fatal_error(err, 'group &stops: ' &
-               // 'friction' // ix // ' = ' // str(s%friction) // " with law = 'hertz' needs " &
-               // 'tangential_stiffness' // ix // ' > 0 [N/m] (the stick stiffness; with the ' &
-               // 'bilinear law it defaults to the normal stiffness)')
+            why = stop_law_refusal(s%law, '(' // str(i) // ')', s%damping, s%exponent, &
+               s%shape == 'circular' .or. s%friction > 0.0_dp, s%friction, &
+               s%tangential_stiffness)
          end associate
+         if (len(why) > 0) call fatal_error(err, 'group &stops: ' // why)
       end do
       if (allocated(err)) return
       if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
@@ -612,7 +592,9 @@ contains
             // 'from the period detection alone)')
          return
       end if
-      if (deck%continuation%jacobian == 'exact' .and. deck%solver%method /= 'exact' .and. &
+      ! the exact Jacobian needs a method whose registry entry gives one
+      mc = method_caps(deck%solver%method)
+      if (deck%continuation%jacobian == 'exact' .and. .not. mc%jacobian .and. &
           deck%solver%method /= 'auto' .and. deck%job%analysis == 'continuation') then
          call fatal_error(err, "group &continuation: jacobian = 'exact' needs &solver " &
             // "method = 'exact' (or 'auto' with piecewise-linear stops; the deck has '" &

@@ -285,10 +285,27 @@ module gapbeam_output_catalogue
                 // 'w(x) relative to the base at each sample, from the element''s cubic ' &
                 // 'Hermite shape functions'), &
       dataset_t('/history/shape_xyz', 'm', 'sample=n_hist point=n_points coordinate=3', &
-                'points (x, w, 0) of the deflected shape at each sample, the mesh of the ' &
-                // '.xdmf file'), &
+                'points (x, w, 0) of the deflected shape at each sample (the .xdmf file reads ' &
+                // 'shape_mesh_xyz and shape_displacement)'), &
       dataset_t('/history/shape_segments', '1', 'segment=n_points-1 end=2', 'line segments ' &
-                // 'of the shape mesh: the two points (from 0) each joins')]
+                // 'of the shape mesh: the two points (from 0) each joins'), &
+      dataset_t('/history/shape_mesh_xyz', 'm', 'point=n_points coordinate=3', 'undeformed ' &
+                // 'points (x, 0, 0) of the shape mesh: the geometry of the .xdmf file'), &
+      dataset_t('/history/shape_displacement', 'm', 'sample=n_hist point=n_points ' &
+                // 'component=3', 'displacement (0, w, v) of the points of the shape mesh ' &
+                // 'relative to the base at each sample: the warp vector of the .xdmf file'), &
+      dataset_t('/history/shape_v', 'm', 'sample=n_hist point=n_points', 'deflected shape ' &
+                // 'v(x) in the second plane relative to the base at each sample (two-plane ' &
+                // 'models)'), &
+      dataset_t('/history/stop_contact', '1', 'sample=n_hist stop=n_stops', 'contact state ' &
+                // 'of each stop at each sample: 1 while it pushes on the beam (force > 0), 0 ' &
+                // 'open'), &
+      dataset_t('/history/stop_mesh_xyz', 'm', 'point=n_stop_points coordinate=3', &
+                'undeformed points of the drawn stops of the .xdmf file, on the x axis at ' &
+                // 'their nodes'), &
+      dataset_t('/history/stop_mesh_displacement', 'm', 'point=n_stop_points component=3', &
+                'displacement (0, w, v) placing the drawn stops relative to the base: a flat ' &
+                // 'stop''s face at its gap, a circular one''s circle')]
 
    type(dataset_t), parameter :: transient_sets(*) = [ &
       dataset_t('/poincare/time', 's', 'record_periods', 'time of each Poincare point, t_rec ' &

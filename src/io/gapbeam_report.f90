@@ -11,7 +11,7 @@ module gapbeam_report
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
-   use gapbeam_xdmf, only: xdmf_text
+   use gapbeam_xdmf, only: make_xdmf, write_xdmf_datasets
    use gapbeam_output_set, only: output_set_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
@@ -169,8 +169,7 @@ contains
       call write_transient_h5(set, deck, model, r, diag)
       if (text) call write_transient_tables(set, deck, model, r)
       if (text .and. planes) call write_orbit_tables(set, deck, model, r)
-      if (with_state) call set%text('.xdmf', xdmf_text(base_name(deck%job%output) // '.h5', &
-         trim(deck%job%title), r%time, size(shape_points(model%sys, deck%output%shape_points))))
+      if (with_state) call write_xdmf(set, deck, model, r)
       if (with_state .and. text) call write_shape_table(set, deck, model, r)
       call set%finish(err)
    end subroutine write_transient
@@ -265,7 +264,26 @@ contains
       call h5%put('/history/shape_w', sw)
       call h5%put('/history/shape_xyz', xyz)            ! the mesh of the .xdmf file
       call h5%put('/history/shape_segments', seg)
+      call write_xdmf_datasets(h5, deck, model, res)   ! the .xdmf file's own datasets
    end subroutine write_history
+
+   !> PREFIX.xdmf: read back the byte offsets of the datasets it addresses in the .h5 file (file
+   !> 1 of the set, written and closed), then its text.
+   subroutine write_xdmf(set, deck, model, res)
+      type(output_set_t), intent(inout) :: set         !! the set
+      type(deck_t), intent(in) :: deck                 !! the deck
+      type(model_t), intent(in) :: model               !! model
+      type(transient_result_t), intent(in) :: res      !! results (with history_u)
+      character(len=:), allocatable :: text
+      type(error_t), allocatable :: e
+      if (set%failed()) return
+      call make_xdmf(set%temp(1), base_name(deck%job%output) // '.h5', deck, model, res, text, e)
+      if (allocated(e)) then
+         call set%keep(e)
+      else
+         call set%text('.xdmf', text)
+      end if
+   end subroutine write_xdmf
 
    !> /run: counters and timings of the integration.
    subroutine write_run(h5, res)

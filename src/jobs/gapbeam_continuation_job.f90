@@ -41,6 +41,9 @@ contains
       if (allocated(err)) return
       call run_continuation(deck, res, err)
       if (allocated(err)) return
+      if (allocated(res%note)) then
+         if (len(res%note) > 0) write(output_unit, '(a)') 'note: ' // res%note
+      end if
       do k = 1, size(res%branches)
          associate (b => res%branches(k))
             n_stable = count(res%stable(b%first:b%last))

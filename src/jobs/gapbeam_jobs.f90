@@ -6,7 +6,7 @@ module gapbeam_jobs
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
-   use gapbeam_settings, only: output_settings_t
+   use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w
    use gapbeam_model, only: system_t, model_t
@@ -19,13 +19,12 @@ module gapbeam_jobs
    use gapbeam_reduction_rule, only: reduction_info_t, reduction_text
    use gapbeam_reduction_check, only: reduction_check_t, check_reduction, check_lines
    use gapbeam_clock, only: thread_cpu_seconds
-   use gapbeam_attractor, only: diagnose
-   use gapbeam_certify, only: certify_point
-   use gapbeam_starts, only: start_list, random_state, group_attractors
+   use gapbeam_point, only: label_point
    use gapbeam_settings, only: batch_options_t
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: forcing_text
-   use gapbeam_studies, only: work_precision, stability_study
+   use gapbeam_studies, only: work_precision, stability_study, stability_series
+   use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
    use gapbeam_study_output, only: write_work_precision, write_stability, &
@@ -111,23 +110,52 @@ contains
       call write_modes(dk, sys, modes, k_stop, e)
    end subroutine run_modes
 
+   !> The method and the &solver parameters its registry entry says it reads:
+   !> 'newmark (delta 0.5, alpha 0.25), stop force condensed'.
    function method_text(dk) result(t)
       type(deck_t), intent(in) :: dk
       character(len=:), allocatable :: t
-      select case (dk%solver%method)
-      case ('newmark')
-         t = 'newmark (delta ' // str(dk%solver%newmark_delta) // ', alpha ' &
-             // str(dk%solver%newmark_alpha) // '), stop force ' // trim(dk%solver%stop_solution)
-      case ('hht')
-         t = 'hht (alpha ' // str(dk%solver%hht_alpha) // ')'
-      case ('generalized_alpha')
-         t = 'generalized_alpha (rho_inf ' // str(dk%solver%rho_infinity) // ')'
-      case ('rk45')
-         t = 'rk45 (rtol ' // str(dk%solver%rk_rtol) // ', atol ' // str(dk%solver%rk_atol) // ')'
-      case default
-         t = trim(dk%solver%method)
-      end select
+      type(method_caps_t) :: c
+      character(len=:), allocatable :: rest, pair
+      integer :: eq, sp, n
+      c = method_caps(dk%solver%method)
+      t = trim(dk%solver%method)
+      rest = trim(adjustl(c%parameters))
+      n = 0
+      do while (len(rest) > 0)
+         sp = index(rest, ' ')
+         if (sp == 0) sp = len(rest) + 1
+         pair = rest(:sp - 1)
+         rest = trim(adjustl(rest(min(sp, len(rest)) + 1:)))
+         eq = index(pair, '=')
+         n = n + 1
+         if (n == 1) then
+            t = t // ' ('
+         else
+            t = t // ', '
+         end if
+         t = t // pair(:eq - 1) // ' ' // str(solver_value(dk%solver, pair(eq + 1:)))
+      end do
+      if (n > 0) t = t // ')'
+      if (c%fixed_point) t = t // ', stop force ' // trim(dk%solver%stop_solution)
    end function method_text
+
+   !> A numeric &solver variable by name.
+   real(dp) function solver_value(cfg, name) result(x)
+      type(solver_settings_t), intent(in) :: cfg       !! settings
+      character(len=*), intent(in) :: name             !! variable
+      select case (name)
+      case ('newmark_delta');  x = cfg%newmark_delta
+      case ('newmark_alpha');  x = cfg%newmark_alpha
+      case ('hht_alpha');  x = cfg%hht_alpha
+      case ('rho_infinity');  x = cfg%rho_infinity
+      case ('rk_rtol');  x = cfg%rk_rtol
+      case ('rk_atol');  x = cfg%rk_atol
+      case default
+         error stop 'gapbeam_jobs:solver_value: a registry entry names an unknown &solver ' &
+            // 'variable'
+      end select
+   end function solver_value
 
    function rule_text(factor) result(t)
       real(dp), intent(in) :: factor
@@ -226,7 +254,8 @@ contains
       call describe_structure(dk%structure)
       call build_model(dk, model, u0, v0, e)
       if (allocated(e)) return
-      methods = pack(dk%study%series, dk%study%series /= 'exact')
+      call stability_series(dk%study%series, methods, e)
+      if (allocated(e)) return
       call stability_study(model, dk%study, methods, omega_dt, rho, steps, e)
       if (allocated(e)) return
       do k = 1, size(steps)
@@ -278,16 +307,19 @@ contains
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
       integer :: k
-      character(len=:), allocatable :: lambda
+      character(len=:), allocatable :: lambda, found
+      ! 'period 3 found' or 'no period found', up to the largest period tried
+      found = 'no period found'
+      if (diag%period > 0) found = 'period ' // str(diag%period) // ' found'
       ! no exponent asked for (lyapunov_periods = 0; the default with ring supports): say so
       if (diag%lyapunov_periods == 0) then
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) // '; no ' &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) // '; no ' &
             // 'Lyapunov exponent: lyapunov_periods = 0)'
          lambda = 'no exponent'
       else
-         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (period ' &
-            // str(diag%period) // ' found up to ' // str(diag%period_max_tested) &
+         write(output_unit, '(a)') 'attractor: ' // label_text(diag%label) // ' (' // found &
+            // ' up to ' // str(diag%period_max_tested) &
             // '; largest Lyapunov exponent ' // str(diag%lyapunov) // ' +- ' &
             // str(diag%lyapunov_error) // ' 1/s over ' // str(diag%lyapunov_periods) &
             // ' periods)'
@@ -324,52 +356,6 @@ contains
       if (allocated(diag%certificate_reason)) t = diag%certificate_reason
    end function cert_reason
 
-   !> The deck's other starts (&diagnostics starts after the first): each diagnosed, then all
-   !> grouped into distinct attractors (into `diag`).
-   subroutine other_starts(dk, model, u0, v0, diag, e)
-      type(deck_t), intent(in) :: dk                   !! deck
-      type(model_t), intent(in) :: model               !! model
-      real(dp), intent(in) :: u0(:), v0(:)             !! the deck's initial state
-      type(point_result_t), intent(inout) :: diag      !! the first start; summary added
-      type(error_t), allocatable, intent(out) :: e     !! a start could not be made
-      type(point_result_t), allocatable :: runs(:)
-      type(transient_result_t) :: res
-      type(output_settings_t) :: o
-      character(len=8), allocatable :: kinds(:)
-      integer, allocatable :: ridx(:)
-      real(dp), allocatable :: u(:), v(:)
-      real(dp) :: amplitude
-      integer :: k
-      type(error_t), allocatable :: run_err
-      call start_list(dk%diagnostics, 'deck', kinds, ridx)
-      allocate(runs(size(kinds)))
-      runs(1) = diag
-      o = dk%output
-      o%history_periods = 0
-      do k = 2, size(kinds)
-         select case (kinds(k))
-         case ('rest')
-            allocate(u(size(u0)), v(size(v0)), source=0.0_dp)
-         case ('random')
-            amplitude = dk%diagnostics%random_amplitude
-            if (.not. (amplitude > 0.0_dp)) amplitude = 2.0_dp * model%half_amplitude
-            call random_state(model, dk%diagnostics%random_seed, 1000000 + k, amplitude, u, v, e)
-            if (allocated(e)) return
-         case default
-            u = u0;  v = v0
-         end select
-         call diagnose(model, dk%solver, o, dk%diagnostics, u, v, res, runs(k), run_err)
-         if (allocated(run_err)) then
-            runs(k)%status = 1
-            write(output_unit, '(a)') 'start ' // str(k) // " ('" // trim(kinds(k)) &
-               // "') failed: " // run_err%message
-            deallocate(run_err)
-         end if
-         deallocate(u, v)
-      end do
-      call group_attractors(runs, dk%diagnostics, diag)
-   end subroutine other_starts
-
    !> A transient run, its attractor, its files. Progress lines (`batch`: --quiet, --progress)
    !> count the forcing periods integrated: the run's, then the exponent's two trajectories.
    subroutine run_transient_analysis(dk, e, batch)
@@ -381,8 +367,8 @@ contains
       real(dp) :: n_run
       type(model_t) :: model
       type(transient_result_t) :: res
-      type(output_settings_t) :: quiet
       type(point_result_t) :: diag
+      character(len=:), allocatable :: failures(:)
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
       integer :: j
@@ -411,7 +397,9 @@ contains
       call meter%start('transient', 'periods', &
          n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
          .not. opt%quiet, opt%progress_interval_s)
-      call diagnose(model, dk%solver, dk%output, dk%diagnostics, u0, v0, res, diag, e, meter)
+      ! the point pipeline: every start labelled, the first certified, attractors grouped
+      call label_point(model, dk%solver, dk%output, dk%diagnostics, u0, v0, 1, res, diag, e, &
+                       failures, meter)
       ! settling, convergence and an adaptive exponent may have run more than the estimate
       meter%total = max(meter%total, meter%done)
       call meter%finish(meter%done)
@@ -453,12 +441,9 @@ contains
          if (allocated(e)) return
          write(output_unit, '(a)') check_lines(check, diag%period > 0)
       end if
-      quiet = dk%output
-      quiet%history_periods = 0
-      if (dk%diagnostics%certify) &
-         call certify_point(model, dk%solver, quiet, dk%diagnostics, u0, v0, 0, diag)
-      call other_starts(dk, model, u0, v0, diag, e)
-      if (allocated(e)) return
+      do j = 1, size(failures)
+         write(output_unit, '(a)') trim(failures(j))
+      end do
       call print_label(diag)
       call write_transient(dk, model, res, diag, e)
       if (allocated(e)) return

@@ -3,6 +3,7 @@
 module gapbeam_usage
    use gapbeam_settings, only: analysis_words
    use gapbeam_version, only: program_version, compiler_text, git_commit
+   use gapbeam_capability_text, only: capability_help
    implicit none
    private
    public :: usage_lines, help_text, version_text
@@ -17,7 +18,8 @@ contains
       t = 'usage: gapbeam DECK [--shard I/N] [--shard-costs FILE.h5] [--time-limit S] [--quiet] ' &
          // '[--progress S] [OVERRIDE ...]' // nl &
          // '       gapbeam merge [--quiet] OUT.h5 SHARD.h5 ...' // nl &
-         // '       gapbeam --help | --version | --help-deck [GROUP] | --help-outputs [ANALYSIS | tsv]'
+         // '       gapbeam --help | --version | --help-deck [GROUP]' // nl &
+         // '       gapbeam --help-outputs [ANALYSIS | tsv]'
    end function usage_lines
 
    !> The whole help text.
@@ -55,11 +57,12 @@ contains
          // "output is 'output: PREFIX'." // nl // nl &
          // 'Exit status: 0 done; 1 error (one line "error: ..." on standard error); 2 usage;' &
          // nl // '3 a sweep stopped by --time-limit (run the same command again to finish); ' &
-         // '4 the output' // nl // 'prefix is locked by another run; 5 a sweep or merge ' &
-         // 'wrote its files, but some points failed.' // nl // nl &
-         // 'Environment: OMP_NUM_THREADS (sweep threads), GAPBEAM_BACKTRACE=1 (backtrace on ' &
-         // 'errors),' // nl // 'GAPBEAM_GIT_COMMIT (recorded in the HDF5 files; set by ' &
-         // 'scripts/run.sh).' // nl // nl &
+         // '4 the output' // nl // 'prefix is locked by another run; 5 a sweep (or merge) ' &
+         // 'wrote all its files but some of' // nl // 'its points failed (each listed on ' &
+         // "standard error, label 'failed' in the files)." // nl // nl &
+         // 'Environment: OMP_NUM_THREADS (sweep threads), OPENBLAS_NUM_THREADS (set it to 1), ' &
+         // nl // 'GAPBEAM_BACKTRACE=1 (backtrace on errors), GAPBEAM_GIT_COMMIT (recorded in ' &
+         // 'the HDF5' // nl // 'files; set by scripts/run.sh).' // nl // nl &
          // 'Documentation: README.md and docs/ in the source tree (docs/decks.md: every deck ' &
          // 'variable;' // nl // 'docs/outputs.md: every output dataset; docs/methods.md; ' &
          // 'docs/validation.md).'

@@ -4,7 +4,8 @@
 module gapbeam_model_builder
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str, fatal_error
-   use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, law_code, &
+   use gapbeam_laws, only: builtin_laws, law_index
+   use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, &
       forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t
    use gapbeam_settings, only: initial_state_t
    use gapbeam_deck, only: deck_t
@@ -199,6 +200,7 @@ contains
       integer, allocatable :: dofs(:)
       logical :: ring
       model%n_stops = size(stops)
+      model%laws = builtin_laws()
       nc = 0;  nr = 0
       do i = 1, size(stops)
          ns = merge(2, 1, stops(i)%side == 'both' .and. stops(i)%shape /= 'circular')
@@ -241,7 +243,7 @@ contains
                model%c_sign(j) = 1.0_dp
             end if
             model%c_gap(j) = stops(i)%gap
-            model%c_law(j) = law_code(stops(i)%law)
+            model%c_law(j) = law_index(stops(i)%law, model%laws)
             model%c_k(j) = model%stop_stiffness(i)
             model%c_c(j) = stops(i)%damping
             model%c_p(j) = stops(i)%exponent
@@ -299,12 +301,14 @@ contains
          end if
       end if
       model%r_gap(k) = st%gap
-      model%r_law(k) = law_code(st%law)
+      model%r_law(k) = law_index(st%law, model%laws)
       model%r_k(k) = k_stop
       model%r_c(k) = st%damping
       model%r_p(k) = st%exponent
       model%r_mu(k) = st%friction
       model%r_kt(k) = st%tangential_stiffness
+      ! a law whose k is a stiffness in N/m gives the stick stiffness by default (the reader
+      ! refuses the others without one)
       if (model%r_kt(k) <= 0.0_dp) model%r_kt(k) = k_stop
       model%r_stop(k) = i
    end subroutine set_ring

@@ -30,9 +30,8 @@
 !> a strictly convex function). Several contacts: Gauss-Seidel over contacts (scalar and ring).
 module gapbeam_ring_contact
    use gapbeam_kinds, only: dp, pi
-   use gapbeam_description, only: law_bilinear
    use gapbeam_model, only: model_t
-   use gapbeam_contact_law, only: contact_force, solve_scalar_contact
+   use gapbeam_contact_law, only: contact_solve
    implicit none
    private
    public :: ring_open, ring_stick, ring_slip
@@ -117,19 +116,20 @@ contains
    end function ring_tangent_gap
 
    !> Normal force by the stop law, extended smoothly beyond the contact when `extend` (for
-   !> the Newton iteration: k d + c d' or k sign(d) |d|^p); else the law itself.
+   !> the Newton iteration: the law's `extended`, k d + c d' or k sign(d) |d|^p); else the law
+   !> itself.
    pure real(dp) function normal_law(model, r, d, dd, extend) result(f)
       type(model_t), intent(in) :: model    !! model
       integer, intent(in) :: r              !! ring
       real(dp), intent(in) :: d, dd         !! penetration [m], its rate [m/s]
       logical, intent(in) :: extend         !! smooth extension
-      if (.not. extend) then
-         f = contact_force(model%r_law(r), model%r_k(r), model%r_c(r), model%r_p(r), d, dd)
-      else if (model%r_law(r) == law_bilinear) then
-         f = model%r_k(r) * d + model%r_c(r) * dd
-      else
-         f = sign(model%r_k(r) * abs(d)**model%r_p(r), d)
-      end if
+      associate (law => model%laws(model%r_law(r))%law)
+         if (.not. extend) then
+            f = law%force(model%r_k(r), model%r_c(r), model%r_p(r), d, dd)
+         else
+            f = law%extended(model%r_k(r), model%r_c(r), model%r_p(r), d, dd)
+         end if
+      end associate
    end function normal_law
 
    !> Force on the structure P (in (w, v)), normal force f_n and tangential force f_t of ring r
@@ -180,9 +180,9 @@ contains
    end subroutine ring_force
 
    !> The regime of ring r at a located onset (x, x' at the contact instant, d = 0): the stick
-   !> force grows as k_t |grad tau| |v_t| per unit time and the slip limit as mu df_n/dt
-   !> (k d' for the bilinear law, nothing for Hertz with p > 1); a damper's force jumps to
-   !> c d' > 0 at once. It sticks (anchor at the contact point) when the limit grows faster or
+   !> force grows as k_t |grad tau| |v_t| per unit time and the slip limit as mu df_n/dt (the
+   !> law's onset rate: k d' for the bilinear law, nothing for Hertz with p > 1); a force that
+   !> jumps at an onset (a damper's c d' > 0) makes it stick at once. It sticks (anchor at the contact point) when the limit grows faster or
    !> is already positive, else slips in the direction of v_t.
    pure subroutine onset_regime(model, r, x, xd, mode, sigma, anchor)
       type(model_t), intent(in) :: model            !! model
@@ -197,9 +197,10 @@ contains
       vt = dot_product(t, xd);  dn = dot_product(n, xd)
       mode = ring_stick;  sigma = 1.0_dp
       if (model%r_mu(r) == 0.0_dp) return
-      if (model%r_law(r) == law_bilinear .and. model%r_c(r) > 0.0_dp) return
-      rate = 0.0_dp
-      if (model%r_law(r) == law_bilinear) rate = model%r_k(r) * max(dn, 0.0_dp)
+      associate (law => model%laws(model%r_law(r))%law)
+         if (law%jumps(model%r_k(r), model%r_c(r), model%r_p(r))) return
+         rate = law%onset_rate(model%r_k(r), model%r_c(r), model%r_p(r), dn)
+      end associate
       if (model%r_kt(r) * gt * abs(vt) > model%r_mu(r) * rate) then
          mode = ring_slip;  sigma = sign(1.0_dp, vt)
       end if
@@ -415,8 +416,7 @@ contains
             shift = matmul(hmat, pslot)
             ys = model%c_sign(c) * (ystar(si) + shift(si)) - model%c_gap(c)
             vsc = model%c_sign(c) * (vstar(si) + kappa * shift(si))
-            f(c) = solve_scalar_contact(model%c_law(c), model%c_k(c), model%c_c(c), &
-                                        model%c_p(c), ys, vsc, hmat(si, si), kappa)
+            f(c) = contact_solve(model, c, ys, vsc, hmat(si, si), kappa)
             if (c == hold) f(c) = 0.0_dp
             pslot(si) = pslot(si) - model%c_sign(c) * f(c)
             change = max(change, abs(f(c) - fold));  fmax = max(fmax, f(c))
@@ -496,12 +496,10 @@ contains
          curv = 1.0_dp / max(rho, tiny(1.0_dp))
       end if
       ddd = dot_product(n, xdd) + vt**2 * curv
-      fn = contact_force(model%r_law(r), model%r_k(r), model%r_c(r), model%r_p(r), d, dn)
-      if (model%r_law(r) == law_bilinear) then
-         fdot = model%r_k(r) * dn + model%r_c(r) * ddd
-      else
-         fdot = model%r_k(r) * model%r_p(r) * max(d, 0.0_dp)**(model%r_p(r) - 1.0_dp) * dn
-      end if
+      associate (law => model%laws(model%r_law(r))%law)
+         fn = law%force(model%r_k(r), model%r_c(r), model%r_p(r), d, dn)
+         fdot = law%rate(model%r_k(r), model%r_c(r), model%r_p(r), d, dn, ddd)
+      end associate
       rate = gt * vt - sigma * model%r_mu(r) / model%r_kt(r) * (fdot / gt + fn * dn * curv / gt)
    end function slider_rate
 
@@ -572,7 +570,8 @@ contains
    end subroutine update_ring_modes
 
    !> Energy stored in ring r at (x, x'): the normal law's potential (k d^2/2 bilinear,
-   !> k d^(p+1)/(p+1) Hertz) and the stick spring's f_t^2 / (2 k_t |grad tau|^2) [J].
+   !> k d^(p+1)/(p+1) Hertz: the law's `energy`) and the stick spring's
+   !> f_t^2 / (2 k_t |grad tau|^2) [J].
    pure real(dp) function ring_stored_energy(model, r, mode, sigma, anchor, x, xd) result(e)
       type(model_t), intent(in) :: model            !! model
       integer, intent(in) :: r                      !! ring
@@ -583,11 +582,7 @@ contains
       call ring_geometry(model, r, x, d, n, t, gt=gt)
       e = 0.0_dp
       if (d <= 0.0_dp) return
-      if (model%r_law(r) == law_bilinear) then
-         e = 0.5_dp * model%r_k(r) * d**2
-      else
-         e = model%r_k(r) * d**(model%r_p(r) + 1.0_dp) / (model%r_p(r) + 1.0_dp)
-      end if
+      e = model%laws(model%r_law(r))%law%energy(model%r_k(r), model%r_c(r), model%r_p(r), d)
       if (model%r_mu(r) > 0.0_dp) then
          call ring_force(model, r, mode, sigma, anchor, x, xd, p, fn, ft)
          e = e + 0.5_dp * ft**2 / (model%r_kt(r) * gt**2)

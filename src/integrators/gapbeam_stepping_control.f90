@@ -1,0 +1,515 @@
+!> Error control of the stepping integrator (step_control = 'error'): the step-size ladder
+!> h_max 2^(-L/2), the watched outputs and their floors, the local error of a step from the
+!> method's estimate (or Richardson's two half steps) relative to the outputs' ranges within
+!> a budget per block of an eighth of a forcing period, with the order of the method's
+!> registry entry; steps end at contact switches.
+submodule (gapbeam_stepping) gapbeam_stepping_control
+   implicit none
+
+contains
+
+   !> Error control: the step-size ladder h_max 2^(-L/2) (a factorisation per size, cached),
+   !> the watched outputs (root strain, tip and contact displacements) and their floors: the
+   !> quasi-static response to the forcing amplitude, K u = (A_pp/2) Omega^2 q.
+   module subroutine init_control(self, model, cfg, err)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      type(solver_settings_t), intent(in) :: cfg            !! settings
+      type(error_t), allocatable, intent(out) :: err        !! singular stiffness
+      real(dp), allocatable :: kf(:, :), uqs(:)
+      integer :: info, c, n_out
+      self%tolerance = cfg%tolerance
+      ! the order the controller assumes for the method's error estimate (its registry entry)
+      self%order = max(1, self%caps%control_order)
+      ! with ring contacts the watched outputs are the supports' (w, v) and their velocities,
+      ! the tip and the root strain: the root strain rate carries the high modes every
+      ! impact excites, and resolving them to the tolerance of its range cost twice the steps
+      ! of the supports' orbits (docs/tubes.md)
+      self%watch_rate = model%n_rings == 0
+      self%h_max = self%period / 16.0_dp
+      self%n_levels = 2 * cfg%max_halvings + 9
+      if (allocated(self%h_lev)) deallocate(self%h_lev)
+      allocate(self%h_lev(0:self%n_levels - 1))
+      do c = 0, self%n_levels - 1
+         self%h_lev(c) = self%h_max * 2.0_dp**(-0.5_dp * c)
+      end do
+      allocate(self%fda(model%n), self%ev(model%n), self%eu(model%n), self%fda_prev(model%n), &
+               source=0.0_dp)
+      self%out_dof = [integer ::]
+      if (model%sys%tip_dof > 0) self%out_dof = [model%sys%tip_dof]
+      if (model%sys%tip_dof_v > 0) self%out_dof = [self%out_dof, model%sys%tip_dof_v]
+      do c = 1, model%n_slots
+         if (.not. any(self%out_dof == model%slot_dof(c))) &
+            self%out_dof = [self%out_dof, model%slot_dof(c)]
+      end do
+      n_out = 1 + size(self%out_dof)       ! the root strain first
+      allocate(self%out_lo(2 * n_out), self%out_hi(2 * n_out), self%out_floor(2 * n_out))
+      kf = model%sys%k
+      uqs = model%half_amplitude * model%omega**2 * model%q
+      call dpotrf('U', model%n, kf, model%n, info)
+      if (info /= 0) then
+         call fatal_error(err, 'gapbeam_stepping: the stiffness matrix is not positive ' &
+            // 'definite (dpotrf info=' // str(info) // ')')
+         return
+      end if
+      call dpotrs('U', model%n, 1, kf, model%n, uqs, model%n, info)
+      self%out_floor(1) = abs(dot_product(self%sw, uqs(self%si)))
+      self%out_floor(2:n_out) = abs(uqs(self%out_dof))
+      self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
+      if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out)
+      if (self%caps%estimator == 'embedded') then
+         ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
+         self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
+         self%out_floor(n_out + 2:) = max(self%out_floor(n_out + 2:), cfg%rk_atol / cfg%tolerance)
+      end if
+   end subroutine init_control
+
+   !> Carry `state` to t_target with error control: steps from the ladder, each accepted when
+   !> the estimate of its local error in every watched output is within tolerance * (the
+   !> output's range) * (step / forcing period); a step in which a contact opens or closes ends
+   !> at that instant (its own step size, one factorisation), so no estimate straddles a
+   !> switch; the last step before t_target and the observer's watch instant is cut to land on
+   !> it.
+   module subroutine advance_controlled(self, state, t_target, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      type(state_t), intent(inout) :: state                 !! state, at t_target on return
+      real(dp), intent(in) :: t_target                      !! target time [s]
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! numerical failure
+      real(dp) :: t, t_stop, tiny_t
+      integer :: level
+      call copy_state(state, self%sub(self%ix(0)))
+      if (state%dt_prev == 0.0_dp) then
+         ! begin at T / steps_per_period
+         level = min(self%n_levels - 1, max(0, nint(2.0_dp * log(real(self%cfg%steps_per_period, &
+            dp) / 16.0_dp) / log(2.0_dp))))
+         self%sub(self%ix(0))%dt_prev = self%h_max / 16.0_dp
+      else
+         level = min(max(state%level, 0), self%n_levels - 1)
+      end if
+      self%t_begin = state%t;  self%n_since = 0
+      self%energy_ref = 0.5_dp * dot_product(state%u, matmul(self%model%sys%k, state%u)) &
+                        + 0.5_dp * dot_product(state%v, matmul(self%model%sys%m, state%v))
+      self%block_start = state%t;  self%block_sum = 0.0_dp
+      self%h_prev = 0.0_dp;  self%t_comp = 0.0_dp
+      self%piece%model => self%model
+      self%piece%sub => self%sub
+      call self%track_outputs(self%sub(self%ix(0)), .true.)
+      t = state%t
+      tiny_t = 1.0e-12_dp * self%period
+      do while (t < t_target - tiny_t)
+         t_stop = t_target
+         if (present(obs)) then
+            if (obs%t_watch > t + tiny_t .and. obs%t_watch < t_target) t_stop = obs%t_watch
+         end if
+         call self%controlled_step(level, t_stop, obs, err)
+         if (allocated(err)) return
+         t = self%sub(self%ix(0))%t
+      end do
+      call copy_state(self%sub(self%ix(0)), state)
+      state%t = t_target
+      state%level = level
+      self%fp_iterations = self%scratch%iterations + sum([(self%ops(level)%iterations, &
+                                                          level = 0, self%n_levels - 1)])
+   end subroutine advance_controlled
+
+   !> One accepted step from sub-state ix(0) (rejections and smaller sizes inside), ending at
+   !> or before t_stop or at a contact event; the level for the next step on return.
+   module subroutine controlled_step(self, level, t_stop, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      integer, intent(inout) :: level                       !! ladder level
+      real(dp), intent(in) :: t_stop                        !! do not step beyond [s]
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
+      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp
+      logical :: ok, event, clipped
+      integer :: worst, dl, switches
+      t0 = self%sub(self%ix(0))%t
+      switches = 0
+      do
+         r = 0.0_dp
+         h = self%h_lev(level)
+         if (t0 + h > t_stop - 1.0e-9_dp * h) then
+            h = t_stop - t0
+            call self%scratch%prepare(self%model, self%cfg, h, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+            call self%one_step(self%scratch, 0, 0, ok, r)
+         else
+            if (.not. self%ops(level)%ready) then
+               call self%ops(level)%prepare(self%model, self%cfg, h, err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+            end if
+            call self%one_step(self%ops(level), 0, 0, ok, r)
+         end if
+         clipped = h == t_stop - t0
+         call next_time(t0, h, self%t_comp, clipped, t1, comp)
+         self%sub(self%ix(1))%t = t1
+         event = .false.
+         if (ok .and. self%cfg%locate_events .and. self%model%n_contacts &
+             + self%model%n_rings > 0) then
+            theta = self%first_event(0, h)
+            if (theta <= min_split .and. self%ev_friction .and. switches < 4) then
+               ! a stick-slip switch at the very start: the regime changes there
+               switches = switches + 1
+               associate (s0 => self%sub(self%ix(0)))
+                  call update_ring_modes(self%model, s0%u, s0%v, s0%a, s0%mode, s0%sigma, &
+                                         s0%anchor, self%ev_contact - self%model%n_contacts)
+               end associate
+               cycle
+            end if
+            if (theta * h > min_split * h .and. (1.0_dp - theta) * h > min_split * h) then
+               ! end the step at the event: one factorisation for its size
+               call self%scratch%prepare(self%model, self%cfg, theta * h, err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+               call self%one_step(self%scratch, 0, merge(self%ev_contact, 0, self%ev_onset), &
+                                  ok, r)
+               h = theta * h
+               call next_time(t0, h, self%t_comp, .false., t1, comp)
+               self%sub(self%ix(1))%t = t1
+               event = .true.
+            end if
+         end if
+         if (ok) then
+            if (event .or. h < self%h_lev(level) * (1.0_dp - 1.0e-9_dp)) then
+               call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
+                  self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+            else
+               call self%ops(level)%local_error(self%model, self%sub(self%ix(0)), &
+                  self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+            end if
+            if (.not. ok) then
+               call fatal_error(err, "gapbeam_stepping: method '" // self%method // "' has " &
+                  // "no local error estimate: use step_control = 'fixed'")
+               return
+            end if
+            q = self%error_ratio(h, coef, worst)
+            if (self%h_prev == 0.0_dp .and. coef(2) >= 0.0_dp .and. coef(3) /= 0.0_dp) then
+               ! the first step from a start or a contact event has no previous step to
+               ! estimate a'' from: its velocity error is measured by two half steps
+               call self%richardson(level, h, event, r, worst, err)
+               if (allocated(err)) return
+               q = max(q, r)
+            end if
+         else
+            q = huge(1.0_dp);  worst = 0
+         end if
+         ! one step may not spend more than the budget of a whole block
+         ratio = q / (block_fraction * budget_scale * self%tolerance)
+         if (ratio <= 1.0_dp) exit
+         ! reject: smaller steps (the local error scales as h^3)
+         self%steps_rejected = self%steps_rejected + 1
+         if (level >= self%n_levels - 1) then
+            call controlled_failure(self, t0, h, ratio, worst, ok, err)
+            return
+         end if
+         dl = 1
+         if (ratio < huge(1.0_dp)) dl = max(1, ceiling(log(ratio) / log(2.0_dp**(0.5_dp &
+                                                 * (self%order + 1)))))
+         level = min(self%n_levels - 1, level + dl)
+      end do
+      ! accept
+      self%t_comp = comp
+      call swap_check_emit(self, t0, h, event, obs, err)
+      if (allocated(err)) return
+      ! a'' of the next step from this one's fda, unless the acceleration jumps here
+      self%fda_prev = self%fda
+      self%h_prev = merge(0.0_dp, h, event)
+      self%block_sum = self%block_sum + q
+      if (t1 - self%block_start >= block_fraction * self%period * (1.0_dp - 1.0e-9_dp)) then
+         ! the step size of the next block: the local errors of a block add up as h^2
+         rho = self%block_sum / (budget_scale * self%tolerance * (t1 - self%block_start) &
+                                 / self%period)
+         if (rho > 1.0_dp) then
+            level = min(self%n_levels - 1, level + ceiling(log(rho) / log(2.0_dp**(0.5_dp &
+                                                           * self%order))))
+         else if (rho < 0.3_dp) then
+            level = max(0, level - min(2, floor(log(0.6_dp / rho) / log(2.0_dp**(0.5_dp &
+                                                                   * self%order)))))
+         end if
+         self%block_start = t1;  self%block_sum = 0.0_dp
+      end if
+   end subroutine controlled_step
+
+   !> The local error of a step relative to the watched outputs' ranges: the largest of
+   !> |l' e_u| / max(range, floor) over the root strain and the tip and contact displacements,
+   !> and |l' e_v| / max(range, floor) over the root strain rate and those velocities, with
+   !> e_u = coef(1) h^2 fda, e_v = coef(2) h fda + coef(3) h^3 a'' (a'' from this and the
+   !> previous step's fda; or the method's own e_v). Returns the output (1-based over the
+   !> displacement outputs, then the rates) of the largest.
+   real(dp) module function error_ratio(self, h, coef, worst) result(ratio)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      real(dp), intent(in) :: h                          !! step [s]
+      real(dp), intent(in) :: coef(3)                    !! the method's error coefficients
+      integer, intent(out) :: worst                      !! output of the largest ratio
+      self%eu = coef(1) * h**2 * self%fda
+      if (coef(2) >= 0.0_dp) then
+         self%ev = coef(2) * h * self%fda
+         if (self%h_prev > 0.0_dp) self%ev = self%ev + coef(3) * h**3 * 2.0_dp &
+            * (self%fda / h - self%fda_prev / self%h_prev) / (h + self%h_prev)
+      end if
+      ratio = self%output_ratio(worst)
+   end function error_ratio
+
+   !> max over the watched outputs of |l' e| / max(range, floor) for the errors held in
+   !> self%eu (displacement outputs) and self%ev (rates); `worst` as in error_ratio.
+   real(dp) module function output_ratio(self, worst) result(ratio)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(out) :: worst                      !! output of the largest ratio
+      real(dp) :: es, r
+      integer :: i, q, no
+      no = 1 + size(self%out_dof)
+      ratio = 0.0_dp;  worst = 1
+      do i = 1, 2 * no
+         if (i == no + 1 .and. .not. self%watch_rate) cycle
+         if (i == 1 .or. i == no + 1) then
+            es = 0.0_dp
+            do q = 1, size(self%si)
+               if (i == 1) es = es + self%sw(q) * self%eu(self%si(q))
+               if (i > 1) es = es + self%sw(q) * self%ev(self%si(q))
+            end do
+         else if (i <= no) then
+            es = self%eu(self%out_dof(i - 1))
+         else
+            es = self%ev(self%out_dof(i - no - 1))
+         end if
+         r = abs(es) / max(self%out_hi(i) - self%out_lo(i), self%out_floor(i), tiny(1.0_dp))
+         if (r > ratio) then
+            ratio = r;  worst = i
+         end if
+      end do
+   end function output_ratio
+
+   !> Error ratio of the step held in sub(ix(1)) by Richardson extrapolation: the same
+   !> interval in two half steps (local error 1/4 of the whole step's for a method whose local
+   !> error is O(h^3)), e = (4/3) (y_h - y_h/2) for u and v, measured on the watched outputs
+   !> as error_ratio does. For the steps that begin a run or follow a contact event, where the
+   !> method's own estimate lacks a''; they are a few per forcing period.
+   module subroutine richardson(self, level, h, event, ratio, worst, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      integer, intent(in) :: level                    !! the step's ladder level
+      real(dp), intent(in) :: h                       !! the step [s]
+      logical, intent(in) :: event                    !! it ends at a located event
+      real(dp), intent(out) :: ratio                  !! error / tolerance share of the step
+      integer, intent(out) :: worst                   !! output of the largest ratio
+      type(error_t), allocatable, intent(out) :: err  !! factorisation failure
+      logical :: ok
+      real(dp) :: r
+      integer :: hold
+      ratio = huge(1.0_dp);  worst = 1
+      hold = 0
+      if (event .and. self%ev_onset) hold = self%ev_contact
+      associate (s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
+         if (.not. event .and. level + 2 < self%n_levels) then
+            if (.not. self%ops(level + 2)%ready) then
+               call self%ops(level + 2)%prepare(self%model, self%cfg, self%h_lev(level + 2), &
+                                                err)
+               if (allocated(err)) return
+               self%factorizations = self%factorizations + 1
+            end if
+            call self%ops(level + 2)%step(self%model, s0, self%rich(1), ok, r, 0)
+            if (ok) call self%ops(level + 2)%step(self%model, self%rich(1), self%rich(2), ok, &
+                                                  r, 0)
+         else
+            call self%scratch_half%prepare(self%model, self%cfg, 0.5_dp * h, err)
+            if (allocated(err)) return
+            self%factorizations = self%factorizations + 1
+            call self%scratch_half%step(self%model, s0, self%rich(1), ok, r, hold)
+            if (ok) call self%scratch_half%step(self%model, self%rich(1), self%rich(2), ok, &
+                                                r, hold)
+         end if
+         if (.not. ok) return
+         self%eu = (4.0_dp / 3.0_dp) * (s1%u - self%rich(2)%u)
+         self%ev = (4.0_dp / 3.0_dp) * (s1%v - self%rich(2)%v)
+      end associate
+      ratio = self%output_ratio(worst)
+   end subroutine richardson
+
+   !> Running ranges of the watched outputs (start: from this state).
+   module subroutine track_outputs(self, s, first)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(state_t), intent(in) :: s                        !! an accepted state
+      logical, intent(in) :: first                          !! reset the ranges
+      real(dp) :: y(2 * (1 + size(self%out_dof)))
+      integer :: q, no
+      no = 1 + size(self%out_dof)
+      y(1) = 0.0_dp;  y(no + 1) = 0.0_dp
+      do q = 1, size(self%si)
+         y(1) = y(1) + self%sw(q) * s%u(self%si(q))
+         y(no + 1) = y(no + 1) + self%sw(q) * s%v(self%si(q))
+      end do
+      y(2:no) = s%u(self%out_dof);  y(no + 2:) = s%v(self%out_dof)
+      if (first) then
+         self%out_lo = y;  self%out_hi = y
+      else
+         self%out_lo = min(self%out_lo, y);  self%out_hi = max(self%out_hi, y)
+      end if
+   end subroutine track_outputs
+
+   !> Floors of the watched outputs of a model with two planes or extra loads: the largest
+   !> response to any one load vector of the open structure: the quasi-static K^-1 L for the w
+   !> and v base motions (as for a planar model, whose floors a planar deck run with two planes
+   !> keeps), and for the sin and cos parts of the point forces the smaller of that and the
+   !> harmonic (K - Omega^2 M + i Omega C)^-1 L (a force above a resonance moves the structure
+   !> far less than its static response); with two planes the same floor for an
+   !> output and its mirror in the other plane (an orbit can turn from one plane into the other;
+   !> a plane at rest must not get a zero floor).
+   subroutine tube_floors(self, model, kf, n_out)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      real(dp), intent(in) :: kf(:, :)                      !! Cholesky factor of K
+      integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      real(dp), allocatable :: loads(:, :), zs(:, :), zd(:, :), a(:, :)
+      integer, allocatable :: ipiv(:)
+      real(dp) :: fl(n_out), ys, yd
+      integer :: j, info, nh, q, i, nl, n, im
+      logical :: point_force(4), harmonic
+      n = model%n
+      nl = 1
+      point_force = [.false., .false., .true., .true.]
+      allocate(loads(n, 4), source=0.0_dp)
+      loads(:, 1) = model%half_amplitude * model%omega**2 * model%q
+      if (allocated(model%q_v)) then
+         nl = nl + 1;  loads(:, nl) = model%half_amplitude * model%omega**2 * model%q_v
+      end if
+      if (allocated(model%p_sin)) then
+         loads(:, nl + 1) = model%p_sin;  loads(:, nl + 2) = model%p_cos
+         point_force(nl + 1:nl + 2) = .true.
+         nl = nl + 2
+      end if
+      point_force(1:nl - merge(2, 0, allocated(model%p_sin))) = .false.
+      zs = loads(:, 1:nl)
+      call dpotrs('U', n, nl, kf, n, zs, n, info)
+      ! harmonic response: [K - W^2 M, -W C; W C, K - W^2 M] [x; y] = [L; 0], |z| = hypot
+      info = 0
+      if (n <= 1000 .and. any(point_force(1:nl))) then
+         allocate(a(2 * n, 2 * n), ipiv(2 * n))
+         a(1:n, 1:n) = model%sys%k - model%omega**2 * model%sys%m
+         a(n + 1:, n + 1:) = a(1:n, 1:n)
+         a(1:n, n + 1:) = -model%omega * model%c
+         a(n + 1:, 1:n) = model%omega * model%c
+         allocate(zd(2 * n, nl), source=0.0_dp)
+         zd(1:n, :) = loads(:, 1:nl)
+         call dgesv(2 * n, nl, a, 2 * n, ipiv, zd, 2 * n, info)
+         if (info /= 0) zd = 0.0_dp
+      end if
+      nh = n / 2
+      fl = 0.0_dp
+      do j = 1, nl
+         do q = 0, size(self%out_dof)
+            do im = 0, min(1, model%sys%planes - 1)      ! the output, then its mirror
+               harmonic = allocated(a) .and. info == 0 .and. point_force(j)
+               yd = huge(1.0_dp)
+               if (q == 0) then
+                  ys = abs(dot_product(self%sw, zs(self%si + im * nh, j)))
+                  if (harmonic) yd = hypot(dot_product(self%sw, zd(self%si + im * nh, j)), &
+                                           dot_product(self%sw, zd(n + self%si + im * nh, j)))
+               else
+                  i = self%out_dof(q)
+                  ! the same dof in the other plane (the planes are numbered alike)
+                  if (im == 1) i = merge(i + nh, i - nh, i <= nh)
+                  ys = abs(zs(i, j))
+                  if (harmonic) yd = hypot(zd(i, j), zd(n + i, j))
+               end if
+               fl(1 + q) = max(fl(1 + q), min(ys, yd))
+            end do
+         end do
+      end do
+      self%out_floor(1:n_out) = fl
+      self%out_floor(n_out + 1:) = model%omega * fl
+   end subroutine tube_floors
+
+   !> The end of a step, t0 + h, summed with Kahan's compensation so that millions of steps
+   !> do not accumulate the rounding of the time (eps t per step: a phase error that bounded
+   !> the accuracy near 1e-7); a step clipped to a target lands on it exactly.
+   pure subroutine next_time(t0, h, comp0, clipped, t1, comp)
+      real(dp), intent(in) :: t0, h       !! start [s], step [s]
+      real(dp), intent(in) :: comp0       !! compensation carried so far [s]
+      logical, intent(in) :: clipped      !! h = t_stop - t0: land on t_stop
+      real(dp), intent(out) :: t1         !! end of the step [s]
+      real(dp), intent(out) :: comp       !! compensation after it [s]
+      real(dp) :: y
+      if (clipped) then
+         t1 = t0 + h;  comp = 0.0_dp
+         return
+      end if
+      y = h - comp0
+      t1 = t0 + y
+      comp = (t1 - t0) - y
+   end subroutine next_time
+
+   !> Accept the step [t0, t0 + h] held in sub-state ix(1): divergence check, restart after an
+   !> event where a damper makes the force jump, hand it to the observer, make it the start.
+   subroutine swap_check_emit(self, t0, h, event, obs, err)
+      class(stepping_integrator_t), intent(inout), target :: self   !! integrator
+      real(dp), intent(in) :: t0, h                         !! the step [s]
+      logical, intent(in) :: event                          !! it ends at a contact event
+      class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
+      type(error_t), allocatable, intent(out) :: err        !! divergence
+      call self%check_divergence(t0, t0 + h, 1, err)
+      if (allocated(err)) return
+      if (self%model%n_rings > 0) then
+         call self%ring_switches(1, event)
+      else if (event) then
+         self%events = self%events + 1
+         if (self%jumps(self%ev_contact)) call self%restart_after_event(1)
+      end if
+      if (present(obs)) call self%emit_pieces(1, obs)
+      call self%track_outputs(self%sub(self%ix(1)), .false.)
+      self%steps_accepted = self%steps_accepted + 1
+      self%dt_smallest = min(self%dt_smallest, h)
+      self%dt_largest = max(self%dt_largest, h)
+      associate (sl => self%sub(self%ix(1)), sp => self%sub(self%ix(0)))
+         sl%f_prev = sp%f;  sl%dt_prev = h
+      end associate
+      self%ix([0, 1]) = self%ix([1, 0])
+   end subroutine swap_check_emit
+
+   !> The error of a step that fails at the smallest step size under error control.
+   subroutine controlled_failure(self, t0, h, ratio, worst, ok, err)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator
+      real(dp), intent(in) :: t0, h, ratio               !! the step and its error ratio
+      integer, intent(in) :: worst                       !! output of the largest error
+      logical, intent(in) :: ok                          !! false: the stepper failed
+      type(error_t), allocatable, intent(out) :: err     !! the message
+      character(len=:), allocatable :: what
+      if (.not. ok) then
+         what = 'the fixed point on the stop force does not converge'
+      else if (worst == 1) then
+         what = 'the local error of the root strain is ' // str(ratio) // ' times the tolerance'
+      else if (worst == 2 + size(self%out_dof)) then
+         what = 'the local error of the root strain rate is ' // str(ratio) // ' times the ' &
+                // 'tolerance'
+      else
+         what = 'the local error at ' // dof_label(self%model, self%out_dof(mod(worst - 2, &
+                1 + size(self%out_dof)))) // ' is ' // str(ratio) // ' times the tolerance'
+      end if
+      call fatal_error(err, "gapbeam_stepping: method '" // self%method // "': at t = " &
+         // str(t0) // ' s ' // what // ' with the smallest step dt = ' // str(h) // ' s; ' &
+         // 'raise &solver tolerance (now ' // str(self%tolerance) // ') or max_halvings ' &
+         // '(now ' // str(self%kmax) // ')')
+   end subroutine controlled_failure
+   !> Copy the state (arrays reused when sized).
+   module pure subroutine copy_state(a, b)
+      type(state_t), intent(in) :: a      !! source
+      type(state_t), intent(inout) :: b   !! destination
+      b%t = a%t
+      b%u = a%u;  b%v = a%v;  b%a = a%a;  b%f = a%f
+      if (allocated(a%f_prev)) then
+         b%f_prev = a%f_prev
+      else
+         b%f_prev = a%f
+      end if
+      if (allocated(a%cu)) then
+         b%cu = a%cu;  b%cv = a%cv
+      else if (allocated(b%cu)) then
+         deallocate(b%cu, b%cv)
+      end if
+      b%dt_prev = a%dt_prev;  b%level = a%level;  b%comfortable = a%comfortable
+      if (allocated(a%mode)) then
+         b%fn = a%fn;  b%ft = a%ft;  b%mode = a%mode;  b%sigma = a%sigma;  b%anchor = a%anchor
+      end if
+   end subroutine copy_state
+end submodule gapbeam_stepping_control
