@@ -45,6 +45,7 @@ import sys
 import time
 
 DECK = 'inputs/tube_multispan.nml'
+RK45 = "&solver method = 'rk45' /"
 MAP = 'inputs/tube_map.nml'
 PERIODIC = '&forcing frequency_hz = 7.0 / &stops gap = 0.05e-3, 0.05e-3 /'
 
@@ -106,21 +107,23 @@ class Runner:
             json.dump(fields, f)
         return fields
 
-    def map_run(self, kind):
+    def map_run(self, kind, extra=''):
         """The map deck through gapbeam with &reduction kind = KIND: per point (x, y) the
         sweep's wear datasets, and the run's CPU."""
         import h5py
         import numpy as np
-        out = os.path.join(self.cache, 'map_' + kind)
+        out = os.path.join(self.cache, 'map_' + kind + ('_x' if extra else ''))
         subset = os.environ.get('BENCH_TUBES_MAP', '')
         key = hashlib.sha256(json.dumps([self.exe_key, file_hash(MAP), kind] + (
-            [subset] if subset else [])).encode()).hexdigest()[:24]
+            [subset] if subset else []) + ([extra] if extra else [])).encode()) \
+            .hexdigest()[:24]
         path = os.path.join(self.cache, 'map_%s_%s.json' % (kind, key))
         if os.path.exists(path) and not self.fresh:
             with open(path) as f:
                 return json.load(f)
         cmd = self.locked([self.gapbeam, MAP, "&job output = '%s' /" % out,
                            "&reduction kind = '%s' /" % kind] + ([subset] if subset else [])
+                          + ([extra] if extra else [])
                           + ['--quiet'])
         t0 = time.time()
         subprocess.run(cmd, check=True, capture_output=True, text=True)
@@ -197,6 +200,8 @@ def describe(r):
     if r['kind'] == 'none':
         return 'full, tol %.0e' % r['tolerance']
     label = 'auto' if r['kind'] == 'auto' else 'cut %g Hz' % r['cutoff_hz']
+    if r.get('method') == 'rk45':
+        label += ' rk45'
     return '%s (%d coord.), tol %.0e' % (label, r['n'], r['tolerance'])
 
 
@@ -205,6 +210,7 @@ def part_deck(run, out, dat):
     rec = int(os.environ.get('BENCH_TUBES_RECORD', '40'))
     full = run.variant('none', 0, 1e-4, tr, rec)
     auto = run.variant('auto', 0, 1e-4, tr, rec)
+    rk = run.variant('auto', 0, 1e-4, tr, rec, RK45)
     ratio = full['cpu_per_simulated_s'] / auto['cpu_per_simulated_s']
     out.append('== the tube deck (%s: 8 Hz, 0.2 mm), %d + %d periods, release build, serial'
                % (DECK, tr, rec))
@@ -218,32 +224,40 @@ def part_deck(run, out, dat):
                    auto['n'], auto['modes_per_plane'], auto['static_per_plane'],
                    auto['cutoff_hz'], auto['contact_hz'], auto['f_max_hz'], auto['cpu_s'],
                    auto['cpu_per_simulated_s'], auto['steps']))
-    out.append('  CPU per simulated second: full / reduced = %.2f' % ratio)
+    out.append("  'auto' basis under rk45 (&solver method = 'rk45'): %.2f s cpu, %.3f s cpu per "
+               'simulated second, %d steps' % (rk['cpu_s'], rk['cpu_per_simulated_s'],
+                                                rk['steps']))
+    out.append('  CPU per simulated second: full / reduced = %.2f; full / reduced under rk45 = '
+               '%.2f' % (ratio, full['cpu_per_simulated_s'] / rk['cpu_per_simulated_s']))
     spread = [run.variant('none', 0, t, tr, rec) for t in (1e-3, 1e-5, 1e-6)]
-    rows = [full, auto] + spread
+    rows = [full, auto, rk] + spread
     out += support_table(rows, [describe(r) for r in rows])
     out.append('  differences against the full model at 1e-4 (the reduced run, then the full '
                "model's own spread between tolerances):")
-    for r in [auto] + spread:
+    for r in [auto, rk] + spread:
         out += diff_line(describe(r), r, full)
     ref = spread[-1]
-    cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (100, 150, 200, 300, 450, 700)]
+    cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (150, 300, 700)]
     autos = [run.variant('auto', 0, t, tr, rec) for t in (1e-3, 1e-5)]
+    rks = [run.variant('auto', 0, t, tr, rec, RK45) for t in (1e-3, 1e-5, 1e-6)]
     out.append('  against the full model at 1e-6 (every run, for the chart):')
-    for r in [full] + spread[:2] + [auto] + cuts + autos:
+    for r in [full] + spread[:2] + [auto] + cuts + autos + [rk] + rks:
         e = wear_errors(r, ref)
         out.append('    %-34s %8.3f s cpu/s  W_N %7.2f %%  W_f %7.2f %%  impact rate %7.2f %%  '
                    'peak %7.2f %%' % (describe(r), r['cpu_per_simulated_s'], 100 * e['wn'],
                                       100 * e['wf'], 100 * e['impacts'], 100 * e['peak']))
         dat.append('deck %s %s %g %g %d %.6g %.6g %.6g %.6g %.6g %.6g' % (
-            'full' if r['kind'] == 'none' else r['kind'], r['kind'], r['cutoff_hz'],
+            'full' if r['kind'] == 'none' else r['kind'] + ('_rk45' if r.get('method') ==
+                                                           'rk45' else ''), r['kind'],
+            r['cutoff_hz'],
             r['tolerance'], r['n'], r['cpu_per_simulated_s'], e['wn'], e['wf'],
             e['impacts'], e['peak'], r['steps']))
     pf = run.variant('none', 0, 1e-4, 2, 4, profile=True)
     pa = run.variant('auto', 0, 1e-4, 2, 4, profile=True)
+    pr = run.variant('auto', 0, 1e-4, 2, 4, RK45, profile=True)
     out.append('  where the steps go (2 + 4 periods at 1e-4):')
-    for name, p in (('full', pf), ('auto', pa)):
-        out.append('    %-5s %8d steps with every support open (mean %.3g s), %8d with a '
+    for name, p in (('full', pf), ('auto', pa), ('auto rk45', pr)):
+        out.append('    %-9s %8d steps with every support open (mean %.3g s), %8d with a '
                    'support in contact (mean %.3g s)' % (name, p['open_steps'],
                                                         p['open_mean_dt'], p['contact_steps'],
                                                         p['contact_mean_dt']))
@@ -291,6 +305,8 @@ def contact_class(cf, wn, wf):
 def part_map(run, out):
     full = run.map_run('none')
     red = run.map_run('auto')
+    rk = run.map_run('auto', RK45)
+    same_rk = 0
     n = len(full['x'])
     same = 0
     lines = []
@@ -301,8 +317,13 @@ def part_map(run, out):
         cr = [contact_class(red['contact_fraction'][p][k], red['normal_work_rate'][p][k],
                             red['friction_work_rate'][p][k])
               for k in range(len(red['contact_fraction'][p]))]
+        ck = [contact_class(rk['contact_fraction'][p][k], rk['normal_work_rate'][p][k],
+                            rk['friction_work_rate'][p][k])
+              for k in range(len(rk['contact_fraction'][p]))]
         if cf == cr:
             same += 1
+        if cf == ck:
+            same_rk += 1
         wf = sum(full['normal_work_rate'][p])
         wr = sum(red['normal_work_rate'][p])
         lines.append('    %5.2f Hz %6.3f mm  full %-8s reduced %-8s  W_N %9.3e / %9.3e W%s' % (
@@ -316,6 +337,10 @@ def part_map(run, out):
                                           red['wall_s'], full['cpu_s'] / red['cpu_s']))
     out.append('  the same contact class at both baffles (no contact / impacting / sustained, '
                'sticking / sliding): %d of %d points (%.1f %%)' % (same, n, 100.0 * same / n))
+    out.append("  reduced under rk45 (&solver method = 'rk45'): %.1f s cpu (%.1f s wall); cpu "
+               'ratio %.2f; the same contact class as the full map at %d of %d points (%.1f %%)'
+               % (rk['cpu_s'], rk['wall_s'], full['cpu_s'] / rk['cpu_s'], same_rk, n,
+                  100.0 * same_rk / n))
     out.append('  per point (class of baffle 1, baffle 2; summed normal work rate):')
     out += lines
 
