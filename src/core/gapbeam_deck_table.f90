@@ -22,7 +22,8 @@ module gapbeam_deck_table
    use gapbeam_deck_visitor, only: deck_visitor_t
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, stop_t, damping_t, &
       forcing_t, point_force_t, stop_side_words, stop_law_words, damping_words, &
-      rotary_inertia_words, stop_shape_words, end_condition_words, tip_condition_words
+      rotary_inertia_words, stop_shape_words, end_condition_words, tip_condition_words, &
+      beam_theory_words
    use gapbeam_settings, only: job_t, calibrate_t, analysis_words, calibration_words
    use gapbeam_deck, only: deck_t
    implicit none
@@ -45,6 +46,8 @@ module gapbeam_deck_table
    !> the Lyapunov separation) underflow and the label would no longer be the amplitude's
    real(dp), parameter :: min_amplitude_pp = 1.0e-30_dp
    real(dp), parameter :: big = sqrt(huge(1.0_dp))   !! scale rule: squares must not overflow
+   integer, parameter :: max_modal_ratios = 40004     !! most modal ratios (every mode)
+   real(dp), parameter :: max_modal_ratio = 100.0_dp  !! largest modal damping ratio
 
    interface
       !> The settings groups (&solver ... &continuation), in gapbeam_deck_table_settings.
@@ -95,11 +98,16 @@ contains
    subroutine walk_beam(v, b)
       class(deck_visitor_t), intent(inout) :: v
       type(beam_t), intent(inout) :: b
-      logical :: rect, general
+      logical :: rect, general, timo
+      character(len=:), allocatable :: why_g, why_k
       rect = b%width /= 0.0_dp .or. b%thickness /= 0.0_dp
       general = .not. rect .and. (b%area /= 0.0_dp .or. b%second_moment /= 0.0_dp .or. &
                                   b%fibre_distance /= 0.0_dp)
-      call v%begin_group('beam', 'uniform Euler-Bernoulli beam (required)')
+      timo = b%theory == 'timoshenko'
+      why_g = '';  why_k = ''
+      if (timo) why_g = "with theory = 'timoshenko'"
+      if (timo .and. .not. rect) why_k = "with theory = 'timoshenko' and a general section"
+      call v%begin_group('beam', 'uniform beam, Euler-Bernoulli or Timoshenko (required)')
       call v%real('length', b%length, 'm', lo=0.0_dp, lo_open=.true., required=.true., &
          design=.true., meaning='beam length L; nodes 1 (root, x = 0) to n_elem+1 (tip)')
       call v%int('n_elem', b%n_elem, lo=1, hi=10000, meaning='number of equal elements')
@@ -132,6 +140,19 @@ contains
          // '(v, theta_v) in the second transverse plane (tubes, docs/tubes.md)')
       call v%real('added_mass', b%added_mass, 'kg/m', lo=0.0_dp, design=.true., &
          meaning='mass per length added to rho A in the mass matrix only (fluid, contents)')
+      call v%word('theory', b%theory, beam_theory_words, meaning="'euler_bernoulli'; " &
+         // "'timoshenko': shear deformation and the section's rotary inertia rho I, the " &
+         // 'rotation dofs then being the rotations of the cross-section (docs/methods.md)')
+      call v%real('shear_modulus', b%shear_modulus, 'Pa', lo=0.0_dp, hi=big, positive=timo, &
+         why=why_g, &
+         design=.true., note="> 0 with theory = 'timoshenko' (ignored otherwise)", &
+         meaning='shear modulus G (Timoshenko)')
+      call v%real('shear_coefficient', b%shear_coefficient, '1', lo=0.0_dp, hi=1.0_dp, &
+         positive=timo .and. .not. rect, design=.true., why=why_k, note="0: 5/6 for a " &
+         // "rectangular " &
+         // "section; > 0 with theory = 'timoshenko' and a general section", &
+         meaning='shear coefficient k of k G A (Timoshenko): about 0.5 for a thin-walled ' &
+         // 'tube, 0.9 for a solid circle')
       call v%end_group()
    end subroutine walk_beam
 
@@ -339,14 +360,19 @@ contains
       type(damping_t), intent(inout) :: d
       logical :: ratios
       ratios = d%model == 'ratios'
-      call v%begin_group('damping', 'Rayleigh damping C = beta M + gamma K of the linear ' &
-         // 'structure (never the stops)')
+      call v%begin_group('damping', 'damping of the linear structure (never the stops): ' &
+         // 'Rayleigh C = beta M + gamma K, or modal with Rayleigh terms beside it')
       call v%word('model', d%model, damping_words, meaning="'none': C = 0; 'rayleigh': beta, " &
-         // "gamma given; 'ratios': beta, gamma from two (frequency, ratio) pairs")
+         // "gamma given; 'ratios': beta, gamma from two (frequency, ratio) pairs; 'modal': " &
+         // 'M Phi diag(2 zeta_j omega_j) Phi^T M + beta M + gamma K (docs/methods.md)')
       call v%real('mass_coefficient', d%mass_coefficient, '1/s', lo=0.0_dp, hi=big, &
-         design=.true., note="model = 'rayleigh'", meaning='beta')
+         design=.true., note="model = 'rayleigh' or 'modal'", meaning='beta')
       call v%real('stiffness_coefficient', d%stiffness_coefficient, 's', lo=0.0_dp, hi=big, &
-         design=.true., note="model = 'rayleigh'", meaning='gamma')
+         design=.true., note="model = 'rayleigh' or 'modal'", meaning='gamma')
+      call v%real_list('modal_ratios', d%modal_ratios, max_modal_ratios, '1', lo=0.0_dp, &
+         hi=max_modal_ratio, design=.true., note="required with model = 'modal', only there", &
+         meaning='damping ratios zeta_j of modes 1, 2, ... of each plane, the last one for ' &
+         // 'every further mode (one value: every mode alike)')
       call v%real('frequency1_hz', d%frequency1_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
          positive=ratios, &
          design=.true., note="> 0 with model = 'ratios'", meaning='first frequency f_1')

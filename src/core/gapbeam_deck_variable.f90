@@ -14,7 +14,8 @@
 !> clearance): they must have one unit, and a forcing variable stands alone
 !> (parse_deck_variables). Setting a damping ratio or frequency with model = 'ratios'
 !> recomputes the Rayleigh coefficients (as the deck reader does); setting a coefficient needs
-!> model = 'rayleigh'.
+!> model = 'rayleigh' or 'modal'. A list variable declared a design variable (`&damping
+!> modal_ratios(i)`) takes the index of its element, default 1; the element must exist.
 module gapbeam_deck_variable
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
@@ -56,6 +57,7 @@ module gapbeam_deck_variable
       character(len=:), allocatable :: refused  !! op_set: why the value is refused
    contains
       procedure :: on_real => design_real
+      procedure :: on_real_list => design_real_list
    end type design_visitor_t
 
 contains
@@ -249,6 +251,33 @@ contains
       end function ends_with
    end subroutine design_real
 
+   !> design_real for an element of a list variable (the target index is the element's).
+   subroutine design_real_list(self, s, x)
+      class(design_visitor_t), intent(inout) :: self
+      type(deck_spec_t), intent(in) :: s
+      real(dp), allocatable, intent(inout) :: x(:)
+      real(dp) :: y
+      if (.not. s%design) return
+      if (self%op == op_words .or. self%op == op_describe) then
+         y = 0.0_dp
+         call design_real(self, s, y)
+         if (self%op == op_describe .and. self%found .and. self%group == self%target_group &
+             .and. s%name == self%target_name) self%in_list = .true.
+         return
+      end if
+      if (self%group /= self%target_group .or. s%name /= self%target_name) return
+      if (.not. allocated(x)) return
+      if (self%target_index < 1 .or. self%target_index > size(x)) return
+      self%found = .true.
+      select case (self%op)
+      case (op_get)
+         self%x = x(self%target_index)
+      case (op_set)
+         self%refused = spec_violation(s, self%x)
+         if (len(self%refused) == 0) x(self%target_index) = self%x
+      end select
+   end subroutine design_real_list
+
    !> The variable exists in this deck (list entry present, damping model matching).
    subroutine check_deck_variable(deck, var, err)
       type(deck_t), intent(in) :: deck                  !! deck
@@ -286,9 +315,19 @@ contains
       case ('damping')
          select case (trim(var%name))
          case ('mass_coefficient', 'stiffness_coefficient')
-            if (deck%damping%model /= 'rayleigh') call fatal_error(err, lab &
-               // ": needs &damping model = 'rayleigh' (the deck has '" &
-               // trim(deck%damping%model) // "')")
+            if (deck%damping%model /= 'rayleigh' .and. deck%damping%model /= 'modal') &
+               call fatal_error(err, lab // ": needs &damping model = 'rayleigh' or 'modal' " &
+               // "(the deck has '" // trim(deck%damping%model) // "')")
+         case ('modal_ratios')
+            n = 0
+            if (allocated(deck%damping%modal_ratios)) n = size(deck%damping%modal_ratios)
+            if (deck%damping%model /= 'modal') then
+               call fatal_error(err, lab // ": needs &damping model = 'modal' (the deck has '" &
+                  // trim(deck%damping%model) // "')")
+            else if (var%index > n) then
+               call fatal_error(err, lab // ': the deck gives ' // str(n) // ' modal_ratios')
+            end if
+            n = -1
          case default
             if (deck%damping%model /= 'ratios') call fatal_error(err, lab &
                // ": needs &damping model = 'ratios' (the deck has '" &
@@ -332,7 +371,8 @@ contains
       real(dp) :: beta, gamma
       character(len=:), allocatable :: lab
       lab = deck_variable_label(var)
-      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0) then
+      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0 .and. &
+          var%name /= 'modal_ratios') then
          ! a ratio or a frequency of model 'ratios': the coefficients follow
          dd = deck%damping
          call set_on(dd%frequency1_hz, 'frequency1_hz', var%name, x)
@@ -357,7 +397,8 @@ contains
          call fatal_error(err, lab // ' = ' // str(x) // ': ' // v%refused)
          return
       end if
-      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0) then
+      if (var%group == 'damping' .and. index(var%name, '_coefficient') == 0 .and. &
+          var%name /= 'modal_ratios') then
          deck%damping%mass_coefficient = beta;  deck%damping%stiffness_coefficient = gamma
       end if
    contains

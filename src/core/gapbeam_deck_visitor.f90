@@ -195,7 +195,7 @@ contains
 
    !> A list of reals (unallocated: not given).
    subroutine visit_real_list(self, name, x, max_entries, unit, lo, hi, lo_open, zero, &
-                              meaning, note)
+                              meaning, note, design)
       class(deck_visitor_t), intent(inout) :: self
       character(len=*), intent(in) :: name           !! variable name
       real(dp), allocatable, intent(inout) :: x(:)   !! its component
@@ -203,10 +203,12 @@ contains
       character(len=*), intent(in), optional :: unit, meaning, note
       real(dp), intent(in), optional :: lo, hi
       logical, intent(in), optional :: lo_open, zero
+      logical, intent(in), optional :: design        !! each entry a design variable, name(i)
       type(deck_spec_t) :: s
       call make_spec(s, name, kind_real, unit, lo, hi, lo_open, zero=zero, meaning=meaning, &
                      note=note)
       s%list = .true.;  s%max_entries = max_entries
+      if (present(design)) s%design = design
       call self%on_real_list(s, x)
    end subroutine visit_real_list
 

@@ -25,11 +25,13 @@ module gapbeam_description
    public :: point_force_t
    public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
    public :: beam_mass_per_length, stop_is_ring
+   public :: beam_rho_i, beam_shear_stiffness, beam_shear_coefficient, beam_is_timoshenko
+   public :: modal_ratio
    public :: rayleigh_from_ratios, modal_damping_ratio
    public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_code, dof_name, law_code, law_bilinear, &
       law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
-      stop_shape_words, end_condition_words, tip_condition_words
+      stop_shape_words, end_condition_words, tip_condition_words, beam_theory_words
 
    integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
    integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
@@ -41,7 +43,7 @@ module gapbeam_description
 
    character(len=*), parameter :: stop_side_words = "'positive', 'negative', 'both'"
    character(len=*), parameter :: stop_law_words = "'bilinear', 'hertz'"
-   character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios'"
+   character(len=*), parameter :: damping_words = "'none', 'rayleigh', 'ratios', 'modal'"
    character(len=*), parameter :: stop_shape_words = "'flat', 'circular'"
    !> support conditions of the root (node 1)
    character(len=*), parameter :: end_condition_words = "'clamped', 'spring', 'pinned'"
@@ -49,8 +51,12 @@ module gapbeam_description
    character(len=*), parameter :: tip_condition_words = "'free', 'clamped', 'spring', 'pinned'"
    !> Rotary-inertia rules of the lumped mass matrix (see gapbeam_beam_element).
    character(len=*), parameter :: rotary_inertia_words = "'half_element', 'hrz', 'none'"
+   !> Beam theories (see gapbeam_beam_element).
+   character(len=*), parameter :: beam_theory_words = "'euler_bernoulli', 'timoshenko'"
+   !> Shear coefficient of a rectangular section when the deck gives none [-].
+   real(dp), parameter :: rectangle_shear_coefficient = 5.0_dp / 6.0_dp
 
-   !> Uniform Euler-Bernoulli beam.
+   !> Uniform beam, Euler-Bernoulli or Timoshenko.
    type :: beam_t
       real(dp) :: length = 0.0_dp          !! length [m]
       integer  :: n_elem = 4               !! number of elements [-]
@@ -67,6 +73,13 @@ module gapbeam_description
       !> mass per unit length added to rho A in the mass matrix only (fluid added mass,
       !> contents) [kg/m]
       real(dp) :: added_mass = 0.0_dp
+      !> 'euler_bernoulli' or 'timoshenko' (shear deformation and rotary inertia rho I; the
+      !> rotation dofs are then the rotations of the cross-section)
+      character(len=16) :: theory = 'euler_bernoulli'
+      real(dp) :: shear_modulus = 0.0_dp       !! Timoshenko: shear modulus G [Pa]
+      !> Timoshenko: shear coefficient k of k G A [-]; 0: 5/6 for a rectangular section (a
+      !> general section must give it)
+      real(dp) :: shear_coefficient = 0.0_dp
    end type beam_t
 
    !> End support: the root (node 1; its translation is always fixed) or the tip (last node).
@@ -133,16 +146,20 @@ module gapbeam_description
       real(dp) :: phase_deg = 0.0_dp            !! phase [deg]
    end type point_force_t
 
-   !> Rayleigh damping C = beta M + gamma K of the linear structure (never the stop springs);
-   !> after the deck reader only the coefficients matter.
+   !> Damping of the linear structure (never the stop springs): Rayleigh C = beta M + gamma K
+   !> (after the deck reader only the coefficients matter), and with model = 'modal' the modal
+   !> part M Phi diag(2 zeta_j omega_j) Phi' M added to it (mode j of the integrated model,
+   !> numbered per plane, ratio modal_ratio(modal_ratios, j)).
    type :: damping_t
-      character(len=16) :: model = 'none'          !! 'none', 'rayleigh' or 'ratios'
+      character(len=16) :: model = 'none'          !! 'none', 'rayleigh', 'ratios' or 'modal'
       real(dp) :: mass_coefficient = 0.0_dp        !! beta in C = beta M + gamma K [1/s]
       real(dp) :: stiffness_coefficient = 0.0_dp   !! gamma [s]
       real(dp) :: frequency1_hz = 0.0_dp           !! 'ratios': first frequency [Hz]
       real(dp) :: ratio1 = 0.0_dp                  !! 'ratios': damping ratio at frequency1 [-]
       real(dp) :: frequency2_hz = 0.0_dp           !! 'ratios': second frequency [Hz]
       real(dp) :: ratio2 = 0.0_dp                  !! 'ratios': damping ratio at frequency2 [-]
+      !> 'modal': damping ratios of modes 1, 2, ... (the last one for every further mode) [-]
+      real(dp), allocatable :: modal_ratios(:)
    end type damping_t
 
    !> Harmonic base excitation u_b(t) = (amplitude_pp / 2) sin(2 pi f t) along w; with two
@@ -187,6 +204,45 @@ contains
       real(dp) :: m
       m = beam_rho_a(b) + b%added_mass
    end function beam_mass_per_length
+
+   !> Is the beam a Timoshenko beam?
+   pure logical function beam_is_timoshenko(b)
+      type(beam_t), intent(in) :: b   !! beam
+      beam_is_timoshenko = b%theory == 'timoshenko'
+   end function beam_is_timoshenko
+
+   !> Rotary inertia per unit length rho I of the section [kg m].
+   pure function beam_rho_i(b) result(rho_i)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: rho_i
+      if (b%width > 0.0_dp .and. b%thickness > 0.0_dp) then
+         rho_i = b%density * b%width * b%thickness**3 / 12.0_dp
+      else
+         rho_i = b%density * b%second_moment
+      end if
+   end function beam_rho_i
+
+   !> Shear coefficient k of the Timoshenko beam: the deck's, or 5/6 for a rectangular section
+   !> when it gives none (0 for a general section without one) [-].
+   pure function beam_shear_coefficient(b) result(k)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: k
+      k = b%shear_coefficient
+      if (k <= 0.0_dp .and. b%width > 0.0_dp .and. b%thickness > 0.0_dp) &
+         k = rectangle_shear_coefficient
+   end function beam_shear_coefficient
+
+   !> Shear stiffness k G A of the Timoshenko beam [N].
+   pure function beam_shear_stiffness(b) result(kga)
+      type(beam_t), intent(in) :: b   !! beam
+      real(dp) :: kga, a
+      if (b%width > 0.0_dp .and. b%thickness > 0.0_dp) then
+         a = b%width * b%thickness
+      else
+         a = b%area
+      end if
+      kga = beam_shear_coefficient(b) * b%shear_modulus * a
+   end function beam_shear_stiffness
 
    !> Does a stop act through the two-dimensional support contact (a circular clearance, or
    !> any stop with friction) rather than as one-sided contacts along one dof?
@@ -274,6 +330,18 @@ contains
       beta = 2.0_dp * w1 * w2 * (z1 * w2 - z2 * w1) / (w2**2 - w1**2)
       gamma = 2.0_dp * (z2 * w2 - z1 * w1) / (w2**2 - w1**2)
    end subroutine rayleigh_from_ratios
+
+   !> Damping ratio of mode j (1, 2, ...) from a list of modal ratios: the j-th, or the last one
+   !> for every mode beyond the list; 0 for an empty or absent list [-].
+   pure function modal_ratio(ratios, j) result(zeta)
+      real(dp), allocatable, intent(in) :: ratios(:)  !! the deck's modal_ratios
+      integer, intent(in) :: j                        !! mode number (>= 1)
+      real(dp) :: zeta
+      zeta = 0.0_dp
+      if (.not. allocated(ratios)) return
+      if (size(ratios) == 0) return
+      zeta = ratios(min(j, size(ratios)))
+   end function modal_ratio
 
    !> Modal damping ratio of Rayleigh damping at a frequency [-].
    elemental function modal_damping_ratio(beta, gamma, f_hz) result(zeta)

@@ -4,7 +4,7 @@
 !>
 !> Equations in coordinates relative to the base:
 !>    M a + C v + K u + sum_c (-s_c f_c) e_c = s(t) q,    q = M r,  s(t) = -u_b''(t)
-!> with C = beta M + gamma K and f_c >= 0 the magnitude of contact c (see gapbeam_contact_law).
+!> with C = beta M + gamma K (+ c_modal, modal damping) and f_c >= 0 the magnitude of contact c (see gapbeam_contact_law).
 !> Two-plane models (planes = 2) and point forces add `extra` loads (add_extra_load), and the
 !> supports with a circular clearance or friction act as two-dimensional contacts (rings, see
 !> gapbeam_ring_contact): sum_r P_r on the (w, v) dofs of their node.
@@ -14,7 +14,7 @@ module gapbeam_model
    implicit none
    private
    public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd, add_extra_load, &
-      has_tube_physics
+      has_tube_physics, has_modal_damping
 
    integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices
 
@@ -40,6 +40,9 @@ module gapbeam_model
       integer :: tip_dof_v = 0                     !! global index of the tip v (0: none)
       real(dp) :: fibre_distance = 0.0_dp          !! strain fibre distance c [m]
       real(dp) :: element_length = 0.0_dp          !! element length [m]
+      !> Timoshenko shear parameter phi = 12 EI / (k G A le^2) of the elements; 0 for
+      !> Euler-Bernoulli (the rotation dofs are then dw/dx, else the section rotations) [-]
+      real(dp) :: shear_phi = 0.0_dp
    end type system_t
 
    !> Everything the integrators need, in global dofs.
@@ -49,6 +52,10 @@ module gapbeam_model
       real(dp) :: beta = 0.0_dp                  !! Rayleigh mass coefficient [1/s]
       real(dp) :: gamma = 0.0_dp                 !! Rayleigh stiffness coefficient [s]
       real(dp), allocatable :: c(:, :)           !! dense damping matrix
+      !> modal damping (&damping model = 'modal'): the part M Phi diag(2 zeta omega) Phi' M of
+      !> C beside the Rayleigh terms, C = beta M + gamma K + c_modal (dense); unallocated
+      !> without modal damping
+      real(dp), allocatable :: c_modal(:, :)
       real(dp), allocatable :: q(:)              !! load shape M r [kg]
       real(dp) :: omega = 0.0_dp                 !! forcing angular frequency [rad/s]
       real(dp) :: half_amplitude = 0.0_dp        !! A_pp / 2 [m]
@@ -125,6 +132,12 @@ contains
       type(model_t), intent(in) :: model   !! model
       has_tube_physics = model%sys%planes > 1 .or. model%extra_load .or. model%n_rings > 0
    end function has_tube_physics
+
+   !> Does the damping have a modal part (C dense, not beta M + gamma K)?
+   pure logical function has_modal_damping(model)
+      type(model_t), intent(in) :: model   !! model
+      has_modal_damping = allocated(model%c_modal)
+   end function has_modal_damping
 
    !> Global index of a node dof (0 when fixed); a node outside the mesh is a programming error.
    pure integer function global_dof(sys, node, dof)

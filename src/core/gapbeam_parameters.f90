@@ -6,7 +6,7 @@
 !> offsets, wear coefficients, the forcing's direction and phase, point forces), so that a
 !> file says which model produced it without its deck being parsed.
 !>
-!> Units and long names are those of the output catalogue (io/gapbeam_output_catalogue, under
+!> Units and long names are those of the output catalogue (core/gapbeam_output_catalogue, under
 !> /parameters); a value carries its units only where the deck decides them (a stop's gap in
 !> m or rad), and the part of its long name that depends on the deck (`fill`).
 module gapbeam_parameters
@@ -16,7 +16,8 @@ module gapbeam_parameters
    use gapbeam_laws, only: law_caps_of
    use gapbeam_law, only: law_caps_t
    use gapbeam_description, only: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, &
-      dof_w, dof_v, dof_name, law_code, forcing_omega
+      dof_w, dof_v, dof_name, law_code, forcing_omega, beam_is_timoshenko, &
+      beam_shear_coefficient, beam_shear_stiffness
    implicit none
    private
    public :: parameter_t, parameter_set_t, run_parameters, stiffness_units, forcing_text
@@ -105,6 +106,8 @@ contains
          call set%add_real('damping/frequency2_hz', deck%damping%frequency2_hz)
          call set%add_real('damping/ratio2', deck%damping%ratio2)
       end if
+      if (deck%damping%model == 'modal') call set%add_list('damping/modal_ratios', &
+                                                           deck%damping%modal_ratios)
       call add_forcing(set, deck)
       if (present(f1_open_hz)) call set%add_real('model/f1_open_hz', f1_open_hz)
       if (present(f_max_hz)) call set%add_real('model/f_max_hz', f_max_hz)
@@ -149,6 +152,14 @@ contains
          call set%add_real('beam/mass', beam_mass(b))
          call set%add_text('beam/mass_matrix', trim(b%mass_matrix))
          call set%add_text('beam/rotary_inertia', trim(b%rotary_inertia))
+         if (beam_is_timoshenko(b)) then
+            call set%add_text('beam/theory', trim(b%theory))
+            call set%add_real('beam/shear_modulus', b%shear_modulus)
+            call set%add_real('beam/shear_coefficient', beam_shear_coefficient(b))
+            call set%add_real('beam/shear_stiffness', beam_shear_stiffness(b))
+            call set%add_real('beam/shear_parameter', 12.0_dp * ei / (beam_shear_stiffness(b) &
+                              * (b%length / real(b%n_elem, dp))**2))
+         end if
          call set%add_real('beam/planes', real(b%planes, dp))
          call set%add_real('beam/added_mass', b%added_mass)
          call set%add_text('root/condition', trim(root%condition))

@@ -20,7 +20,7 @@ module gapbeam_alpha
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs, dpbtrf, dpbtrs
-   use gapbeam_model, only: model_t, load_factor, add_extra_load
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_modal_damping
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_integrator, only: stepper_t
@@ -261,6 +261,11 @@ contains
       self%t1 = am * s0%a + model%beta * ((1.0_dp - af) * s1%v + af * s0%v)
       call matvec(self, model, model%sys%m, model%sys%m_band, self%t1, self%t2)
       self%t2 = ((1.0_dp - af) * p1 + af * p0) * model%q - self%rhs - self%t2
+      if (has_modal_damping(model)) then       ! C_m ((1-af) v~ + af v0): C's modal part
+         self%t1 = (1.0_dp - af) * s1%v + af * s0%v
+         call dense_matvec(model%n, model%c_modal, self%t1, self%rhs)
+         self%t2 = self%t2 - self%rhs
+      end if
       call add_weighted_extra(model, s0%t, h, af, self%t1, self%t2)
       call kbar_solve(self, model, self%t2)
       self%t2 = self%t2 / bh2

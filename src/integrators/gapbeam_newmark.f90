@@ -8,12 +8,17 @@
 !> contact forces G = Kbar^-1 E on the displacements, so that y = y* - G F. With C = beta M +
 !> gamma K, Kbar^-1 Pbar reduces to one product with Kbar^-1 M (dense path) or one banded
 !> solve (banded path) per step.
+!>
+!> Modal damping (C = beta M + gamma K + C_m, C_m dense) takes the dense path: Kbar = c1 K + c0 M
+!> + a1 C_m, and the predictor gains (1/c1) Kbar^-1 C_m hC (the matrix `ac`); the other steps add
+!> the products with C_m where they use C.
 module gapbeam_newmark
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_lapack, only: dpotrf, dpotrs, dpbtrf, dpbtrs
    use gapbeam_linalg, only: dense_matvec, band_matvec, band_solve, dense_to_band
-   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics, &
+      has_modal_damping
    use gapbeam_state, only: state_t
    use gapbeam_contact_law, only: contact_force, contact_solve, solve_contacts
    use gapbeam_ring_contact, only: solve_mixed_contacts
@@ -45,6 +50,7 @@ module gapbeam_newmark
       real(dp), allocatable :: gp(:)             !! Kbar^-1 q
       real(dp), allocatable :: g(:, :)           !! (n, n_slots) Kbar^-1 E
       real(dp), allocatable :: h(:, :)           !! (n_slots, n_slots) E' Kbar^-1 E
+      real(dp), allocatable :: ac(:, :)          !! modal damping: Kbar^-1 C_m / c1
    end type step_op_t
 
    !> The Newmark (delta, alpha) method as a stepper: condensed or fixed-point stop forces.
@@ -103,10 +109,13 @@ contains
    end subroutine newmark_prepare
 
    !> Dense storage for the linear solves? The deck's linear_solver, or 'auto': dense up to 60
-   !> dofs (below that the dense product with Kbar^-1 M beats a banded solve).
+   !> dofs (below that the dense product with Kbar^-1 M beats a banded solve). Always with
+   !> modal damping: C is dense.
    pure logical function use_dense(model, linear_solver)
       type(model_t), intent(in) :: model               !! model
       character(len=*), intent(in) :: linear_solver    !! 'auto', 'dense' or 'banded'
+      use_dense = .true.
+      if (has_modal_damping(model)) return
       select case (linear_solver)
       case ('dense');  use_dense = .true.
       case ('banded'); use_dense = .false.
@@ -174,6 +183,10 @@ contains
       call sym_matvec(op%dense, model%sys%kd, model%sys%k, model%sys%k_band, w, r)
       call sym_matvec(op%dense, model%sys%kd, model%sys%m, model%sys%m_band, vt, w)
       r = load * model%q - r - model%beta * w
+      if (has_modal_damping(model)) then
+         call dense_matvec(n, model%c_modal, vt, w)
+         r = r - w
+      end if
       call add_extra_load(model, s1%t, r)
       call kbar_solve(model, op, r)
       r = r / bh2                                   ! a1 with no contact force
@@ -296,6 +309,7 @@ contains
       op%c%cw = model%beta - model%gamma * c0 / c1
       op%c%ch = model%gamma / c1
       kbar = c1 * model%sys%k + c0 * model%sys%m
+      if (has_modal_damping(model)) kbar = kbar + op%c%a1 * model%c_modal
       allocate(rhs(n, 1 + ns))
       rhs(:, 1) = model%q
       rhs(:, 2:) = 0.0_dp
@@ -320,6 +334,8 @@ contains
          end do
          call dpotrs('U', n, n, op%fac, n, op%kinv, n, info)
          if (allocated(op%fab)) deallocate(op%fab)
+         if (allocated(op%ac)) deallocate(op%ac)
+         if (has_modal_damping(model)) op%ac = matmul(op%kinv, model%c_modal) / c1
       else
          call dense_to_band(kbar, kd, op%fab)
          call dpbtrf('U', n, kd, op%fab, kd + 1, info)
@@ -359,6 +375,10 @@ contains
       work = hm + op%c%cw * hc
       if (op%dense) then
          call dense_matvec(n, op%am, work, ystar)
+         if (allocated(op%ac)) then
+            call dense_matvec(n, op%ac, hc, work)
+            ystar = ystar + work
+         end if
       else
          if (model%sys%m_diagonal) then
             ystar = model%sys%m_band(model%sys%kd + 1, :) * work
@@ -391,7 +411,7 @@ contains
       logical :: hold
       n = model%n
       hold = open_contact > 0
-      if (op%dense .and. model%n_contacts == 1 .and. .not. hold) then
+      if (op%dense .and. model%n_contacts == 1 .and. .not. hold .and. .not. allocated(op%ac)) then
          call dense_single_contact_step(n, op%am, op%gp, op%g(:, 1), op%h(1, 1), op%c, s1, &
             model, u, v, a, u1, v1, a1, f1(1), hm, hc)
          return
@@ -408,6 +428,13 @@ contains
                u1(i) = u1(i) + op%am(i, j) * xj
             end do
          end do
+         if (allocated(op%ac)) then
+            do j = 1, n
+               do i = 1, n
+                  u1(i) = u1(i) + op%ac(i, j) * hc(j)
+               end do
+            end do
+         end if
       else
          call newmark_predict(model, op, s1, u, v, a, hm, hc, u1, a1)
       end if
@@ -534,6 +561,10 @@ contains
       call sym_matvec(op%dense, model%sys%kd, model%sys%m, model%sys%m_band, tmp, pbar)
       call sym_matvec(op%dense, model%sys%kd, model%sys%k, model%sys%k_band, hc, rhs)
       pbar = pbar + model%gamma * rhs + s1 * model%q
+      if (has_modal_damping(model)) then
+         call dense_matvec(n, model%c_modal, hc, rhs)
+         pbar = pbar + rhs
+      end if
       held = 0
       if (present(open_contact)) held = open_contact
       if (held > 0) f(held) = 0.0_dp
@@ -638,6 +669,10 @@ contains
             call band_matvec(n, model%sys%kd, model%sys%k_band, vm, cv)
             call band_matvec(n, model%sys%kd, model%sys%m_band, vm, ma)
             cv = model%gamma * cv + model%beta * ma
+            if (has_modal_damping(model)) then
+               call dense_matvec(n, model%c_modal, vm, ma)
+               cv = cv + ma
+            end if
             call band_matvec(n, model%sys%kd, model%sys%m_band, am, ma)
          end if
          s = load_factor(model, t0 + h)

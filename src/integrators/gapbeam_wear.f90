@@ -20,7 +20,8 @@
 !>   contact springs, stick springs) between the start and the end of the record.
 module gapbeam_wear
    use gapbeam_kinds, only: dp
-   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics, &
+      has_modal_damping
    use gapbeam_contact_law, only: contact_force, contact_elastic, contact_energy
    use gapbeam_ring_contact, only: ring_force, ring_geometry, ring_stored_energy, ring_slip, &
       ring_anchor_of, ring_tangent_gap
@@ -99,6 +100,8 @@ contains
                pv = dot_product(self%w, self%v)
                ray = m%beta * quad(m, m%sys%m_band, m%sys%m, self%v, self%y) + m%gamma &
                      * quad(m, m%sys%k_band, m%sys%k, self%v, self%y)
+               if (has_modal_damping(m)) ray = ray + dot_product(self%v, &
+                                                           matmul(m%c_modal, self%v))
                self%e_in = self%e_in + wq * pv
                self%e_ray = self%e_ray + wq * ray
             end if

@@ -6,6 +6,12 @@
 !>    w(xi) = N1 w_e + N2 theta_e + N3 w_e+1 + N4 theta_e+1
 !>    N1 = 1 - 3 xi^2 + 2 xi^3,  N2 = le (xi - 2 xi^2 + xi^3),
 !>    N3 = 3 xi^2 - 2 xi^3,      N4 = le (xi^3 - xi^2).
+!> For a Timoshenko beam (sys%shear_phi = phi > 0, theta the section rotation) the element's own
+!> interdependent shape functions (gapbeam_beam_element:timoshenko_shapes):
+!>    N1 = (1 - 3 xi^2 + 2 xi^3 + phi (1 - xi))/(1 + phi),
+!>    N2 = le (xi - 2 xi^2 + xi^3 + phi (xi - xi^2)/2)/(1 + phi),
+!>    N3 = (3 xi^2 - 2 xi^3 + phi xi)/(1 + phi),
+!>    N4 = le (xi^3 - xi^2 - phi (xi - xi^2)/2)/(1 + phi).
 !> A fixed dof (dof_of = 0) is zero. Points: x = 0, then `per_element` points on each element
 !> ending at its right node, so the nodes are among them: n = n_elem * per_element + 1. The
 !> second plane of a two-plane model (v, theta_v = dv/dx) the same way (`plane = 2`).
@@ -43,7 +49,7 @@ contains
       integer, intent(in) :: per_element            !! points per element (>= 1)
       integer, intent(in), optional :: plane         !! 1 (w, default) or 2 (v)
       real(dp), allocatable :: w(:)
-      real(dp) :: we(2), te(2), xi, le
+      real(dp) :: we(2), te(2), xi, le, phi, s
       integer :: e, k, n_elem, dw, dt
       dw = dof_w;  dt = dof_theta
       if (present(plane)) then
@@ -63,6 +69,13 @@ contains
             w(1 + (e - 1) * per_element + k) = (1.0_dp - 3.0_dp * xi**2 + 2.0_dp * xi**3) * we(1) &
                + le * (xi - 2.0_dp * xi**2 + xi**3) * te(1) &
                + (3.0_dp * xi**2 - 2.0_dp * xi**3) * we(2) + le * (xi**3 - xi**2) * te(2)
+            if (sys%shear_phi > 0.0_dp) then
+               phi = sys%shear_phi;  s = 1.0_dp / (1.0_dp + phi)
+               w(1 + (e - 1) * per_element + k) = s * ((1 - 3 * xi**2 + 2 * xi**3 &
+                  + phi * (1 - xi)) * we(1) + le * (xi - 2 * xi**2 + xi**3 + 0.5_dp * phi &
+                  * (xi - xi**2)) * te(1) + (3 * xi**2 - 2 * xi**3 + phi * xi) * we(2) &
+                  + le * (xi**3 - xi**2 - 0.5_dp * phi * (xi - xi**2)) * te(2))
+            end if
          end do
       end do
    end function deflection

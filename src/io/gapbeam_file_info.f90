@@ -18,7 +18,7 @@ module gapbeam_file_info
    use, intrinsic :: iso_fortran_env, only: int8, int64
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_model, only: system_t, model_t
+   use gapbeam_model, only: system_t, model_t, has_modal_damping
    use gapbeam_description, only: dof_name
    use gapbeam_error, only: str
    use gapbeam_checkpoint, only: crc32
@@ -112,7 +112,11 @@ contains
       call h5%put('/model/stop_stiffness', model%stop_stiffness, units=stiffness_units)
       call h5%put('/model/f1_open_hz', model%f1_open_hz)
       call write_structure(h5, model%sys)
-      call h5%put('/model/damping', model%c)
+      if (has_modal_damping(model)) then
+         call h5%put('/model/damping', model%c, fill=' + M Phi diag(2 zeta omega) Phi^T M')
+      else
+         call h5%put('/model/damping', model%c, fill='')
+      end if
       call h5%put('/model/load_shape', model%q)
       call h5%put('/model/forcing_omega', model%omega)
       call h5%put('/model/forcing_half_amplitude', model%half_amplitude)

@@ -25,7 +25,8 @@ module gapbeam_input
    use gapbeam_capabilities, only: solver_refusal, method_caps, method_caps_t
    use gapbeam_laws, only: stop_law_refusal
    use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v, &
-      rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name
+      rayleigh_from_ratios, beam_ei, beam_rho_a, stop_is_ring, dof_name, &
+      beam_is_timoshenko, beam_shear_stiffness, beam_shear_coefficient
    use gapbeam_deck, only: deck_t
    implicit none
    private
@@ -254,6 +255,18 @@ contains
             // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
          return
       end if
+      if (beam_is_timoshenko(b)) then
+         if (.not. (usable(beam_shear_stiffness(b)) .and. usable(12.0_dp * (ei / le / le) &
+             / beam_shear_stiffness(b)))) then
+            call fatal_error(err, "group &beam: theory = 'timoshenko' with shear_modulus = " &
+               // str(b%shear_modulus) // ' and shear coefficient ' &
+               // str(beam_shear_coefficient(b)) // ' gives k G A = ' &
+               // str(beam_shear_stiffness(b)) // ' N and phi = 12 EI/(k G A le^2) = ' &
+               // str(12.0_dp * (ei / le / le) / beam_shear_stiffness(b)) // ': each must be ' &
+               // 'between ' // str(sqrt(tiny(1.0_dp))) // ' and ' // str(sqrt(huge(1.0_dp))))
+            return
+         end if
+      end if
       if (b%added_mass > 0.0_dp .and. .not. usable((rho_a + b%added_mass) * b%length)) then
          call fatal_error(err, 'group &beam: added_mass = ' // str(b%added_mass) &
             // ' kg/m gives a beam mass of ' // str((rho_a + b%added_mass) * b%length) &
@@ -424,9 +437,21 @@ contains
       type(error_t), allocatable, intent(inout) :: err
       integer :: i, j
       associate (d => deck%damping, st => deck%structure)
+         if (allocated(d%modal_ratios) .and. d%model /= 'modal') then
+            call fatal_error(err, "group &damping: modal_ratios is given with model = '" &
+               // trim(d%model) // "': modal_ratios needs model = 'modal'")
+            return
+         end if
          select case (d%model)
          case ('none')
             d%mass_coefficient = 0.0_dp;  d%stiffness_coefficient = 0.0_dp
+         case ('modal')
+            if (.not. allocated(d%modal_ratios)) then
+               call fatal_error(err, "group &damping: model = 'modal' needs modal_ratios " &
+                  // '(one value for every mode, or the values of modes 1, 2, ..., the last ' &
+                  // 'one for every further mode)')
+               return
+            end if
          case ('ratios')
             if (d%frequency2_hz <= d%frequency1_hz) then
                call fatal_error(err, 'group &damping: frequency2_hz = ' // str(d%frequency2_hz) &
@@ -590,6 +615,12 @@ contains
             // 'state is not part of the state (u, v) the exponent perturbs); set ' &
             // 'lyapunov_periods = 0, the default with ring supports (the label then comes ' &
             // 'from the period detection alone)')
+         return
+      end if
+      if (deck%damping%model == 'modal' .and. deck%solver%linear_solver == 'banded') then
+         call fatal_error(err, "group &solver: linear_solver = 'banded': modal damping " &
+            // "(&damping model = 'modal') makes the damping matrix dense; use 'auto' or " &
+            // "'dense'")
          return
       end if
       ! the exact Jacobian needs a method whose registry entry gives one

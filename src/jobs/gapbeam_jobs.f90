@@ -8,7 +8,8 @@ module gapbeam_jobs
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
-      modal_damping_ratio, dof_w
+      modal_damping_ratio, dof_w, modal_ratio, beam_is_timoshenko, beam_shear_coefficient, &
+      beam_shear_stiffness
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -43,6 +44,11 @@ contains
          // ' N m^2, rho A = ' // str(beam_rho_a(st%beam)) // ' kg/m, mass = ' &
          // str(beam_mass(st%beam)) // ' kg, ' // trim(st%beam%mass_matrix) // ' mass' &
          // rotary_text(st)
+      if (beam_is_timoshenko(st%beam)) write(output_unit, '(a)') 'Timoshenko beam: G = ' &
+         // str(st%beam%shear_modulus) // ' Pa, k = ' // str(beam_shear_coefficient(st%beam)) &
+         // ', k G A = ' // str(beam_shear_stiffness(st%beam)) // ' N, phi = 12 EI/(k G A le^2) = ' &
+         // str(12.0_dp * beam_ei(st%beam) / (beam_shear_stiffness(st%beam) &
+         * (st%beam%length / real(st%beam%n_elem, dp))**2))
       if (st%root%condition == 'spring') then
          write(output_unit, '(a)') 'root: rotational spring k_theta = ' // str(st%root%k_theta) &
             // ' N m/rad (kappa = k_theta L / EI = ' &
@@ -95,7 +101,14 @@ contains
             100.0_dp * modes%effective_mass(j) / modes%total_mass
          write(output_unit, '(a)') trim(line)
       end do
-      if (dk%damping%model /= 'none') then
+      if (dk%damping%model == 'modal') then
+         write(output_unit, '(a)') 'modal damping: zeta of mode 1 = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1)) // ' (+ Rayleigh beta = ' &
+            // str(dk%damping%mass_coefficient) // ' 1/s, gamma = ' &
+            // str(dk%damping%stiffness_coefficient) // ' s); zeta(f1) = ' &
+            // str(modal_ratio(dk%damping%modal_ratios, 1) + modal_damping_ratio( &
+            dk%damping%mass_coefficient, dk%damping%stiffness_coefficient, modes%frequency_hz(1)))
+      else if (dk%damping%model /= 'none') then
          write(output_unit, '(a)') 'Rayleigh damping: beta = ' // str(dk%damping%mass_coefficient) &
             // ' 1/s, gamma = ' // str(dk%damping%stiffness_coefficient) // ' s; zeta(f1) = ' &
             // str(modal_damping_ratio(dk%damping%mass_coefficient, &

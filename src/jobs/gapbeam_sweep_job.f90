@@ -63,13 +63,12 @@ contains
       type(model_t) :: base
       type(reduction_info_t) :: reduced
       type(sweep_plan_t) :: plan
-      type(point_result_t), allocatable :: slots(:), results(:)
+      type(point_result_t), allocatable :: slots(:)
       type(checkpoint_t) :: ck
-      type(sweep_file_t) :: sf
       logical, allocatable :: done(:)
-      integer, allocatable :: mine(:), todo(:), ss(:), pts(:)
+      integer, allocatable :: mine(:), todo(:), ss(:)
       real(dp), allocatable :: u0(:), v0(:)
-      integer :: k, np, ni, n_loaded, chunk, first, last, threads, j, n_done, n_total, n_pos, &
+      integer :: k, np, ni, n_loaded, chunk, first, last, threads, n_done, n_total, n_pos, &
          n_round, j1
       type(meter_t) :: meter
       integer(int64) :: c0, c1, rate
@@ -177,6 +176,37 @@ contains
       end do
       call meter%finish()
 
+      call write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, threads, &
+                       n_failed, err)
+      if (allocated(err)) return
+      if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
+      complete = .true.
+
+   end subroutine run_sweep_job
+
+   !> The shard's results: every point's first start with all starts' attractors, failures
+   !> listed on standard error and counted in `n_failed`, the files under `prefix`, the
+   !> summary lines.
+   subroutine write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, &
+                          threads, n_failed, err)
+      type(deck_t), intent(in) :: deck                 !! validated deck
+      type(batch_options_t), intent(in) :: batch       !! shard
+      type(sweep_plan_t), intent(in) :: plan           !! the sweep's plan
+      type(model_t), intent(in) :: base                !! the deck's model
+      type(point_result_t), intent(in) :: slots(:)     !! every run of the sweep (the shard's done)
+      integer, intent(in) :: mine(:)                   !! the shard's work items
+      character(len=*), intent(in) :: prefix           !! output prefix
+      real(dp), intent(in) :: cpu0                     !! process CPU time at the start [s]
+      integer(int64), intent(in) :: c0, rate           !! wall clock at the start, its rate
+      integer, intent(in) :: threads                   !! OpenMP threads
+      integer, intent(inout) :: n_failed               !! failed runs of the shard
+      type(error_t), allocatable, intent(out) :: err   !! I/O failure
+      type(point_result_t), allocatable :: results(:)
+      type(sweep_file_t) :: sf
+      integer, allocatable :: pts(:)
+      integer :: k, j, np
+      integer(int64) :: c1
+      np = n_points(plan)
       ! every point of the shard: its first start with all starts' attractors; failures listed
       pts = shard_points(plan, mine)
       allocate(results(np))
@@ -214,7 +244,6 @@ contains
       sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
-      if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
       call summary(results(pts), n_failed, plan%ns)
       write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
          // str(sf%wall_seconds) // ' s, ' // str(threads) // ' thread(s)'
@@ -226,9 +255,7 @@ contains
       if (n_failed > 0) write(output_unit, '(a)') 'sweep: ' // str(n_failed) // ' failed ' &
          // 'run(s), listed above on standard error and marked in the files (status 1, label ' &
          // "'failed')"
-      complete = .true.
-
-   end subroutine run_sweep_job
+   end subroutine write_shard
 
    !> The starts of a plan, comma separated ('random' counted once with its number).
    function start_names(plan) result(t)

@@ -1,5 +1,9 @@
 !> Dof numbering and assembly of the linear structure: stiffness K, mass M, influence vector r.
 !>
+!> Euler-Bernoulli or Timoshenko elements (gapbeam_beam_element) as the beam's theory says;
+!> for Timoshenko the rotation dofs are the section rotations psi and the root strain is
+!> c psi'(0) (the bending strain; the shear strain does not strain the fibre).
+!>
 !> Global dofs are numbered node by node from the root, (w, theta) per node, skipping the
 !> constrained ones (root w always; root theta when the root is clamped; the tip's by its
 !> condition). With two planes the (v, theta_v) dofs follow, numbered the same way. K and M are kept
@@ -7,11 +11,13 @@
 module gapbeam_assembly
    use gapbeam_kinds, only: dp
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_fibre_distance, &
-      n_nodes, dof_w, dof_theta, dof_v, beam_mass_per_length
+      n_nodes, dof_w, dof_theta, dof_v, beam_mass_per_length, beam_is_timoshenko, beam_rho_i, &
+      beam_shear_stiffness
    use gapbeam_model, only: system_t
    use gapbeam_linalg, only: band_to_dense
    use gapbeam_beam_element, only: beam_stiffness, beam_consistent_mass, beam_lumped_mass, &
-      beam_curvature_row
+      beam_curvature_row, timoshenko_phi, timoshenko_stiffness, timoshenko_consistent_mass, &
+      timoshenko_lumped_mass, timoshenko_shapes
    implicit none
    private
    public :: assemble
@@ -26,8 +32,8 @@ contains
       type(system_t), intent(out) :: sys     !! assembled system
       logical, intent(in), optional :: dense !! fill sys%k and sys%m too (default: yes)
       integer :: nn, i, e, n, idx(4), a, b, kd, pl, np, d0
-      real(dp) :: le, ei, rho_a, ke(4, 4), me(4, 4), md(4)
-      logical :: lumped
+      real(dp) :: le, ei, rho_a, ke(4, 4), me(4, 4), md(4), phi, shape_n(4), shape_p(4)
+      logical :: lumped, timoshenko
 
       nn = n_nodes(st%beam)
       np = max(1, st%beam%planes)
@@ -53,13 +59,27 @@ contains
       if (st%beam%added_mass > 0.0_dp) rho_a = beam_mass_per_length(st%beam)
       lumped = st%beam%mass_matrix == 'lumped'
       sys%m_diagonal = lumped
-      ke = beam_stiffness(ei, le)
+      timoshenko = beam_is_timoshenko(st%beam)
+      phi = 0.0_dp
+      if (timoshenko) phi = timoshenko_phi(ei, beam_shear_stiffness(st%beam), le)
+      sys%shear_phi = phi
+      if (timoshenko) then
+         ke = timoshenko_stiffness(ei, phi, le)
+      else
+         ke = beam_stiffness(ei, le)
+      end if
       if (lumped) then
-         md = beam_lumped_mass(rho_a, le, st%beam%rotary_inertia)
+         if (timoshenko) then
+            md = timoshenko_lumped_mass(rho_a, beam_rho_i(st%beam), le, st%beam%rotary_inertia)
+         else
+            md = beam_lumped_mass(rho_a, le, st%beam%rotary_inertia)
+         end if
          me = 0.0_dp
          do a = 1, 4
             me(a, a) = md(a)
          end do
+      else if (timoshenko) then
+         me = timoshenko_consistent_mass(rho_a, beam_rho_i(st%beam), phi, le)
       else
          me = beam_consistent_mass(rho_a, le)
       end if
@@ -119,12 +139,17 @@ contains
          end if
       end do
 
-      ! root strain eps = c * w''(0) from element 1's shape functions
+      ! root strain eps = c * w''(0) (Timoshenko: c * psi'(0)) from element 1's shape functions
       sys%fibre_distance = beam_fibre_distance(st%beam)
       sys%element_length = le
       allocate(sys%strain_row(n), source=0.0_dp)
       idx = [sys%dof_of(1:2, 1), sys%dof_of(1:2, 2)]
-      md = sys%fibre_distance * beam_curvature_row(le, 0.0_dp)
+      if (timoshenko) then
+         call timoshenko_shapes(le, phi, 0.0_dp, shape_n, shape_p, md)
+         md = sys%fibre_distance * md
+      else
+         md = sys%fibre_distance * beam_curvature_row(le, 0.0_dp)
+      end if
       do a = 1, 4
          if (idx(a) > 0) sys%strain_row(idx(a)) = md(a)
       end do

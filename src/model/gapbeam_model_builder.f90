@@ -15,6 +15,7 @@ module gapbeam_model_builder
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
    use gapbeam_reduction_rule, only: reduction_info_t, auto_cutoff
+   use gapbeam_modal_damping, only: apply_modal_damping, first_plane_mass
    implicit none
    private
    public :: build_model, build_full_model, resolve_stop_stiffness, initial_vectors
@@ -59,6 +60,8 @@ contains
          err%message = 'group &reduction: ' // err%message
          return
       end if
+      call reduced_modal_damping(full, basis, deck%damping, model, err)
+      if (allocated(err)) return
       ri%n_reduced = model%n
       ri%planes = full%sys%planes
       ri%n_static = model%n / full%sys%planes - ri%modes_per_plane
@@ -153,12 +156,38 @@ contains
       model%beta = damping%mass_coefficient
       model%gamma = damping%stiffness_coefficient
       model%c = model%beta * model%sys%m + model%gamma * model%sys%k
+      if (damping%model == 'modal') then
+         if (model%sys%planes > 1) then
+            call apply_modal_damping(model, damping, err, first_plane_mass(model%sys))
+         else
+            call apply_modal_damping(model, damping, err)
+         end if
+         if (allocated(err)) return
+      end if
       model%q = matmul(model%sys%m, model%sys%r)
       model%omega = forcing_omega(forcing)
       model%half_amplitude = 0.5_dp * forcing%amplitude_pp
       call set_loads(forcing, model)
       call set_contacts(stops, model)
    end subroutine build_full_model
+
+   !> Modal damping of a reduced model (damping%model = 'modal'; nothing otherwise): on the
+   !> reduced model's own modes, the planes of a two-plane model told apart by the mass of the
+   !> first plane projected on the basis, B' M_w B.
+   subroutine reduced_modal_damping(full, basis, damping, red, err)
+      type(model_t), intent(in) :: full               !! the finite element model
+      real(dp), intent(in) :: basis(:, :)             !! physical u = basis z
+      type(damping_t), intent(in) :: damping          !! the deck's damping
+      type(model_t), intent(inout) :: red             !! reduced model (beta, gamma set)
+      type(error_t), allocatable, intent(out) :: err  !! eigen failure
+      if (damping%model /= 'modal') return
+      if (full%sys%planes > 1) then
+         call apply_modal_damping(red, damping, err, matmul(transpose(basis), &
+                                  matmul(first_plane_mass(full%sys), basis)))
+      else
+         call apply_modal_damping(red, damping, err)
+      end if
+   end subroutine reduced_modal_damping
 
    !> The loads beyond the w-plane base motion: the direction and phase of a two-plane base
    !> motion and the harmonic point forces (add_extra_load).

@@ -76,6 +76,15 @@ module gapbeam_output_catalogue
       dataset_t('/parameters/beam/mass_matrix', '1', '', 'element mass matrix'), &
       dataset_t('/parameters/beam/rotary_inertia', '1', '', 'rotary inertia rule of the ' &
                 // 'lumped mass matrix'), &
+      dataset_t('/parameters/beam/theory', '1', '', 'beam theory: timoshenko (absent for ' &
+                // 'Euler-Bernoulli beams)'), &
+      dataset_t('/parameters/beam/shear_modulus', 'Pa', '', 'shear modulus G (Timoshenko)'), &
+      dataset_t('/parameters/beam/shear_coefficient', '1', '', 'shear coefficient k, 5/6 for ' &
+                // 'a rectangle unless the deck gives it (Timoshenko)'), &
+      dataset_t('/parameters/beam/shear_stiffness', 'N', '', 'shear stiffness k G A ' &
+                // '(Timoshenko)'), &
+      dataset_t('/parameters/beam/shear_parameter', '1', '', 'phi = 12 EI / (k G A le^2) of ' &
+                // 'the elements (Timoshenko)'), &
       dataset_t('/parameters/beam/planes', '1', '', 'planes of motion: 1 (w, theta) or 2 (w, ' &
                 // 'theta, v, theta_v)'), &
       dataset_t('/parameters/beam/added_mass', 'kg m-1', '', 'added (fluid) mass per unit ' &
@@ -145,6 +154,9 @@ module gapbeam_output_catalogue
       dataset_t('/parameters/damping/frequency2_hz', 'Hz', '', 'second frequency of the two ' &
                 // 'damping ratios'), &
       dataset_t('/parameters/damping/ratio2', '1', '', 'damping ratio at frequency2_hz'), &
+      dataset_t('/parameters/damping/modal_ratios', '1', 'n_ratios', 'modal damping ratios of ' &
+                // 'modes 1, 2, ... of each plane, the last one for every further mode, beside ' &
+                // 'the Rayleigh terms (model modal)'), &
       dataset_t('/parameters/forcing/frequency_hz', 'Hz', '', 'forcing frequency f of the ' &
                 // 'deck (a sweep varies it: /sweep)'), &
       dataset_t('/parameters/forcing/amplitude_pp', 'm', '', 'base displacement amplitude, ' &
@@ -197,7 +209,8 @@ module gapbeam_output_catalogue
                 // 'for a Hertz stop)'), &
       dataset_t('/model/f1_open_hz', 'Hz', '', 'first natural frequency with the stops open'), &
       dataset_t('/model/damping', 'N s m-1', 'dof=n_dof dof=n_dof', 'damping matrix C = beta ' &
-                // 'M + gamma K; theta entries as for K, times s'), &
+                // 'M + gamma K{ + M Phi diag(2 zeta omega) Phi^T M with modal damping}; theta ' &
+                // 'entries as for K, times s'), &
       dataset_t('/model/load_shape', 'kg', 'n_dof', 'load shape q = M r: the load is P(t) = ' &
                 // 's(t) q (theta entries kg m)'), &
       dataset_t('/model/forcing_omega', 'rad s-1', '', 'forcing angular frequency Omega'), &
