@@ -17,7 +17,9 @@
 # executables): a second call re-runs only what changed. BENCH_TUBES_FRESH=1 runs everything
 # again; BENCH_TUBES_TRANSIENT / BENCH_TUBES_RECORD set the deck case's periods (30 / 40, the
 # deck's own). BENCH_LOCK=FILE runs every case under `flock FILE` (nothing else shares the CPU
-# while it runs). The whole benchmark costs about an hour of CPU (the full model at tolerance
+# while it runs). BENCH_TUBES_MAP='&sweep n_frequency = 5, n_y = 3 /' (any namelist fragment)
+# runs a subset of the map's points; BENCH_TUBES_CASES='periodic deck' draws the periodic
+# panel of the chart too (default 'deck'). The whole benchmark costs about an hour of CPU (the full model at tolerance
 # 1e-6 on 70 periods alone takes about 6 minutes); every run is serial.
 set -euo pipefail
 
@@ -64,6 +66,6 @@ cp "${bench}" bench_results/tubes_reduction.cache/gapbeam_bench_tubes
 cp "${gapbeam}" bench_results/tubes_reduction.cache/gapbeam
 python3 scripts/bench_tubes.py bench_results/tubes_reduction.cache/gapbeam_bench_tubes \
    bench_results/tubes_reduction.cache/gapbeam --out bench_results/tubes_reduction "$@"
-gnuplot -e "datafile='bench_results/tubes_reduction.dat'; outfile='bench_results/tubes_reduction.png'" \
+gnuplot -e "datafile='bench_results/tubes_reduction.dat'; outfile='bench_results/tubes_reduction.png'; cases='${BENCH_TUBES_CASES:-deck}'" \
    scripts/tubes_reduction.gp
 printf 'bench_tubes: bench_results/tubes_reduction.txt, .dat, .png\n'
