@@ -10,12 +10,14 @@
 program main
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, str
-   use gapbeam_deck, only: deck_t
+   use gapbeam_error, only: error_t, str, printable
+   use gapbeam_deck, only: deck_t, add_warning
+   use gapbeam_warnings, only: deck_warnings
+   use gapbeam_warning_text, only: warning_length, warning_prefix
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
    use gapbeam_files, only: make_parent_directory, ignore_file_size_signal, &
-      output_prefix_problem
+      output_prefix_problem, output_name_problem
    use gapbeam_output_catalogue, only: catalogue_text, section_names, section_analyses
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
@@ -123,13 +125,16 @@ program main
    else
       prefix = trim(deck%job%output)
    end if
+   if (len(output_name_problem(prefix)) > 0) call fail(path, "group &job: output = '" &
+      // trim(deck%job%output) // "': " // output_name_problem(prefix), lock)
    call take_lock(path, prefix, lock)
    ! SIGTERM (a batch job's time limit, preemption, scancel) stops a sweep that keeps a
    ! checkpoint as its time limit does; any other run it ends at once, as by default
    if (deck%job%analysis == 'sweep' .and. deck%sweep%checkpoint) call catch_stop_signal()
 
-   write(output_unit, '(a)') 'gapbeam: ' // trim(deck%job%title)
+   write(output_unit, '(a)') 'gapbeam: ' // printable(trim(deck%job%title))
    write(output_unit, '(a)') 'analysis: ' // trim(deck%job%analysis)
+   call warn_about_deck(deck)
    select case (deck%job%analysis)
    case ('modes')
       call run_modes(deck, err)
@@ -160,6 +165,20 @@ program main
    call finish(0)
 
 contains
+
+   !> The deck's warnings (gapbeam_warnings): kept in the deck for the files' /run/warnings and
+   !> printed on standard error, one line each.
+   subroutine warn_about_deck(dk)
+      type(deck_t), intent(inout) :: dk            !! validated deck
+      character(len=warning_length), allocatable :: lines(:)
+      integer :: k
+      lines = deck_warnings(dk)
+      do k = 1, size(lines)
+         call add_warning(dk, trim(lines(k)))
+         write(error_unit, '(a)') warning_prefix // printable(trim(lines(k)))
+      end do
+      flush(error_unit)
+   end subroutine warn_about_deck
 
    !> gapbeam --help-outputs [ANALYSIS | SECTION | tsv]: the output catalogue on standard output.
    subroutine help_outputs()
@@ -212,7 +231,7 @@ contains
    !> A bad command line: the message and the usage on standard error, exit status 2.
    subroutine usage_error(message)
       character(len=*), intent(in) :: message      !! what is wrong
-      write(error_unit, '(a)') 'error: ' // message
+      write(error_unit, '(a)') 'error: ' // printable(message)
       write(error_unit, '(a)') usage_lines()
       call finish(status_usage)
    end subroutine usage_error
@@ -346,7 +365,7 @@ contains
          call fail(deck_path, e%message, held)
       end if
       if (allocated(held%note)) then
-         write(error_unit, '(a)') 'gapbeam: note: ' // held%note
+         write(error_unit, '(a)') 'gapbeam: note: ' // printable(held%note)
          flush(error_unit)
       end if
    end subroutine take_lock
@@ -381,6 +400,10 @@ contains
       if (n_failed > 0) then
          write(output_unit, '(a)') 'merge: ' // str(n_failed) // ' failed run(s) in the shards ' &
             // "(status 1, label 'failed' in the files)"
+         flush(output_unit)
+         write(error_unit, '(a)') 'gapbeam merge: ' // str(n_failed) // ' failed run(s) in ' &
+            // 'the shards: marked in ' // out // ".h5 (/sweep/status 1, label 'failed'); " &
+            // 'the sweeps that ran them listed why on their standard error'
          call finish(status_failed_points)
       end if
    end subroutine run_merge
@@ -398,7 +421,7 @@ contains
          if (index(message, deck_path // ': ') /= 1) line = deck_path // ': ' // message
       end if
       flush(output_unit)
-      write(error_unit, '(a)') 'error: ' // one_line(line)
+      write(error_unit, '(a)') 'error: ' // printable(one_line(line))
       call release_lock(held)
       if (present(status)) call finish(status)
       call finish(status_error)
@@ -427,7 +450,8 @@ contains
       call finish(0)
    end subroutine help_deck
 
-   !> `text` on one line: line feeds and carriage returns become blanks.
+   !> `text` on one line: line feeds and carriage returns become blanks (other control
+   !> characters are escaped by `printable`).
    function one_line(text) result(s)
       character(len=*), intent(in) :: text         !! message
       character(len=len(text)) :: s

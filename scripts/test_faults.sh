@@ -880,7 +880,7 @@ run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "&job output='${long}' 
 why=()
 mapfile -t why < <(crash_reasons)
 [[ ${status} -eq 1 ]] || why+=("exit status ${status}, want 1")
-grep -q "File name too long" "${dir}/run.stderr" || why+=("no 'File name too long'")
+grep -qi "file name too long" "${dir}/run.stderr" || why+=("no 'file name too long'")
 report 'an output name too long for the file system: exit 1 at the start, reason in words (was: exit 4)' \
    "${why[@]}"
 

@@ -2,7 +2,7 @@
 # scripts/test_labels_cli.sh - failed sweep points through the real gapbeam executable (issue 11):
 # a sweep in which a point fails writes all its files and exits with status 5 (not 0, not 1),
 # naming the point on standard error; so do a shard holding the point and the merge of the
-# shards; a shard without the point exits 0.
+# shards (which says so on standard error); a shard without the point exits 0.
 #
 # Usage:
 #   scripts/test_labels_cli.sh GAPBEAM_EXE
@@ -72,6 +72,8 @@ check 'the shard with the failing point exits 5' "$([[ ${status} -eq 5 ]] && ech
 run merge merge merged.h5 part.shard_1_of_2.h5 part.shard_2_of_2.h5
 check 'the merge of the shards exits 5 and writes the merged file' \
    "$([[ ${status} -eq 5 && -f ${work}/merged.h5 ]] && echo 1)" "status ${status}: ${out} ${err}"
+check 'the merge says so on standard error (was: nothing there)' \
+   "$([[ ${err} == *'gapbeam merge: 1 failed run(s) in the shards'* ]] && echo 1)" "stderr: ${err}"
 
 run good "${deck}" "${cheap[@]}" "&job output = 'good' /" "&sweep amplitude_pp = 1.0e-3 /"
 check 'a sweep without a failure exits 0' "$([[ ${status} -eq 0 ]] && echo 1)" \

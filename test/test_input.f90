@@ -682,7 +682,7 @@ contains
       ! a missing '/' is reported as such, naming both groups and the line
       call expect_error("a missing '/' in the middle of a deck", job // replace(beam, ' /', &
          '') // '&forcing frequency_hz = 5.0 /', [character(len=60) :: &
-         "group &beam is not closed: no '/' before &forcing at line 3"])
+         "group &beam (line 2) is not closed: no '/' before &forcing at line 3"])
       ! lone signs
       call expect_error("'frequency_hz=+'", base, [character(len=60) :: '&forcing', &
          'frequency_hz = +', 'not a number'], [character(len=80) :: '&forcing frequency_hz=+ /'])

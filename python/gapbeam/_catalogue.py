@@ -10,6 +10,7 @@ the source is src/core/gapbeam_output_catalogue.f90). One tuple per dataset:
 DATASETS = (
     ('file', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/deck', '1', '', 'the effective deck text: deck file and command-line overrides'),
     ('file', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/run/files', '1', 'n_files', 'the files written together with this one, in its directory, by one run (they appear together or not at all)'),
+    ('file', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/run/warnings', '1', 'n_warnings', 'warnings about the deck and the run, one line each, as printed on standard error (none: length 0)'),
     ('parameters', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/parameters/beam/length', 'm', '', 'beam length L'),
     ('parameters', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/parameters/beam/n_elem', '1', '', 'number of elements'),
     ('parameters', ('modes', 'calibrate', 'transient', 'sweep', 'work_precision', 'stability', 'model_size', 'continuation'), '/parameters/beam/element_length', 'm', '', 'element length'),

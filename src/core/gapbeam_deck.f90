@@ -9,9 +9,10 @@ module gapbeam_deck
       initial_state_t, diagnostics_settings_t, sweep_settings_t, reduction_settings_t, &
       study_settings_t, model_size_settings_t
    use gapbeam_continuation_types, only: continuation_settings_t
+   use gapbeam_warning_text, only: warning_length
    implicit none
    private
-   public :: deck_t
+   public :: deck_t, add_warning
 
    !> A validated deck.
    type :: deck_t
@@ -33,5 +34,31 @@ module gapbeam_deck
       type(study_settings_t) :: study                !! &study
       type(model_size_settings_t) :: model_size      !! &model_size
       type(continuation_settings_t) :: continuation  !! &continuation
+      !> warnings about the deck and its run, one line each (analyses/gapbeam_warnings): the
+      !> program prints them on standard error, the writers store them in /run/warnings
+      !> (a fixed length: gfortran copies deferred-length array components wrongly)
+      character(len=warning_length), allocatable :: warnings(:)
    end type deck_t
+
+contains
+
+   !> Add one warning line to the deck's list (kept in the order given, each once; cut at
+   !> warning_length characters).
+   pure subroutine add_warning(deck, text)
+      type(deck_t), intent(inout) :: deck            !! deck
+      character(len=*), intent(in) :: text           !! the warning, one line
+      character(len=warning_length), allocatable :: list(:)
+      integer :: k, n
+      n = 0
+      if (allocated(deck%warnings)) then
+         n = size(deck%warnings)
+         do k = 1, n
+            if (deck%warnings(k) == text) return
+         end do
+      end if
+      allocate(list(n + 1))
+      if (n > 0) list(1:n) = deck%warnings
+      list(n + 1) = text
+      call move_alloc(list, deck%warnings)
+   end subroutine add_warning
 end module gapbeam_deck

@@ -7,7 +7,7 @@ module gapbeam_error
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: error_t, fatal_error, str
+   public :: error_t, fatal_error, str, printable
 
    !> A recoverable failure: 'where: what (values)'.
    type :: error_t
@@ -20,6 +20,46 @@ module gapbeam_error
    end interface str
 
 contains
+
+   !> Text safe to print: every control character (ASCII 0-31 and 127, which a terminal would
+   !> act on: escape sequences, bells, backspaces) written as an escape, `\t`, `\n`, `\r` or
+   !> `\xHH` (two lower-case hex digits), as Python's repr writes them. Bytes above 127 (UTF-8)
+   !> are kept.
+   pure function printable(text) result(s)
+      character(len=*), intent(in) :: text     !! text from a deck, a file or the command line
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: hex = '0123456789abcdef'
+      integer :: i, c, n
+      n = 0
+      do i = 1, len(text)
+         c = iachar(text(i:i))
+         n = n + 1
+         if (c == 9 .or. c == 10 .or. c == 13) then
+            n = n + 1
+         else if (c < 32 .or. c == 127) then
+            n = n + 3
+         end if
+      end do
+      allocate(character(len=n) :: s)
+      n = 0
+      do i = 1, len(text)
+         c = iachar(text(i:i))
+         select case (c)
+         case (9)
+            s(n + 1:n + 2) = '\t';  n = n + 2
+         case (10)
+            s(n + 1:n + 2) = '\n';  n = n + 2
+         case (13)
+            s(n + 1:n + 2) = '\r';  n = n + 2
+         case (0:8, 11, 12, 14:31, 127)
+            s(n + 1:n + 4) = '\x' // hex(c / 16 + 1:c / 16 + 1) &
+                             // hex(mod(c, 16) + 1:mod(c, 16) + 1)
+            n = n + 4
+         case default
+            s(n + 1:n + 1) = text(i:i);  n = n + 1
+         end select
+      end do
+   end function printable
 
    !> Allocate `err` with `message` (keeps the first error if one is already set).
    subroutine fatal_error(err, message)

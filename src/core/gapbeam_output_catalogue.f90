@@ -54,7 +54,9 @@ module gapbeam_output_catalogue
       dataset_t('/deck', '1', '', 'the effective deck text: deck file and command-line ' &
                 // 'overrides'), &
       dataset_t('/run/files', '1', 'n_files', 'the files written together with this one, in ' &
-                // 'its directory, by one run (they appear together or not at all)')]
+                // 'its directory, by one run (they appear together or not at all)'), &
+      dataset_t('/run/warnings', '1', 'n_warnings', 'warnings about the deck and the run, one ' &
+                // 'line each, as printed on standard error (none: length 0)')]
 
    type(dataset_t), parameter :: parameter_sets(*) = [ &
       dataset_t('/parameters/beam/length', 'm', '', 'beam length L'), &

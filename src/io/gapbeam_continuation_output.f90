@@ -49,7 +49,7 @@ contains
    !> PREFIX.h5 and the text tables (with `write_text`), as one output set; with the run's
    !> parameters and model when given.
    subroutine write_continuation(prefix, title, deck_text, overlay, res, write_text, err, &
-                                 params, model, stiffness_units)
+                                 params, model, stiffness_units, warnings)
       character(len=*), intent(in) :: prefix             !! output prefix
       character(len=*), intent(in) :: title              !! job title
       character(len=*), intent(in) :: deck_text          !! effective deck
@@ -60,6 +60,7 @@ contains
       type(parameter_set_t), intent(in), optional :: params   !! /parameters
       type(model_t), intent(in), optional :: model       !! /model: the deck's model
       character(len=*), intent(in), optional :: stiffness_units   !! of its stop stiffnesses
+      character(len=*), intent(in), optional :: warnings(:)   !! /run/warnings, one line each
       type(output_set_t) :: set
       type(h5_writer_t) :: h5
       if (write_text) then
@@ -68,7 +69,7 @@ contains
       else
          call set%begin(prefix, ['.h5'])
       end if
-      call set%open_h5(h5, 'continuation', deck_text)
+      call set%open_h5(h5, 'continuation', deck_text, warnings)
       if (present(params)) call write_parameter_set(h5, params)
       if (present(model) .and. present(stiffness_units)) call write_model(h5, model, &
                                                                           stiffness_units)

@@ -26,6 +26,13 @@ module gapbeam_deck_text
    integer, parameter :: value_logical = 2   !! .true. or .false.
    integer, parameter :: value_string = 3    !! a quoted string (quotes removed)
    integer, parameter :: max_repeat = 100000 !! largest repeat count r of r*value
+   !> Bounds that keep reading a deck cheap whatever its text (a deck of inputs/ has a few kB
+   !> and at most 20 groups, 12 assignments in a group and 50 values; the longest list gapbeam
+   !> reads, &initial of its largest model, has 4 x 40004 values):
+   integer, parameter :: max_deck_bytes = 8 * 1024 * 1024   !! largest deck file [bytes]
+   integer, parameter :: max_values = 250000       !! most values in one source (repeats counted)
+   integer, parameter :: max_items = 10000         !! most assignments in one group
+   integer, parameter :: max_groups = 1000         !! most groups in one source
 
    !> One value of an assignment.
    type :: value_t
@@ -64,6 +71,7 @@ module gapbeam_deck_text
       integer :: p = 1                                !! next character
       integer :: line = 1                             !! its line
       logical :: is_file = .true.                     !! name lines in messages
+      integer :: n_values = 0                         !! values read so far (max_values)
    end type cursor_t
 
    character(len=1), parameter :: lf = achar(10), tab = achar(9)
@@ -127,6 +135,13 @@ contains
          return
       end if
       inquire(unit=unit, size=fsize)
+      if (fsize > max_deck_bytes) then
+         close(unit)
+         call fatal_error(err, path // ': the deck file has ' // str(fsize) // ' bytes, more ' &
+            // 'than a deck may have (' // str(max_deck_bytes) // ' bytes, 8 MiB; a deck of ' &
+            // 'inputs/ has a few kB): is it a deck?')
+         return
+      end if
       allocate(character(len=max(fsize, 0)) :: text)
       if (fsize > 0) read(unit, iostat=ios, iomsg=msg) text
       close(unit)
@@ -195,11 +210,21 @@ contains
       integer :: closed_line
       c%t = src%text;  c%is_file = src%is_file
       allocate(src%groups(0))
+      if (len(c%t) > max_deck_bytes) then
+         call fatal_error(err, 'the text has ' // str(len(c%t)) // ' bytes, more than a deck ' &
+            // 'may have (' // str(max_deck_bytes) // ')')
+         return
+      end if
       closed = '';  closed_line = 0
       do
          call skip_space(c)
          if (c%p > len(c%t)) exit
          if (c%t(c%p:c%p) == '&') then
+            if (size(src%groups) >= max_groups) then
+               call fatal_error(err, at(c) // 'more than ' // str(max_groups) // ' groups: ' &
+                  // 'a deck has one of each group')
+               return
+            end if
             call parse_group(c, g, err)
             if (allocated(err)) return
             src%groups = [src%groups, g]
@@ -232,7 +257,7 @@ contains
       type(error_t), allocatable, intent(inout) :: err
       type(assignment_t) :: item
       character(len=1) :: ch
-      integer :: k
+      integer :: k, n_items
       g%line = c%line
       c%p = c%p + 1
       if (.not. is_letter(peek(c))) then
@@ -249,32 +274,41 @@ contains
             // 'followed by a blank or the end of the line')
          return
       end if
-      allocate(g%items(0))
+      allocate(g%items(8))
+      n_items = 0
       do
          call skip_space(c)
          if (c%p > len(c%t)) then
-            call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before the " &
-               // 'end of the ' // trim(merge('deck file', 'override ', c%is_file)))
+            call fatal_error(err, 'group &' // g%name // opened(c, g%line) // " is not " &
+               // "closed: no '/' before the end of the " &
+               // trim(merge('deck file', 'override ', c%is_file)))
             return
          end if
          ch = peek(c)
          if (ch == '/') then
             c%p = c%p + 1
+            g%items = g%items(1:n_items)
             exit
          else if (ch == '&') then
             c%p = c%p + 1
             if (c%is_file) then
-               call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before &" &
-                  // lower(read_name(c)) // ' at line ' // str(c%line))
+               call fatal_error(err, 'group &' // g%name // opened(c, g%line) // " is not " &
+                  // "closed: no '/' before &" // lower(read_name(c)) // ' at line ' &
+                  // str(c%line))
             else
                call fatal_error(err, 'group &' // g%name // " is not closed: no '/' before &" &
                   // lower(read_name(c)))
             end if
             return
          else if (is_letter(ch)) then
+            if (n_items >= max_items) then
+               call fatal_error(err, at(c) // 'group &' // g%name // ': more than ' &
+                  // str(max_items) // ' assignments (give a list: name = v1, v2, ...)')
+               return
+            end if
             call parse_assignment(c, g%name, item, err)
             if (allocated(err)) return
-            do k = 1, size(g%items)
+            do k = 1, n_items
                if (overlap(g%items(k), item)) then
                   call fatal_error(err, at(c, item%line) // 'group &' // g%name // ': ' &
                      // trim(item%name) // ' is assigned twice (' // trim(g%items(k)%written) &
@@ -283,7 +317,9 @@ contains
                   return
                end if
             end do
-            g%items = [g%items, item]
+            if (n_items == size(g%items)) call grow_items(g%items)
+            n_items = n_items + 1
+            g%items(n_items) = item
          else
             call fatal_error(err, at(c) // 'group &' // g%name // ": '" // rest_of_line(c) &
                // "': a variable name expected (an assignment reads name = value)")
@@ -292,13 +328,40 @@ contains
       end do
    end subroutine parse_group
 
+   !> ' (line 7)': the line where a group opened, in a deck file's messages.
+   pure function opened(c, line) result(t)
+      type(cursor_t), intent(in) :: c                 !! cursor (is_file)
+      integer, intent(in) :: line                     !! line of '&name'
+      character(len=:), allocatable :: t
+      t = ''
+      if (c%is_file) t = ' (line ' // str(line) // ')'
+   end function opened
+
+   !> Twice the room for assignments, the first kept.
+   pure subroutine grow_items(items)
+      type(assignment_t), allocatable, intent(inout) :: items(:)   !! list
+      type(assignment_t), allocatable :: more(:)
+      allocate(more(2 * size(items)))
+      more(1:size(items)) = items
+      call move_alloc(more, items)
+   end subroutine grow_items
+
+   !> Twice the room for values, the first kept.
+   pure subroutine grow_values(values)
+      type(value_t), allocatable, intent(inout) :: values(:)       !! list
+      type(value_t), allocatable :: more(:)
+      allocate(more(2 * size(values)))
+      more(1:size(values)) = values
+      call move_alloc(more, values)
+   end subroutine grow_values
+
    !> 'name [ (i) ] = values' at the cursor.
    subroutine parse_assignment(c, group, a, err)
       type(cursor_t), intent(inout) :: c
       character(len=*), intent(in) :: group
       type(assignment_t), intent(out) :: a
       type(error_t), allocatable, intent(inout) :: err
-      integer :: start, last, ios
+      integer :: start, last, ios, n
       character(len=:), allocatable :: digits_text
       logical :: after_comma
       start = c%p;  a%line = c%line
@@ -334,7 +397,8 @@ contains
          return
       end if
       c%p = c%p + 1
-      allocate(a%values(0))
+      allocate(a%values(8))
+      n = 0
       after_comma = .true.;  last = c%p - 1
       do
          call skip_space(c)
@@ -346,10 +410,11 @@ contains
             cycle
          end if
          if (is_letter(peek(c)) .and. assignment_follows(c)) exit
-         call parse_value(c, group, a, err)
+         call parse_value(c, group, a, n, err)
          if (allocated(err)) return
          after_comma = .false.;  last = c%p - 1
       end do
+      a%values = a%values(1:n)
       a%written = one_line(c%t(start:max(last, start)))
       if (size(a%values) == 0 .or. (after_comma .and. peek(c) == ',')) then
          call fatal_error(err, at(c, a%line) // 'group &' // group // ': "' // a%written &
@@ -358,16 +423,16 @@ contains
       end if
    end subroutine parse_assignment
 
-   !> One value (or r*value) at the cursor, appended to a%values.
-   subroutine parse_value(c, group, a, err)
+   !> One value (or r*value) at the cursor, appended to a%values(1:n) (n counts them).
+   subroutine parse_value(c, group, a, n, err)
       type(cursor_t), intent(inout) :: c
       character(len=*), intent(in) :: group
       type(assignment_t), intent(inout) :: a
+      integer, intent(inout) :: n
       type(error_t), allocatable, intent(inout) :: err
       type(value_t) :: v
-      type(value_t), allocatable :: reps(:)
       character(len=:), allocatable :: tok
-      integer :: r, star, ios
+      integer :: r, star, ios, k
       r = 1
       if (scan(peek(c), '''"') > 0) then
          call parse_string(c, group, a%name, v, err)
@@ -409,9 +474,19 @@ contains
             // 'blanks)')
          return
       end if
-      allocate(reps(r))
-      reps = v
-      a%values = [a%values, reps]
+      if (c%n_values > max_values - r) then
+         call fatal_error(err, at(c) // 'group &' // group // ': ' // a%name // ': more than ' &
+            // str(max_values) // ' values in one ' &
+            // trim(merge('deck file', 'override ', c%is_file)) // ' (repeats r*value ' &
+            // 'counted): no list gapbeam reads is that long')
+         return
+      end if
+      c%n_values = c%n_values + r
+      do k = 1, r
+         if (n == size(a%values)) call grow_values(a%values)
+         n = n + 1
+         a%values(n) = v
+      end do
    end subroutine parse_value
 
    !> A quoted string at the cursor ('' or "" inside for one quote), on one line.
@@ -665,18 +740,22 @@ contains
    pure function one_line(s) result(t)
       character(len=*), intent(in) :: s
       character(len=:), allocatable :: t
-      integer :: i
-      t = ''
+      integer :: i, k
+      allocate(character(len=min(len(s), 204)) :: t)
+      k = 0
       do i = 1, len(s)
+         if (k == len(t)) exit                  ! enough for the 200 characters shown
          if (s(i:i) == lf .or. s(i:i) == tab .or. s(i:i) == ' ') then
-            if (len(t) > 0) then
-               if (t(len(t):len(t)) /= ' ') t = t // ' '
+            if (k > 0) then
+               if (t(k:k) /= ' ') then
+                  k = k + 1;  t(k:k) = ' '
+               end if
             end if
          else
-            t = t // s(i:i)
+            k = k + 1;  t(k:k) = s(i:i)
          end if
       end do
-      t = trim(t)
+      t = trim(t(1:k))
       if (len(t) > 200) t = t(1:200) // '...'
    end function one_line
 

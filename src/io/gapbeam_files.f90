@@ -31,7 +31,7 @@ module gapbeam_files
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
    public :: process_id, host_name, real_path, file_size, ignore_file_size_signal, errno_text
-   public :: output_prefix_problem
+   public :: output_prefix_problem, output_name_problem, output_suffix_allowance
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
@@ -39,6 +39,11 @@ module gapbeam_files
    integer, parameter :: max_c_string = 4096                 ! longest C string read back
    integer(c_int), parameter :: f_ok = 0_c_int               ! access(): existence test (F_OK)
    integer(c_int), parameter :: dir_mode = int(o'777', c_int) ! mkdir(): rwx for all, less umask
+   !> The most characters gapbeam adds to the last component of an output prefix: the longest
+   !> suffix, '.work_precision_failed.dat' (26), and the temporary name's '.<pid>.part' (13 with
+   !> a pid of 7 digits, Linux's largest).
+   integer, parameter :: output_suffix_allowance = 39
+   integer(c_int), parameter :: pc_name_max = 3_c_int        ! pathconf(): _PC_NAME_MAX (Linux)
 
    interface
       !> C `rename` from <stdio.h>: 0 on success, -1 with `errno` set on failure.
@@ -126,6 +131,14 @@ module gapbeam_files
          integer(c_int), value, intent(in) :: fd             !! open file
          integer(c_int) :: status
       end function c_close
+
+      !> POSIX `pathconf`: a limit of the file system of `path` (-1: none or unknown).
+      function c_pathconf(path, name) bind(c, name='pathconf') result(value)
+         import :: c_char, c_int, c_long
+         character(kind=c_char), intent(in) :: path(*)       !! NUL-terminated path
+         integer(c_int), value, intent(in) :: name           !! _PC_NAME_MAX = 3
+         integer(c_long) :: value
+      end function c_pathconf
 
       !> C `signal` from <signal.h>: the previous handler.
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
@@ -215,6 +228,10 @@ contains
       last = last(index(last, '/', back=.true.) + 1:)
       if (len_trim(prefix) == 0) then
          why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
+      else if (has_control(prefix)) then
+         why = 'the output prefix contains a control character (' // control_names(prefix) &
+            // '): such file names cannot be typed or listed safely; use letters, digits, ' &
+            // "'_', '-', '.' and '/'"
       else if (len(last) == 0 .or. last == '.' .or. last == '..') then
          why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
             // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
@@ -222,6 +239,83 @@ contains
             len(last) > 0)) // 'run')
       end if
    end function output_prefix_problem
+
+   !> Whether `text` holds a control character (ASCII 0-31 or 127).
+   pure logical function has_control(text)
+      character(len=*), intent(in) :: text               !! text
+      integer :: i
+      has_control = .false.
+      do i = 1, len(text)
+         if (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127) has_control = .true.
+      end do
+   end function has_control
+
+   !> The control characters of `text`, as 'code 27' items (the first three).
+   pure function control_names(text) result(t)
+      character(len=*), intent(in) :: text               !! text
+      character(len=:), allocatable :: t
+      integer :: i, n
+      t = '';  n = 0
+      do i = 1, len(text)
+         if (.not. (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127)) cycle
+         n = n + 1
+         if (n > 3) exit
+         if (n > 1) t = t // ', '
+         t = t // 'code ' // str(iachar(text(i:i))) // ' at position ' // str(i)
+      end do
+   end function control_names
+
+   !> Why the files of output prefix `prefix` could not be created, found before anything is
+   !> computed, or '' when they can: a component of the prefix longer than the file system's
+   !> NAME_MAX (pathconf of the nearest directory that exists; 255 when unknown), the last one
+   !> counted with the `output_suffix_allowance` characters gapbeam adds to it. (Without this
+   !> check such a run failed only when its files were written, after the computation.)
+   function output_name_problem(prefix) result(why)
+      character(len=*), intent(in) :: prefix             !! output prefix (validated)
+      character(len=:), allocatable :: why, p, dir, comp
+      integer :: name_max, a, b
+      integer(c_long) :: lim
+      why = ''
+      p = trim(prefix)
+      ! NAME_MAX of the file system of the nearest existing directory above the prefix
+      dir = p(1:max(0, index(p, '/', back=.true.) - 1))
+      do while (len(dir) > 0)
+         if (is_directory(dir)) exit
+         dir = dir(1:max(0, index(dir, '/', back=.true.) - 1))
+      end do
+      if (len(dir) == 0) then
+         dir = '.'
+         if (p(1:1) == '/') dir = '/'
+      end if
+      lim = c_pathconf(dir // c_null_char, pc_name_max)
+      name_max = 255
+      if (lim > 0 .and. lim < 100000) name_max = int(lim)
+      a = 1
+      do while (a <= len(p))
+         b = index(p(a:), '/')
+         if (b == 0) then
+            comp = p(a:)
+            if (len(comp) + output_suffix_allowance > name_max) why = 'file name too long: ' &
+               // 'its last component (' // str(len(comp)) // ' characters, ' &
+               // q(comp(1:min(len(comp), 24)) // '...') // ') is too long: the files ' &
+               // 'gapbeam writes add up to ' &
+               // str(output_suffix_allowance) // " characters to it ('" &
+               // ".work_precision_failed.dat.<pid>.part') and a file name may have at most " &
+               // str(name_max) // ' (NAME_MAX of ' // q(dir) // '): give at most ' &
+               // str(name_max - output_suffix_allowance) // ' characters'
+            exit
+         end if
+         comp = p(a:a + b - 2)
+         if (len(comp) > name_max) then
+            why = 'file name too long: its directory component ' &
+               // q(comp(1:min(len(comp), 24)) // '...') // ' (' &
+               // str(len(comp)) // ' characters) is longer than a file name may be (' &
+               // str(name_max) // ', NAME_MAX of ' // q(dir) // ')'
+            exit
+         end if
+         a = a + b
+      end do
+   end function output_name_problem
 
    !> Whether a file or directory exists at `path` (C `access` with F_OK).
    logical function file_exists(path)

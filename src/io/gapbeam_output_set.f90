@@ -140,14 +140,17 @@ contains
    end subroutine set_names
 
    !> Create the set's HDF5 file (its first file, under its temporary name) for `analysis`,
-   !> with the root attributes, /deck and /run/files (the files of the set, without their
-   !> directory). Nothing when a step failed already.
-   subroutine set_open_h5(self, h5, analysis, deck_text)
+   !> with the root attributes, /deck, /run/files (the files of the set, without their
+   !> directory) and /run/warnings (the run's warnings; empty when there are none). Nothing
+   !> when a step failed already.
+   subroutine set_open_h5(self, h5, analysis, deck_text, warnings)
       class(output_set_t), intent(in) :: self            !! the set; file 1 is the .h5
       type(h5_writer_t), intent(inout) :: h5             !! writer, not open
       character(len=*), intent(in) :: analysis           !! analysis word
       character(len=*), intent(in) :: deck_text          !! the effective deck text
+      character(len=*), intent(in), optional :: warnings(:)   !! one line each
       character(len=:), allocatable :: names(:)
+      character(len=1) :: none(0)
       character(len=*), parameter :: description = 'the files written together with this ' &
          // 'one, in its directory, by one run (they appear together or not at all)'
       if (allocated(self%err)) return
@@ -157,7 +160,30 @@ contains
       call self%names(names)
       call h5%put('/run/files', names)
       call h5%attr('/run/files', 'description', description)
+      if (present(warnings)) then
+         call put_lines(h5, '/run/warnings', warnings)
+      else
+         call h5%put('/run/warnings', none)
+      end if
    end subroutine set_open_h5
+
+   !> Lines as a string dataset as wide as the longest of them (trailing blanks dropped).
+   subroutine put_lines(h5, path, lines)
+      type(h5_writer_t), intent(inout) :: h5             !! open writer
+      character(len=*), intent(in) :: path               !! dataset
+      character(len=*), intent(in) :: lines(:)           !! one line each
+      character(len=:), allocatable :: cut(:)
+      integer :: k, width
+      width = 1
+      do k = 1, size(lines)
+         width = max(width, len_trim(lines(k)))
+      end do
+      allocate(character(len=width) :: cut(size(lines)))
+      do k = 1, size(lines)
+         cut(k) = lines(k)
+      end do
+      call h5%put(path, cut)
+   end subroutine put_lines
 
    !> Close the set's HDF5 file; its failure (of any of its calls) becomes the set's.
    subroutine set_close_h5(self, h5)

@@ -13,6 +13,14 @@
 !>
 !> Rate and time left count the work done since `start` (a resumed sweep's earlier points
 !> are not in the rate); the time left is the work left over that rate, as h:mm:ss.
+!>
+!> **A long run is announced**, --quiet or not: once `estimate_after_s` (2 s) of wall time
+!> have passed, the meter estimates the time left from the rate so far; when it exceeds
+!> `long_run_s` (1 h) it prints one warning line on standard error (kept in `warning`, which
+!> the job stores in /run/warnings), e.g.
+!>    gapbeam: warning: this transient run will take about 5:12:40 more (h:mm:ss, from 14.2
+!>    periods/s over its first 2 s; 1 of 265000 periods done): ...
+!> A run shorter than `estimate_after_s` is never estimated.
 module gapbeam_progress_meter
    use, intrinsic :: iso_fortran_env, only: error_unit
    use, intrinsic :: iso_c_binding, only: c_int
@@ -39,6 +47,10 @@ module gapbeam_progress_meter
       logical :: tty = .false.                        !! standard error is a terminal
       logical :: shown = .false.                      !! a line was printed
       integer :: width = 0                            !! length of the line on a terminal
+      logical :: estimate_pending = .false.           !! the long-run estimate still to make
+      real(dp) :: estimate_after_s = 2.0_dp           !! wall time measured before it [s]
+      real(dp) :: long_run_s = 3600.0_dp              !! time left that warns [s]
+      character(len=:), allocatable :: warning        !! the long-run warning, once printed
    contains
       procedure :: start => meter_start
       procedure :: update => meter_update
@@ -90,6 +102,8 @@ contains
       self%t = -1.0_dp;  self%dt = -1.0_dp
       self%shown = .false.
       self%width = 0
+      self%estimate_pending = total > done
+      if (allocated(self%warning)) deallocate(self%warning)
    end subroutine meter_start
 
    !> `done` units done (plus the meter's offset); print a line when the interval has passed.
@@ -99,11 +113,14 @@ contains
       real(dp), intent(in), optional :: t              !! simulated time [s]
       real(dp), intent(in), optional :: dt             !! step size [s]
       real(dp) :: now
-      if (.not. self%enabled) return
+      if (.not. (self%enabled .or. self%estimate_pending)) return
       self%done = self%offset + done
       if (present(t)) self%t = t
       if (present(dt)) self%dt = dt
       now = wall_seconds()
+      if (self%estimate_pending .and. now - self%wall0 >= self%estimate_after_s) &
+         call estimate(self, now)
+      if (.not. self%enabled) return
       if (now - self%last < self%interval) return
       self%last = now
       call show(self, now)
@@ -134,6 +151,30 @@ contains
       flush(error_unit)
       self%width = 0
    end subroutine meter_break_line
+
+   !> The long-run estimate: the time left at the rate so far; a warning when it is more than
+   !> `long_run_s`.
+   subroutine estimate(self, now)
+      type(meter_t), intent(inout) :: self           !! meter
+      real(dp), intent(in) :: now                    !! wall clock [s]
+      real(dp) :: rate, elapsed, left, shown
+      self%estimate_pending = .false.
+      shown = merge(anint(self%done), self%done, self%done >= 10.0_dp)   ! '26632', '0.2'
+      elapsed = now - self%wall0
+      if (.not. (elapsed > 0.0_dp .and. self%done > self%done_at_start)) return
+      rate = (self%done - self%done_at_start) / elapsed
+      left = max(0.0_dp, self%total - self%done) / rate
+      if (.not. (left > self%long_run_s)) return
+      self%warning = 'this ' // self%what // ' run will take about ' // hms(left) &
+         // ' more (h:mm:ss, from ' // rate_text(rate) // ' ' // self%unit_name // '/s over ' &
+         // 'its first ' // count_text(anint(elapsed)) // ' s; ' // count_text(shown) &
+         // ' of ' // count_text(self%total) // ' ' // self%unit_name // ' done): check its ' &
+         // 'settings (periods, steps, tolerance, model size) or run it as a batch job ' &
+         // '(docs/running.md); --progress shows how it goes'
+      call self%break_line()
+      write(error_unit, '(a)') 'gapbeam: warning: ' // self%warning
+      flush(error_unit)
+   end subroutine estimate
 
    !> Print the meter's line: rewritten in place on a terminal, a new line otherwise.
    subroutine show(self, now, final)

@@ -46,7 +46,7 @@ contains
       curves = shape_curve_table(sys, modes)
       call set%begin(deck%job%output, [character(len=18) :: '.h5', '.modes.dat', &
                      '.shapes.dat', '.shape_curves.dat'])
-      call set%open_h5(h5, 'modes', deck%text)
+      call set%open_h5(h5, 'modes', deck%text, deck%warnings)
       call write_parameter_set(h5, run_parameters(deck, stop_stiffness, &
          modes%frequency_hz(1), modes%frequency_hz(modes%n_modes), sys%n_dof))
       call h5%put('/modes/frequency_hz', modes%frequency_hz)
@@ -130,7 +130,7 @@ contains
       type(output_set_t) :: set
       type(h5_writer_t) :: h5
       call set%begin(deck%job%output, ['.h5'])
-      call set%open_h5(h5, 'calibrate', deck%text)
+      call set%open_h5(h5, 'calibrate', deck%text, deck%warnings)
       call write_parameter_set(h5, run_parameters(deck))
       call write_structure(h5, sys)
       call h5%put('/calibrate/parameter', trim(deck%calibrate%parameter))
@@ -207,7 +207,7 @@ contains
       character(len=:), allocatable :: filtered
       filtered = trim(merge(' (low-pass filtered)', '                    ', &
                             deck%output%filter_cutoff_hz > 0.0_dp))
-      call set%open_h5(h5, 'transient', deck%text)
+      call set%open_h5(h5, 'transient', deck%text, deck%warnings)
       call write_parameter_set(h5, run_parameters(deck, model%stop_stiffness, &
          model%f1_open_hz, model%omega_max / (2.0_dp * pi), model%n))
       call write_history(h5, deck, model, res)

@@ -191,7 +191,7 @@ contains
       character(len=*), intent(in) :: analysis                   !! analysis word
       type(deck_t), intent(in) :: deck                           !! the deck
       type(model_t), intent(in) :: model                         !! its model
-      call set%open_h5(h5, analysis, deck%text)
+      call set%open_h5(h5, analysis, deck%text, deck%warnings)
       call write_parameter_set(h5, run_parameters(deck, model%stop_stiffness, &
          model%f1_open_hz, model%omega_max / (2.0_dp * pi), model%n))
       call write_model(h5, model, stiffness_units(deck))

@@ -27,13 +27,18 @@ module gapbeam_sweep_output
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_parameter_set, write_model
+   use gapbeam_warning_text, only: untouched_sweep_warnings, is_untouched_warning, &
+      warning_length
    implicit none
    private
-   public :: sweep_file_t, write_sweep, read_sweep, merge_sweep
+   public :: sweep_file_t, write_sweep, read_sweep, merge_sweep, sweep_warnings
 
    !> What a sweep file holds besides the points.
    type :: sweep_file_t
       character(len=:), allocatable :: deck_text     !! effective deck text
+      !> the deck's warnings; write_sweep adds those about stops never touched, from the points
+      !> of the file (read_sweep leaves them out, so that a merge remakes them for the grid)
+      character(len=warning_length), allocatable :: warnings(:)
       character(len=:), allocatable :: title         !! job title
       real(dp), allocatable :: grid_frequency_hz(:)  !! frequency axis [Hz] (or the one value)
       real(dp), allocatable :: grid_amplitude_pp(:)  !! amplitude axis [m] (or the one value)
@@ -107,6 +112,63 @@ contains
       if (write_text) call sweep_tables(set, sf, results)
       call set%finish(err)
    end subroutine write_sweep
+
+   !> The warnings of a sweep file: the deck's, then one per stop that no finished point of
+   !> the file touched.
+   function sweep_warnings(sf, results) result(lines)
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      character(len=warning_length), allocatable :: lines(:), more(:)
+      integer, allocatable :: impacts(:, :), status(:)
+      real(dp), allocatable :: contact(:, :)
+      integer :: ns, nr, nl, j, p, k
+      call point_sizes(results, sf%points, ns, nr, nl)
+      allocate(impacts(ns, size(sf%points)), source=0)
+      allocate(contact(ns, size(sf%points)), source=0.0_dp)
+      allocate(status(size(sf%points)), source=1)
+      do j = 1, size(sf%points)
+         p = sf%points(j)
+         if (results(p)%status /= 0 .or. .not. allocated(results(p)%n_impacts) .or. &
+             .not. allocated(results(p)%contact_fraction)) cycle
+         if (size(results(p)%n_impacts) /= ns .or. size(results(p)%contact_fraction) /= ns) &
+            cycle
+         impacts(:, j) = results(p)%n_impacts
+         contact(:, j) = results(p)%contact_fraction
+         status(j) = 0
+      end do
+      more = untouched_sweep_warnings(impacts, contact, status)
+      k = 0
+      if (allocated(sf%warnings)) k = size(sf%warnings)
+      allocate(lines(k + size(more)))
+      do j = 1, k
+         lines(j) = sf%warnings(j)
+      end do
+      do j = 1, size(more)
+         lines(k + j) = more(j)
+      end do
+   end function sweep_warnings
+
+   !> /run/warnings of a sweep file into sf%warnings, less those about stops never touched
+   !> (remade for the points a merge writes); none in a file of an older gapbeam.
+   subroutine read_warnings(h5, sf)
+      type(h5_reader_t), intent(inout) :: h5             !! open file
+      type(sweep_file_t), intent(inout) :: sf            !! description
+      character(len=:), allocatable :: all(:)
+      integer :: k, n
+      allocate(sf%warnings(0))
+      if (.not. h5%exists('/run/warnings')) return
+      call h5%read('/run/warnings', all)
+      if (h5%failed()) return
+      n = count([(.not. is_untouched_warning(all(k)), k = 1, size(all))])
+      deallocate(sf%warnings)
+      allocate(sf%warnings(n))
+      n = 0
+      do k = 1, size(all)
+         if (is_untouched_warning(all(k))) cycle
+         n = n + 1
+         sf%warnings(n) = all(k)
+      end do
+   end subroutine read_warnings
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
    !> points that succeeded (from all points when none did).
@@ -346,7 +408,7 @@ contains
          labels(j) = label_text(results(sf%points(j))%label)
          certs(j) = certificate_text(results(sf%points(j))%certificate)
       end do
-      call set%open_h5(h5, 'sweep', sf%deck_text)
+      call set%open_h5(h5, 'sweep', sf%deck_text, sweep_warnings(sf, results))
       if (allocated(sf%parameters_source)) then
          call h5%copy_from(sf%parameters_source, '/parameters')
          if (sf%has_model) call h5%copy_from(sf%parameters_source, '/model')
@@ -604,6 +666,7 @@ contains
          return
       end if
       call h5%read_text('/deck', sf%deck_text)
+      call read_warnings(h5, sf)
       call h5%read_text('/sweep/title', sf%title)
       call h5%read('/sweep/grid_frequency_hz', sf%grid_frequency_hz)
       call h5%read('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp)

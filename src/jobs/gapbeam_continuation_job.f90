@@ -80,7 +80,8 @@ contains
       call write_continuation(trim(deck%job%output), trim(deck%job%title), deck%text, &
          trim(deck%continuation%overlay), res, deck%output%write_text, err, &
          run_parameters(deck, model%stop_stiffness, model%f1_open_hz, &
-         model%omega_max / (2.0_dp * pi), model%n), model, stiffness_units(deck))
+         model%omega_max / (2.0_dp * pi), model%n), model, stiffness_units(deck), &
+         deck%warnings)
       if (allocated(err)) return
       if (deck%output%write_text) then
          write(output_unit, '(a)') 'files: ' // trim(deck%job%output) // '.h5, .branches.dat, ' &

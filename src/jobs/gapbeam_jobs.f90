@@ -2,10 +2,12 @@
 !> deck, run it, print a summary and write the result files. The sweep job is in
 !> gapbeam_sweep_job.
 module gapbeam_jobs
-   use, intrinsic :: iso_fortran_env, only: output_unit
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
-   use gapbeam_deck, only: deck_t
+   use gapbeam_deck, only: deck_t, add_warning
+   use gapbeam_warning_text, only: warning_length, warning_prefix, untouched_stop_warnings, &
+      untouched_evidence
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w, modal_ratio, beam_is_timoshenko, beam_shear_coefficient, &
@@ -316,6 +318,28 @@ contains
       call write_model_size(dk, model, cands, best, e)
    end subroutine run_model_size
 
+   !> The stops a transient run never touched in its record: a warning each (on standard
+   !> error, and in the deck copy `dw` whose warnings the file stores) and the label's
+   !> certificate reason saying that its label is that of the beam without them.
+   subroutine untouched_stops(dk, res, diag, dw)
+      type(deck_t), intent(in) :: dk                   !! deck
+      type(transient_result_t), intent(in) :: res      !! the run
+      type(point_result_t), intent(inout) :: diag      !! its label: reason extended
+      type(deck_t), intent(out) :: dw                  !! dk with the warnings added
+      character(len=warning_length), allocatable :: lines(:)
+      integer :: k
+      dw = dk
+      if (.not. allocated(res%n_impacts) .or. .not. allocated(res%contact_fraction)) return
+      lines = untouched_stop_warnings(res%n_impacts, res%contact_fraction, &
+                                      dk%solver%record_periods)
+      do k = 1, size(lines)
+         call add_warning(dw, trim(lines(k)))
+         write(error_unit, '(a)') warning_prefix // trim(lines(k))
+      end do
+      if (size(lines) > 0 .and. allocated(diag%certificate_reason)) diag%certificate_reason = &
+         diag%certificate_reason // untouched_evidence(res%n_impacts, res%contact_fraction)
+   end subroutine untouched_stops
+
    !> The label of a transient run, its evidence and its certificate, on standard output.
    subroutine print_label(diag)
       type(point_result_t), intent(in) :: diag         !! diagnosed run
@@ -345,7 +369,7 @@ contains
          // str(diag%settle_windows) // ' windows differ by ' // str(diag%window_difference) &
          // ' of the orbit size (' // trim(merge('settled    ', 'not settled', &
          diag%settled == 1)) // ') after ' // str(diag%transient_periods) // ' transient ' &
-         // 'periods; ' // lambda
+         // 'periods; ' // lambda // untouched_tail(diag)
       write(output_unit, '(a)') 'certificate: ' // cert_reason(diag)
       if (allocated(diag%start_label)) then
          if (size(diag%start_label) > 1) then
@@ -360,6 +384,15 @@ contains
          end if
       end if
    end subroutine print_label
+
+   !> The label's evidence about stops never met in its record ('' when all were met).
+   function untouched_tail(diag) result(t)
+      type(point_result_t), intent(in) :: diag         !! diagnosed run
+      character(len=:), allocatable :: t
+      t = ''
+      if (allocated(diag%n_impacts) .and. allocated(diag%contact_fraction)) &
+         t = untouched_evidence(diag%n_impacts, diag%contact_fraction)
+   end function untouched_tail
 
    !> The certificate's reason, or why there is none.
    function cert_reason(diag) result(t)
@@ -387,6 +420,7 @@ contains
       integer :: j
       type(reduction_info_t) :: reduced
       type(reduction_check_t) :: check
+      type(deck_t) :: dw
       call describe_structure(dk%structure)
       setup = thread_cpu_seconds()
       call build_model(dk, model, u0, v0, e, reduced)
@@ -457,8 +491,10 @@ contains
       do j = 1, size(failures)
          write(output_unit, '(a)') trim(failures(j))
       end do
+      call untouched_stops(dk, res, diag, dw)
+      if (allocated(meter%warning)) call add_warning(dw, meter%warning)
       call print_label(diag)
-      call write_transient(dk, model, res, diag, e)
+      call write_transient(dw, model, res, diag, e)
       if (allocated(e)) return
       block
          character(len=:), allocatable :: files

@@ -11,7 +11,7 @@ module gapbeam_sweep_job
    !$ use omp_lib, only: omp_get_max_threads
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_deck, only: deck_t
+   use gapbeam_deck, only: deck_t, add_warning
    use gapbeam_settings, only: sweep_settings_t, batch_options_t
    use gapbeam_model, only: model_t
    use gapbeam_results, only: point_result_t, label_chaotic, label_undecided, label_unsettled, &
@@ -22,7 +22,8 @@ module gapbeam_sweep_job
       group_of_item, group_points, slot_index, combine_point
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
       checkpoint_close
-   use gapbeam_sweep_output, only: sweep_file_t, write_sweep
+   use gapbeam_sweep_output, only: sweep_file_t, write_sweep, sweep_warnings
+   use gapbeam_warning_text, only: warning_length, warning_prefix
    use gapbeam_files, only: make_parent_directory
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: run_parameters, stiffness_units
@@ -176,8 +177,9 @@ contains
       end do
       call meter%finish()
 
+      if (.not. allocated(meter%warning)) meter%warning = ''
       call write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, threads, &
-                       n_failed, err)
+                       meter%warning, n_failed, err)
       if (allocated(err)) return
       if (deck%sweep%checkpoint) call checkpoint_close(ck, delete=.true.)
       complete = .true.
@@ -188,7 +190,7 @@ contains
    !> listed on standard error and counted in `n_failed`, the files under `prefix`, the
    !> summary lines.
    subroutine write_shard(deck, batch, plan, base, slots, mine, prefix, cpu0, c0, rate, &
-                          threads, n_failed, err)
+                          threads, long_run, n_failed, err)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(batch_options_t), intent(in) :: batch       !! shard
       type(sweep_plan_t), intent(in) :: plan           !! the sweep's plan
@@ -199,10 +201,12 @@ contains
       real(dp), intent(in) :: cpu0                     !! process CPU time at the start [s]
       integer(int64), intent(in) :: c0, rate           !! wall clock at the start, its rate
       integer, intent(in) :: threads                   !! OpenMP threads
+      character(len=*), intent(in) :: long_run         !! the meter's long-run warning, or ''
       integer, intent(inout) :: n_failed               !! failed runs of the shard
       type(error_t), allocatable, intent(out) :: err   !! I/O failure
       type(point_result_t), allocatable :: results(:)
       type(sweep_file_t) :: sf
+      type(deck_t) :: notes                            !! the warnings the file stores
       integer, allocatable :: pts(:)
       integer :: k, j, np
       integer(int64) :: c1
@@ -222,6 +226,9 @@ contains
          end do
       end do
       sf%deck_text = deck%text
+      if (allocated(deck%warnings)) notes%warnings = deck%warnings
+      if (len(long_run) > 0) call add_warning(notes, long_run)
+      if (allocated(notes%warnings)) sf%warnings = notes%warnings
       sf%title = trim(deck%job%title)
       sf%grid_frequency_hz = deck%sweep%frequency_hz
       sf%grid_amplitude_pp = deck%sweep%amplitude_pp
@@ -244,6 +251,7 @@ contains
       sf%threads = threads
       call write_sweep(prefix, sf, results, deck%output%write_text, err)
       if (allocated(err)) return
+      call print_new_warnings(sf, results)
       call summary(results(pts), n_failed, plan%ns)
       write(output_unit, '(a)') 'cpu: ' // str(sf%cpu_seconds) // ' s (all threads), wall ' &
          // str(sf%wall_seconds) // ' s, ' // str(threads) // ' thread(s)'
@@ -256,6 +264,21 @@ contains
          // 'run(s), listed above on standard error and marked in the files (status 1, label ' &
          // "'failed')"
    end subroutine write_shard
+
+   !> The warnings the sweep's points add to the deck's (stops never touched), on standard
+   !> error.
+   subroutine print_new_warnings(sf, results)
+      type(sweep_file_t), intent(in) :: sf               !! file description
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      character(len=warning_length), allocatable :: lines(:)
+      integer :: k, k0
+      lines = sweep_warnings(sf, results)
+      k0 = 0
+      if (allocated(sf%warnings)) k0 = size(sf%warnings)
+      do k = k0 + 1, size(lines)
+         write(error_unit, '(a)') warning_prefix // trim(lines(k))
+      end do
+   end subroutine print_new_warnings
 
    !> The starts of a plan, comma separated ('random' counted once with its number).
    function start_names(plan) result(t)
