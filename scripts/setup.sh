@@ -305,11 +305,33 @@ _gapbeam_setup_main() {
 
 _gapbeam_setup_status=0
 _gapbeam_setup_main || _gapbeam_setup_status=$?
+
+# fpm's incremental build keeps what it built from sources that have since moved or changed
+# interface: an object of a moved module stays in the library archive (`ar` adds and replaces
+# members, never removes them), and the test helper modules are not rebuilt when a type of src/
+# changes. When the sources differ from those of the last build (a digest of src/, app/, test/),
+# drop the archives and the test objects, so that fpm re-archives and rebuilds them (seconds).
+_gapbeam_drop_stale_build() {
+   local here digest stamp
+   here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || return 0
+   [[ -d ${here}/build ]] || return 0
+   digest=$(cd "${here}" && find src app test -name '*.f90' -type f 2>/dev/null | LC_ALL=C sort \
+      | xargs cat -- 2>/dev/null | cksum) || return 0
+   stamp=${here}/build/.gapbeam-sources
+   if [[ ! -f ${stamp} || $(cat "${stamp}") != "${digest}" ]]; then
+      rm -f "${here}"/build/gfortran_*/gapbeam/libgapbeam.a "${here}"/build/gfortran_*/gapbeam/test_*.o \
+         "${here}"/build/gfortran_*/gapbeam/test_*.o.digest 2>/dev/null
+      printf '%s\n' "${digest}" >"${stamp}" 2>/dev/null || true
+   fi
+   return 0
+}
+_gapbeam_drop_stale_build
 if [[ ${BASH_SOURCE[0]} != "$0" ]]; then
    unset -f _gapbeam_have _gapbeam_setup_error _gapbeam_setup_logfile _gapbeam_setup_show_log \
       _gapbeam_have_lib _gapbeam_hdf5_pc _gapbeam_have_hdf5_fortran _gapbeam_missing_apt \
       _gapbeam_setup_apt _gapbeam_find_fpm _gapbeam_setup_fpm _gapbeam_have_python_modules \
-      _gapbeam_python_is_external _gapbeam_setup_python _gapbeam_setup_main _gapbeam_have_daemon
+      _gapbeam_python_is_external _gapbeam_setup_python _gapbeam_setup_main _gapbeam_have_daemon \
+      _gapbeam_drop_stale_build
    unset _gapbeam_setup_log _gapbeam_setup_slurm
 fi
 # The status of the last command is that of the script (executed) or of `source` (sourced); a

@@ -19,10 +19,11 @@
 !> every period starts at t = 0 (the forcing phase stays exact). The separation is measured in
 !> the energy norm ||(u, v)||^2 = u'Ku + v'Mv, started at `perturbation` times the norm of the
 !> state, and rescaled to that size after every period (both states restart there in
-!> equilibrium); lambda = sum ln(d_k / d_0) / (N T). The uncertainty sigma is the standard
-!> error of the mean over 10 blocks of periods (whole multiples of the orbit's period when a
-!> period was found). N starts at `lyapunov_periods` and grows (to the N that sigma ~
-!> 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
+!> equilibrium); lambda = sum ln(d_k / d_0) / ((N - N_a) T) over the periods after the first
+!> N_a = max(q, N / 10) (the separation aligning with the most expanding direction). The
+!> uncertainty sigma is the standard error from the means of 10 batches of the rest, whole
+!> multiples of the orbit's period q when a period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
+!> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
@@ -395,9 +396,9 @@ contains
       q = 1
       if (present(orbit_period)) q = max(1, orbit_period)
       if (present(cache)) then
-         call cache%get(model, lyapunov_settings(cfg), integ, err)
+         call cache%get(model, lyapunov_settings(model, cfg), integ, err)
       else
-         call own%get(model, lyapunov_settings(cfg), integ, err)
+         call own%get(model, lyapunov_settings(model, cfg), integ, err)
       end if
       if (allocated(err)) return
       x_norm = energy_norm(model, u, v)
@@ -435,8 +436,7 @@ contains
             end if
             if (present(monitor)) call monitor%update(real(2 * k, dp))
          end do
-         lambda = sum(logs(1:n)) / (real(n, dp) * period)
-         sigma = block_standard_error(logs(1:n), period, q)
+         call exponent_estimate(logs(1:n), period, q, lambda, sigma)
          target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
          lyap%converged = sigma <= target
          if (lyap%converged .or. n >= n_max) exit
@@ -456,25 +456,30 @@ contains
       lyap%section = strain(:, 1:n)
       lyap%uncertainty = sigma
       allocate(lyap%running(n))
-      lambda = 0.0_dp
+      d = 0.0_dp
       do k = 1, n
-         lambda = lambda + logs(k)
-         lyap%running(k) = lambda / (real(k, dp) * period)
+         d = d + logs(k)
+         lyap%running(k) = d / (real(k, dp) * period)
       end do
-      lyap%exponent = lyap%running(n)
+      lyap%exponent = lambda
       u_end = ua;  v_end = va
    end subroutine largest_lyapunov
 
-   !> The settings of the two trajectories: fixed steps with events; a method whose registry
-   !> entry names another for the exponent (the explicit methods, only conditionally stable at
-   !> T/steps_per_period) hands it to that one, with the trapezoidal rule's parameters (the
-   !> exponent is a property of the model).
-   pure function lyapunov_settings(cfg) result(one)
+   !> The settings of the two trajectories: the method that runs (method 'auto' resolved
+   !> first, so that a deck whose 'auto' is the exact integrator gets the exact exponent and
+   !> not the default method's at fixed steps, which 'auto' with step_control 'fixed' would
+   !> choose), with fixed steps and events; a method whose registry entry names another for
+   !> the exponent (the explicit methods, only conditionally stable at T/steps_per_period)
+   !> hands it to that one, with the trapezoidal rule's parameters (the exponent is a property
+   !> of the model).
+   function lyapunov_settings(model, cfg) result(one)
+      type(model_t), intent(in) :: model           !! model (what 'auto' resolves to)
       type(solver_settings_t), intent(in) :: cfg   !! the run's settings
       type(solver_settings_t) :: one
       type(method_caps_t) :: c
-      one = cfg
-      c = method_caps(cfg%method)
+      character(len=:), allocatable :: reason
+      call resolve_method(model, cfg, one, reason)
+      c = method_caps(one%method)
       if (len_trim(c%lyapunov_with) > 0) then
          one%method = c%lyapunov_with;  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp
          one%stop_solution = 'condensed'
@@ -483,24 +488,48 @@ contains
       one%locate_events = .true.
    end function lyapunov_settings
 
-   !> Standard error of the mean exponent over 10 blocks of periods [1/s]; with an orbit of
-   !> period q, each block is a whole number of orbit periods where the record allows (the
-   !> stretching varies along a periodic orbit, and part of a cycle would read as noise).
-   pure real(dp) function block_standard_error(logs, period, q) result(se)
+   !> The exponent and its standard error from the stretchings ln(d_k / d_0) of n periods.
+   !>
+   !> The first n_a = max(q, n / 10) periods are discarded: the separation starts along the
+   !> state, not along the most expanding direction, and those periods would bias the mean by
+   !> O(1/n) (on a stable orbit the first periods contract much faster than the orbit does).
+   !> sigma is the standard error from the means of 10 batches over the rest, each a whole
+   !> number of orbit periods q where the record allows.
+   pure subroutine exponent_estimate(logs, period, q, lambda, sigma)
       real(dp), intent(in) :: logs(:)     !! ln(d_k / d_0) per period
       real(dp), intent(in) :: period      !! forcing period [s]
       integer, intent(in) :: q            !! orbit period (1: none)
-      real(dp) :: block(10), mean, var
-      integer :: nb, b, per_block
-      nb = min(10, size(logs))
-      per_block = size(logs) / nb
-      if (q > 1 .and. per_block >= q) per_block = (per_block / q) * q
-      do b = 1, nb
-         block(b) = sum(logs((b - 1) * per_block + 1:b * per_block)) / (per_block * period)
+      real(dp), intent(out) :: lambda     !! exponent [1/s]
+      real(dp), intent(out) :: sigma      !! its standard error [1/s]
+      integer :: n, na, m, len_b
+      n = size(logs)
+      na = min(max(q, n / 10), n - 1)
+      if (n < 2) na = 0
+      m = n - na
+      lambda = sum(logs(na + 1:n)) / (real(m, dp) * period)
+      ! 10 batches of whole orbit periods (fewer when the record is shorter than 10 q)
+      len_b = m / 10
+      if (q > 1 .and. len_b >= q) len_b = (len_b / q) * q
+      sigma = batch_standard_error(logs(na + 1:n), max(1, len_b))
+      sigma = sigma / period
+   end subroutine exponent_estimate
+
+   !> Standard error of the mean of x from the means of its consecutive batches of len_b
+   !> (the last m mod len_b values, if any, in no batch).
+   pure real(dp) function batch_standard_error(x, len_b) result(se)
+      real(dp), intent(in) :: x(:)     !! series
+      integer, intent(in) :: len_b     !! batch length
+      real(dp), allocatable :: b(:)
+      real(dp) :: mean
+      integer :: nb, i
+      nb = size(x) / max(1, len_b)
+      se = 0.0_dp
+      if (nb < 2) return
+      allocate(b(nb))
+      do i = 1, nb
+         b(i) = sum(x((i - 1) * len_b + 1:i * len_b)) / len_b
       end do
-      mean = sum(block(1:nb)) / nb
-      var = 0.0_dp
-      if (nb > 1) var = sum((block(1:nb) - mean)**2) / (nb - 1)
-      se = sqrt(var / nb)
-   end function block_standard_error
+      mean = sum(b) / nb
+      se = sqrt(sum((b - mean)**2) / (nb - 1) / nb)
+   end function batch_standard_error
 end module gapbeam_attractor

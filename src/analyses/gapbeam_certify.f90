@@ -16,11 +16,11 @@
 !> dispute of the label (it is recorded as a distance).
 module gapbeam_certify
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t
+   use gapbeam_error, only: error_t, str
    use gapbeam_model, only: model_t, energy_norm
    use gapbeam_settings, only: solver_settings_t, output_settings_t, diagnostics_settings_t
    use gapbeam_results, only: point_result_t, transient_result_t, label_text, label_failed, &
-      certificate_certified, certificate_disputed
+      label_chaotic, certificate_certified, certificate_disputed
    use gapbeam_capabilities, only: method_caps_t, method_table, is_exact
    use gapbeam_integrator, only: resolve_method, refusal
    use gapbeam_attractor, only: diagnose
@@ -29,7 +29,7 @@ module gapbeam_certify
    use gapbeam_clock, only: thread_cpu_seconds
    implicit none
    private
-   public :: certify_point, accuracy_settings
+   public :: certify_point, accuracy_settings, contradiction
 
    integer, parameter :: stream_perturbation = 1000   !! generator stream offset of the checks
 
@@ -89,6 +89,8 @@ contains
       call diagnose(model, cfg, out, diag, u0 + du, v0 + dv, res, chk, err, cache=cache)
       call record_check(pr, chk, err, 'perturbed', 'a start perturbed by ' &
          // num(diag%certify_perturbation) // ' of the state norm', diag, reason)
+      ! the label's own evidence must agree with itself, whatever the checks say
+      if (len(contradiction(pr, diag)) > 0) reason = contradiction(pr, diag)
       if (len(reason) == 0) then
          pr%certificate = certificate_certified
          if (needed) then
@@ -104,6 +106,27 @@ contains
       end if
       pr%seconds_certify = thread_cpu_seconds() - cpu0
    end subroutine certify_point
+
+   !> A contradiction within a point's own evidence ('' when none): a period beside an
+   !> exponent positive beyond chaos_sigmas standard errors (a stable orbit contracts: its
+   !> exponent is negative), or a chaotic label beside a detected period. Either disputes the
+   !> certificate, whatever the checks find.
+   pure function contradiction(pr, diag) result(why)
+      type(point_result_t), intent(in) :: pr             !! the diagnosed point
+      type(diagnostics_settings_t), intent(in) :: diag   !! chaos_sigmas
+      character(len=:), allocatable :: why
+      why = ''
+      if (pr%label >= 1 .and. pr%lyapunov_periods > 0 .and. pr%lyapunov > 0.0_dp .and. &
+          pr%lyapunov > diag%chaos_sigmas * pr%lyapunov_error) then
+         why = 'the label ' // label_text(pr%label) // ' contradicts its exponent (lambda ' &
+            // num(pr%lyapunov) // ' +- ' // num(pr%lyapunov_error) // ' 1/s, positive beyond ' &
+            // num(diag%chaos_sigmas) // ' sigma): a periodic orbit the run settled on ' &
+            // 'contracts'
+      else if (pr%label == label_chaotic .and. pr%period > 0) then
+         why = 'the label chaotic contradicts the period ' // str(pr%period) // ' detected in ' &
+            // 'its record'
+      end if
+   end function contradiction
 
    !> Compare one check with the point; the first disagreement becomes `reason`.
    subroutine record_check(pr, chk, err, kind, what, diag, reason)

@@ -459,7 +459,7 @@ module gapbeam_output_catalogue
 
    type(dataset_t), parameter :: tube_sets(*) = [ &
       dataset_t('/wear/normal_work_rate', 'W', 'n_stops', 'normal work rate of each support, ' &
-                // '(1/T) integral of F_N |v_t| dt over the record'), &
+                // '(1/T) integral of F_N |v_slip| dt over the record, slip only'), &
       dataset_t('/wear/sliding_distance', 'm', 'n_stops', 'distance each support slid (the ' &
                 // 'slider''s travel) over the record'), &
       dataset_t('/wear/friction_work', 'J', 'n_stops', 'work of the friction force of each ' &
@@ -643,7 +643,7 @@ module gapbeam_output_catalogue
       dataset_t('/sweep/impacts/work_rate', 'W', 'point=m stop=n_stops', 'mean rate of ' &
                 // 'contact work of each stop'), &
       dataset_t('/sweep/wear/normal_work_rate', 'W', 'point=m stop=n_stops', 'normal work ' &
-                // 'rate of each support, (1/T) integral of F_N |v_t| dt'), &
+                // 'rate of each support, (1/T) integral of F_N |v_slip| dt, slip only'), &
       dataset_t('/sweep/wear/sliding_distance', 'm', 'point=m stop=n_stops', 'distance each ' &
                 // 'support slid over the record'), &
       dataset_t('/sweep/wear/friction_work_rate', 'W', 'point=m stop=n_stops', 'mean ' &

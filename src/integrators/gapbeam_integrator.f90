@@ -26,7 +26,8 @@ module gapbeam_integrator
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_contact_law, only: contact_force
-   use gapbeam_ring_contact, only: ring_open, ring_geometry, ring_forces_at, update_ring_modes
+   use gapbeam_ring_contact, only: ring_open, ring_geometry, ring_forces_at, update_ring_modes, &
+      onset_regime
    use gapbeam_lapack, only: dpotrf, dpotrs
    implicit none
    private
@@ -387,7 +388,8 @@ contains
       allocate(state%a(model%n), state%f(model%n_contacts))
       call contact_forces_at(model, state%u, state%v, state%f)
       ! rings: open with the anchor at the node, then the regime the state calls for (a ring
-      ! in contact sticks at its contact point)
+      ! in contact sticks at its contact point, or slips at once along its tangential
+      ! velocity, as at a located onset: onset_regime)
       allocate(state%fn(model%n_rings), state%ft(model%n_rings), state%sigma(model%n_rings), &
                state%anchor(model%n_rings), source=0.0_dp)
       allocate(state%mode(model%n_rings), source=ring_open)
@@ -398,6 +400,10 @@ contains
       end do
       call update_ring_modes(model, state%u, state%v, spread(0.0_dp, 1, model%n), state%mode, &
                              state%sigma, state%anchor, 0)
+      do r = 1, model%n_rings
+         if (state%mode(r) /= ring_open) call onset_regime(model, r, state%u(model%r_dof(:, r)), &
+            state%v(model%r_dof(:, r)), state%mode(r), state%sigma(r), state%anchor(r))
+      end do
       pr = ring_load(model, state)
       call equilibrium_acceleration(model, t, state%u, state%v, state%f, state%a, pr)
       state%f_prev = state%f

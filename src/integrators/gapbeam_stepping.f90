@@ -27,8 +27,8 @@ module gapbeam_stepping
    use gapbeam_hermite_piece, only: hermite_piece_t, hermite_weights
    use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, zero_counters, &
       make_stepper, dof_label, ring_load
-   use gapbeam_ring_contact, only: ring_open, ring_stick, ring_indicators, ring_geometry, &
-      update_ring_modes, ring_force, onset_regime
+   use gapbeam_ring_contact, only: ring_open, ring_stick, ring_slip, ring_indicators, &
+      ring_geometry, update_ring_modes, ring_force, onset_regime
    use gapbeam_newmark, only: half_step_ratio, use_dense
    use gapbeam_lapack, only: dpotrf, dpotrs, dgesv
    implicit none
@@ -93,6 +93,9 @@ module gapbeam_stepping
       real(dp) :: block_sum = 0.0_dp                  !! local errors accepted in it [-]
       !> the root strain rate is watched (not with ring contacts, see init_control)
       logical :: watch_rate = .true.
+      !> the wear work watched per ring (wear_ratio): range of the tangential velocity in
+      !> contact [m/s], its floor [m/s] and the largest normal force seen [N]
+      real(dp), allocatable :: vt_lo(:), vt_hi(:), vt_floor(:), fn_max(:)
       !> per contact: its force can vanish while it penetrates (located where the force does)
       logical, allocatable :: early(:)
       logical, allocatable :: jumps(:)                !! per contact: its force jumps at onset

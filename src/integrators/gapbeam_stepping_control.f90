@@ -58,6 +58,7 @@ contains
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
       if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out)
+      if (model%n_rings > 0) call wear_floors(self, model, n_out)
       if (self%caps%estimator == 'embedded') then
          ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
          self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
@@ -281,7 +282,80 @@ contains
             ratio = r;  worst = i
          end if
       end do
+      if (self%model%n_rings > 0) then
+         r = wear_ratio(self, q)
+         if (r > ratio) then
+            ratio = r;  worst = 2 * no + q
+         end if
+      end if
    end function output_ratio
+
+   !> The wear work watched (docs/methods.md, Wear): for each ring in contact at the end of the
+   !> step and sliding over it (in slip; any contact without friction), the local error of the
+   !> tangential velocity v_t = t.x' relative to its range (the sliding distance integrates
+   !> |v_t|) and that of the work integrand f_n v_t relative to (the largest f_n) x (the range
+   !> of v_t) (the normal work rate and friction work integrate it; the error of f_n is the law's
+   !> change over the error of the penetration). Nothing in stick: it wears nothing. Returns
+   !> the largest ratio and its ring (0: none).
+   real(dp) function wear_ratio(self, worst) result(ratio)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
+      integer, intent(out) :: worst                      !! ring of the largest ratio
+      real(dp) :: x(2), xd(2), d, n(2), t(2), tau, gt, vt, dn, dvt, dd, dfn, fn, vs, fs, r, h
+      integer :: rg
+      ratio = 0.0_dp;  worst = 0
+      associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
+         do rg = 1, m%n_rings
+            fn = s1%fn(rg)
+            if (fn <= 0.0_dp) cycle
+            if (m%r_mu(rg) > 0.0_dp .and. s0%mode(rg) /= ring_slip) cycle
+            x = s1%u(m%r_dof(:, rg));  xd = s1%v(m%r_dof(:, rg))
+            call ring_geometry(m, rg, x, d, n, t, tau, gt)
+            vt = dot_product(t, xd);  dn = dot_product(n, xd)
+            dvt = dot_product(t, self%ev(m%r_dof(:, rg)))
+            dd = dot_product(n, self%eu(m%r_dof(:, rg)))
+            ! below the round-off of the position (and of the velocity, which an implicit
+            ! step gets from the position as 2 x / h): no error to control
+            h = max(s1%t - s0%t, tiny(1.0_dp))
+            if (abs(dd) <= 16.0_dp * epsilon(1.0_dp) * maxval(abs(x))) dd = 0.0_dp
+            if (abs(dvt) <= 16.0_dp * epsilon(1.0_dp) * (maxval(abs(xd)) + 2.0_dp &
+                * maxval(abs(x)) / h)) dvt = 0.0_dp
+            associate (law => m%laws(m%r_law(rg))%law)
+               ! both at this d: the round-off of d (rho - g) cancels
+               dfn = law%force(m%r_k(rg), m%r_c(rg), m%r_p(rg), d + dd, dn) &
+                     - law%force(m%r_k(rg), m%r_c(rg), m%r_p(rg), d, dn)
+            end associate
+            vs = max(self%vt_hi(rg) - self%vt_lo(rg), self%vt_floor(rg), tiny(1.0_dp))
+            fs = max(self%fn_max(rg), fn)
+            r = max(abs(dvt) / vs, abs(vt * dfn + fn * dvt) / (fs * vs))
+            if (r > ratio) then
+               ratio = r;  worst = rg
+            end if
+         end do
+      end associate
+   end function wear_ratio
+
+   !> Floors of the wear watch: the velocity floor of each ring's two dofs, no larger than the
+   !> base's velocity amplitude when the base moves (a support that holds a flexible structure
+   !> moves it with the base, far less than its open quasi-static response); the ranges start
+   !> empty and are kept over the whole run.
+   subroutine wear_floors(self, model, n_out)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      integer :: rg, j, q
+      if (allocated(self%vt_lo)) deallocate(self%vt_lo, self%vt_hi, self%vt_floor, self%fn_max)
+      allocate(self%vt_lo(model%n_rings), source=huge(1.0_dp))
+      allocate(self%vt_hi(model%n_rings), source=-huge(1.0_dp))
+      allocate(self%vt_floor(model%n_rings), self%fn_max(model%n_rings), source=0.0_dp)
+      do rg = 1, model%n_rings
+         do j = 1, 2
+            q = findloc(self%out_dof, model%r_dof(j, rg), dim=1)
+            if (q > 0) self%vt_floor(rg) = max(self%vt_floor(rg), self%out_floor(n_out + 1 + q))
+         end do
+         if (model%half_amplitude > 0.0_dp) self%vt_floor(rg) = min(self%vt_floor(rg), &
+            model%half_amplitude * model%omega)
+      end do
+   end subroutine wear_floors
 
    !> Error ratio of the step held in sub(ix(1)) by Richardson extrapolation: the same
    !> interval in two half steps (local error 1/4 of the whole step's for a method whose local
@@ -347,7 +421,26 @@ contains
       else
          self%out_lo = min(self%out_lo, y);  self%out_hi = max(self%out_hi, y)
       end if
+      if (allocated(self%vt_lo)) call track_wear(self, s)
    end subroutine track_outputs
+
+   !> The wear watch's ranges at an accepted state: the tangential velocity of each ring in
+   !> contact and the largest normal force.
+   subroutine track_wear(self, s)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(state_t), intent(in) :: s                        !! an accepted state
+      real(dp) :: d, n(2), t(2), tau, gt, vt
+      integer :: rg
+      associate (m => self%model)
+         do rg = 1, m%n_rings
+            if (s%fn(rg) <= 0.0_dp) cycle
+            call ring_geometry(m, rg, s%u(m%r_dof(:, rg)), d, n, t, tau, gt)
+            vt = dot_product(t, s%v(m%r_dof(:, rg)))
+            self%vt_lo(rg) = min(self%vt_lo(rg), vt);  self%vt_hi(rg) = max(self%vt_hi(rg), vt)
+            self%fn_max(rg) = max(self%fn_max(rg), s%fn(rg))
+         end do
+      end associate
+   end subroutine track_wear
 
    !> Floors of the watched outputs of a model with two planes or extra loads: the largest
    !> response to any one load vector of the open structure: the quasi-static K^-1 L for the w
@@ -487,6 +580,10 @@ contains
       character(len=:), allocatable :: what
       if (.not. ok) then
          what = 'the fixed point on the stop force does not converge'
+      else if (worst > 2 * (1 + size(self%out_dof))) then
+         what = 'the local error of the sliding or its work at stop ' // str(self%model%r_stop( &
+                worst - 2 * (1 + size(self%out_dof)))) // ' is ' // str(ratio) // ' times the ' &
+                // 'tolerance'
       else if (worst == 1) then
          what = 'the local error of the root strain is ' // str(ratio) // ' times the tolerance'
       else if (worst == 2 + size(self%out_dof)) then

@@ -6,8 +6,11 @@
 !> integrated with 3-point Gauss-Legendre quadrature on its dense output (pieces end at every
 !> contact and stick-slip switch, so the integrands are smooth inside one); exact end-point
 !> formulas where they exist:
-!> * normal work rate W_N = (1/T) int f_n |v_t| dt (v_t: the tangential velocity of the node,
-!>   t.x' for a ring, the other plane's translation for a flat stop of a two-plane model);
+!> * normal work rate W_N = (1/T) int f_n |v_slip| dt over the slip only: with friction the
+!>   slider's velocity, W_N = (friction work of the slip pieces) / mu (nothing in stick: the
+!>   stick spring's elastic motion wears nothing); without friction the tangential velocity of
+!>   the node in contact (t.x' for a ring, the other plane's translation for a flat stop of a
+!>   two-plane model);
 !> * sliding distance: the friction slider's travel over the slip pieces, sigma (tau_a(tb) -
 !>   tau_a(ta)) at the contact radius (exact; the stick spring's stretch, at most mu f_n / k_t,
 !>   is not sliding), or int |v_t| dt over the contact time for a support without friction;
@@ -203,8 +206,11 @@ contains
                acc_f(k) = acc_f(k) + wq * fn
                acc_f2(k) = acc_f2(k) + wq * fn**2
                acc_work(k) = acc_work(k) + wq * fn * abs(dn)
-               self%wn(k) = self%wn(k) + wq * fn * abs(vt)
-               if (m%r_mu(r) == 0.0_dp) self%slide(k) = self%slide(k) + wq * abs(vt)
+               if (m%r_mu(r) == 0.0_dp) then
+                  ! no stick: every motion along the wall slides
+                  self%wn(k) = self%wn(k) + wq * fn * abs(vt)
+                  self%slide(k) = self%slide(k) + wq * abs(vt)
+               end if
                if (p%r_mode(r) == ring_slip) pw(r) = pw(r) - wq * ft * vt
             end do
          end do
@@ -224,7 +230,10 @@ contains
             if (p%r_onset(r)) n_impacts(k) = n_impacts(k) + 1
             peak(k) = max(peak(k), p%fn_b(r))
             if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp) then
+               ! the slider's dissipation mu int f_n |d tau_a / dt| dt; the normal work rate is
+               ! its share without mu: slip only, the stick spring's motion is not wear
                self%fric(k) = self%fric(k) + pw(r) - (eb(r) - ea(r))
+               self%wn(k) = self%wn(k) + (pw(r) - (eb(r) - ea(r))) / m%r_mu(r)
                ! the slider's travel, at the contact radius
                tc = 1.0_dp
                if (m%r_circular(r)) tc = 0.5_dp * (rho_a(r) + rho_b(r)) / m%r_gap(r)
