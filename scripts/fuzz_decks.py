@@ -271,7 +271,14 @@ def cheapen(text):
     if analysis == 'sweep':
         # the deck's own prefix ('results/...'): the sweep makes the missing directory
         text = set_value(text, 'sweep', 'progress', '.false.')
-        if two_planes and (get_value(text, 'sweep', 'n_amplitude') is not None
+        x_var = (get_value(text, 'sweep', 'x_variable') or '').strip().strip('\'"')
+        if x_var and x_var != '&forcing frequency_hz':
+            # axes of deck variables given as lists (the cross-flow map): their first values
+            for var in ('x_values', 'y_values'):
+                value = get_value(text, 'sweep', var)
+                if value is not None:
+                    text = set_value(text, 'sweep', var, value.split(',')[0].strip())
+        elif two_planes and (get_value(text, 'sweep', 'n_amplitude') is not None
                            or get_value(text, 'sweep', 'n_y') is not None):
             text = set_value(text, 'sweep', 'n_frequency', '1')     # 1 point, about 2 s
             for var in ('n_amplitude', 'n_y'):

@@ -137,6 +137,10 @@ contains
       logical :: ok
       character(len=:), allocatable :: where
       allocate(lines(0))
+      ! the bound knows the harmonic forcing only: turbulence and fluid-elastic forces (an
+      ! unstable mode grows until a stop limits it) reach stops it would call out of reach
+      if (deck%turbulence%spectrum /= 'none' .or. (deck%flow%velocity > 0.0_dp .and. &
+          deck%flow%fluid_elastic /= 'none')) return
       select case (deck%job%analysis)
       case ('transient', 'work_precision', 'model_size')
          omegas = [2.0_dp * pi * deck%forcing%frequency_hz]

@@ -283,7 +283,7 @@ contains
       end if
       if (nd%two_planes .and. .not. c%two_planes) lacks = join(lacks, 'two planes of motion')
       if (nd%point_forces .and. .not. c%point_forces) lacks = join(lacks, &
-         'loads out of the w plane or point forces')
+         'loads out of the w plane, point forces or turbulence')
       if (nd%circular .and. .not. c%rings) lacks = join(lacks, 'a circular clearance')
       if (nd%friction .and. .not. c%rings) lacks = join(lacks, 'friction')
       if (nd%dampers .and. .not. c%dampers) lacks = join(lacks, 'a contact damper')
@@ -317,7 +317,7 @@ contains
       if (nd%circular) t = join(t, 'a circular clearance')
       if (nd%friction) t = join(t, 'friction')
       if (nd%two_planes) t = join(t, 'two planes of motion')
-      if (nd%point_forces) t = join(t, 'loads out of the w plane or point forces')
+      if (nd%point_forces) t = join(t, 'loads out of the w plane, point forces or turbulence')
    end function needs_text
 
    !> What a method handles beyond a planar beam with flat frictionless bilinear stops.

@@ -4,10 +4,10 @@
 !> The deck reader (src/io/gapbeam_input) fills it; analyses, the model builder and the writers
 !> read it. Pure data: nothing here reads files or does numerics.
 module gapbeam_deck
-   use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t
+   use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, flow_t, turbulence_t
    use gapbeam_settings, only: job_t, calibrate_t, solver_settings_t, output_settings_t, &
       initial_state_t, diagnostics_settings_t, sweep_settings_t, reduction_settings_t, &
-      study_settings_t, model_size_settings_t
+      study_settings_t, model_size_settings_t, wear_settings_t
    use gapbeam_continuation_types, only: continuation_settings_t
    use gapbeam_warning_text, only: warning_length
    implicit none
@@ -25,6 +25,8 @@ module gapbeam_deck
       type(stop_t), allocatable :: stops(:)          !! &stops
       type(damping_t) :: damping                     !! &damping
       type(forcing_t) :: forcing                     !! &forcing
+      type(flow_t) :: flow                           !! &flow
+      type(turbulence_t) :: turbulence               !! &turbulence
       type(solver_settings_t) :: solver              !! &solver
       type(initial_state_t) :: initial               !! &initial
       type(output_settings_t) :: output              !! &output
@@ -34,6 +36,7 @@ module gapbeam_deck
       type(study_settings_t) :: study                !! &study
       type(model_size_settings_t) :: model_size      !! &model_size
       type(continuation_settings_t) :: continuation  !! &continuation
+      type(wear_settings_t) :: wear                  !! &wear
       !> warnings about the deck and its run, one line each (analyses/gapbeam_warnings): the
       !> program prints them on standard error, the writers store them in /run/warnings
       !> (a fixed length: gfortran copies deferred-length array components wrongly)

@@ -23,7 +23,8 @@ module gapbeam_deck_table
    use gapbeam_description, only: beam_t, root_t, spring_t, point_mass_t, stop_t, damping_t, &
       forcing_t, point_force_t, stop_side_words, stop_law_words, damping_words, &
       rotary_inertia_words, stop_shape_words, end_condition_words, tip_condition_words, &
-      beam_theory_words
+      flow_t, turbulence_t, fluid_elastic_words, spectrum_words, flow_plane_words, &
+      support_geometry_words, beam_theory_words
    use gapbeam_settings, only: job_t, calibrate_t, analysis_words, calibration_words
    use gapbeam_deck, only: deck_t
    implicit none
@@ -81,6 +82,8 @@ contains
       call walk_damping(v, deck%damping)
       call walk_forcing(v, deck%forcing)
       call walk_point_forces(v, deck%forcing%forces, deck%structure%beam%n_elem)
+      call walk_flow(v, deck%flow)
+      call walk_turbulence(v, deck%turbulence)
       call walk_settings(v, deck)
    end subroutine walk_deck
 
@@ -345,6 +348,19 @@ contains
             meaning='stick stiffness k_t of the friction (0: the stiffness)')
          call v%real('wear_coefficient', s%wear_coefficient, '1/Pa', lo=0.0_dp, hi=big, &
             design=.true., meaning='Archard coefficient: wear volume rate / normal work rate')
+         call v%word('support', s%support, support_geometry_words, meaning='geometry of the ' &
+            // "support for the wear depth (&wear): 'flat_bar' (a flat land along the tube), " &
+            // "'drilled_hole' (a round hole through a plate)")
+         call v%real('land_width', s%land_width, 'm', lo=0.0_dp, hi=1.0e3_dp, design=.true., &
+            positive=s%support == 'flat_bar', note="> 0 with support = 'flat_bar'", &
+            meaning='flat bar: width of its land along the tube')
+         call v%real('plate_thickness', s%plate_thickness, 'm', lo=0.0_dp, hi=1.0e3_dp, &
+            design=.true., positive=s%support == 'drilled_hole', &
+            note="> 0 with support = 'drilled_hole'", meaning='drilled hole: plate thickness')
+         call v%real('hole_diameter', s%hole_diameter, 'm', lo=0.0_dp, hi=1.0e3_dp, &
+            design=.true., positive=s%support == 'drilled_hole', &
+            note="> the tube diameter with support = 'drilled_hole'", &
+            meaning='drilled hole: hole diameter')
       end subroutine stop_entry
       function ix(i) result(t)
          integer, intent(in) :: i
@@ -465,6 +481,85 @@ contains
             meaning='phase; two forces in w and v 90 deg apart make a whirling force')
       end subroutine force
    end subroutine walk_point_forces
+
+   subroutine walk_flow(v, f)
+      class(deck_visitor_t), intent(inout) :: v
+      type(flow_t), intent(inout) :: f
+      logical :: used
+      used = f%velocity > 0.0_dp
+      call v%begin_group('flow', 'cross flow over the tube: fluid-elastic forces as a ' &
+         // 'damping per mode (Connors), the scale of a reduced turbulence spectrum ' &
+         // '(docs/flow.md)')
+      call v%real('velocity', f%velocity, 'm/s', lo=0.0_dp, hi=1.0e4_dp, design=.true., &
+         meaning='reference (gap) flow velocity U, the one of the Connors constant (0: no flow)')
+      call v%real('fluid_density', f%fluid_density, 'kg/m^3', lo=0.0_dp, hi=1.0e5_dp, &
+         design=.true., positive=used, note='> 0 with velocity > 0', &
+         meaning='fluid density rho')
+      call v%real('tube_diameter', f%tube_diameter, 'm', lo=0.0_dp, hi=1.0e3_dp, &
+         design=.true., positive=used, note='> 0 with velocity > 0', &
+         meaning='tube outer diameter D')
+      call v%real('connors_constant', f%connors_constant, '1', lo=0.0_dp, lo_open=.true., &
+         hi=100.0_dp, design=.true., meaning="Connors' constant K (about 3 on average, 2.4 " &
+         // 'for design)')
+      call v%word('fluid_elastic', f%fluid_elastic, fluid_elastic_words, meaning="'connors': " &
+         // "a negative damping per mode, zeta = -rho U_e^2/(2 pi K^2 f^2 m); 'none': no " &
+         // 'fluid-elastic force')
+      call v%word('planes', f%planes, flow_plane_words, note="'v' needs &beam planes = 2", &
+         meaning='planes of the fluid-elastic forces')
+      call v%real('region_start', f%region_start, 'm', lo=0.0_dp, hi=1.0e4_dp, &
+         design=.true., note='region_start < region_end <= length unless both are 0', &
+         meaning='the flow region begins at this x')
+      call v%real('region_end', f%region_end, 'm', lo=0.0_dp, hi=1.0e4_dp, design=.true., &
+         meaning='the flow region ends at this x (both 0: the whole tube)')
+      call v%real_list('profile_position', f%profile_position, 1000, 'm', lo=0.0_dp, &
+         note='increasing, as many as profile_factor', meaning='non-uniform flow: the x of ' &
+         // 'the profile points (none: uniform)')
+      call v%real_list('profile_factor', f%profile_factor, 1000, '1', lo=0.0_dp, &
+         meaning='U(x)/U at the profile points, linear between them')
+      call v%end_group()
+   end subroutine walk_flow
+
+   subroutine walk_turbulence(v, t)
+      class(deck_visitor_t), intent(inout) :: v
+      type(turbulence_t), intent(inout) :: t
+      call v%begin_group('turbulence', 'turbulence buffeting: a random force per unit ' &
+         // 'length with a spectral density and a spatial coherence (docs/flow.md)')
+      call v%word('spectrum', t%spectrum, spectrum_words, meaning="'table': S(f) from " &
+         // "psd_frequency_hz, psd; 'reduced': (rho U^2 D/2)^2 (D/U) Phi(f D/U) from " &
+         // "reduced_frequency, reduced_psd and &flow; 'none': no turbulence")
+      call v%real_list('psd_frequency_hz', t%psd_frequency_hz, 4096, 'Hz', lo=0.0_dp, &
+         lo_open=.true., note="increasing, as many as psd, with spectrum = 'table'", &
+         meaning='frequencies of the spectrum table')
+      call v%real_list('psd', t%psd, 4096, 'N^2/m^2/Hz', lo=0.0_dp, lo_open=.true., &
+         meaning='one-sided spectral density of the force per unit length (log-log between ' &
+         // 'points, 0 outside)')
+      call v%real_list('reduced_frequency', t%reduced_frequency, 4096, '1', lo=0.0_dp, &
+         lo_open=.true., note="increasing, as many as reduced_psd, with spectrum = 'reduced'", &
+         meaning='reduced frequencies f D/U of the table of Phi')
+      call v%real_list('reduced_psd', t%reduced_psd, 4096, '1', lo=0.0_dp, lo_open=.true., &
+         meaning='the reduced spectrum Phi (log-log between points, 0 outside)')
+      call v%real('correlation_length', t%correlation_length, 'm', lo=0.0_dp, hi=1.0e6_dp, &
+         design=.true., meaning='lambda_c of the coherence exp(-|dx|/lambda_c) (0: fully ' &
+         // 'correlated)')
+      call v%word('planes', t%planes, flow_plane_words, note="'v' needs &beam planes = 2", &
+         meaning="planes loaded, independently ('both' is w alone in a planar model)")
+      call v%real('load_start', t%load_start, 'm', lo=0.0_dp, hi=1.0e4_dp, design=.true., &
+         note='load_start < load_end <= length unless both are 0', &
+         meaning='the loaded length begins at this x')
+      call v%real('load_end', t%load_end, 'm', lo=0.0_dp, hi=1.0e4_dp, design=.true., &
+         meaning='the loaded length ends at this x (both 0: the whole tube)')
+      call v%real('cutoff_hz', t%cutoff_hz, 'Hz', lo=0.0_dp, hi=max_frequency_hz, &
+         meaning="highest frequency of the record (0: the spectrum's last)")
+      call v%real('frequency_resolution_hz', t%frequency_resolution_hz, 'Hz', lo=0.0_dp, &
+         hi=max_frequency_hz, meaning="spacing df of the harmonics; the record repeats " &
+         // "after 1/df (0: 1/the run's length, no repeat)")
+      call v%int('points_per_cycle', t%points_per_cycle, lo=4, hi=64, meaning='record grid ' &
+         // 'points per cycle at the cut-off (interpolation error (2 pi/n)^6/46080)')
+      call v%int('seed', t%seed, meaning='seed of the random phases (a draw depends on the ' &
+         // 'seed and its number only)')
+      call v%int('draws', t%draws, lo=1, hi=100000, meaning='independent records per case')
+      call v%end_group()
+   end subroutine walk_turbulence
 
    !> The node range of a list entry: 1..n_elem+1 (unbounded when describing: the note says).
    integer function node_lo(v)

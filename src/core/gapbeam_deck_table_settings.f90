@@ -5,6 +5,7 @@ submodule (gapbeam_deck_table) gapbeam_deck_table_settings
    use gapbeam_settings, only: solver_settings_t, output_settings_t, initial_state_t, &
       initial_value_t, diagnostics_settings_t, reduction_settings_t, model_size_settings_t, &
       sweep_settings_t, study_settings_t, stop_solution_words, step_control_words, &
+      wear_settings_t, &
       linear_solver_words, method_words, initial_state_words, sweep_mode_words, &
       sweep_direction_words, sweep_axis_words, series_words, start_words, default_series, &
       default_elements, default_modes
@@ -43,7 +44,27 @@ contains
       call walk_study(v, deck%study)
       call walk_model_size(v, deck%model_size)
       call walk_continuation(v, deck%continuation)
+      call walk_wear(v, deck%wear)
    end subroutine walk_settings
+
+   subroutine walk_wear(v, w)
+      class(deck_visitor_t), intent(inout) :: v
+      type(wear_settings_t), intent(inout) :: w
+      call v%begin_group('wear', 'wear depth in the tube wall over years, from the Archard ' &
+         // 'volume rate and the support geometry of &stops (docs/flow.md)')
+      call v%real('years', w%years, 'year', lo=0.0_dp, hi=1.0e4_dp, design=.true., &
+         meaning='operating time (Julian years; 0: no depth)')
+      call v%real('wall_thickness', w%wall_thickness, 'm', lo=0.0_dp, hi=1.0e3_dp, &
+         positive=w%years > 0.0_dp, note='> 0 with years > 0', &
+         meaning='tube wall thickness')
+      call v%real('tube_diameter', w%tube_diameter, 'm', lo=0.0_dp, hi=1.0e3_dp, &
+         meaning="tube outer diameter (0: &flow's)")
+      call v%real('wall_fraction', w%wall_fraction, '1', lo=0.0_dp, lo_open=.true., &
+         hi=1.0_dp, meaning='the time to wear this fraction of the wall is reported')
+      call v%int('depth_points', w%depth_points, lo=2, hi=100000, &
+         meaning='times of the depth history, 0 to years')
+      call v%end_group()
+   end subroutine walk_wear
 
    subroutine walk_solver(v, s)
       class(deck_visitor_t), intent(inout) :: v

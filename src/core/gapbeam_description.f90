@@ -22,7 +22,7 @@ module gapbeam_description
    implicit none
    private
    public :: beam_t, root_t, spring_t, point_mass_t, structure_t, stop_t, damping_t, forcing_t
-   public :: point_force_t
+   public :: point_force_t, flow_t, turbulence_t
    public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
    public :: beam_mass_per_length, stop_is_ring
    public :: beam_rho_i, beam_shear_stiffness, beam_shear_coefficient, beam_is_timoshenko
@@ -32,6 +32,7 @@ module gapbeam_description
       law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
       stop_shape_words, end_condition_words, tip_condition_words, beam_theory_words
+   public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words
 
    integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
    integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
@@ -49,6 +50,14 @@ module gapbeam_description
    character(len=*), parameter :: end_condition_words = "'clamped', 'spring', 'pinned'"
    !> support conditions of the tip (the last node)
    character(len=*), parameter :: tip_condition_words = "'free', 'clamped', 'spring', 'pinned'"
+   !> fluid-elastic force models of &flow
+   character(len=*), parameter :: fluid_elastic_words = "'connors', 'none'"
+   !> forms of the turbulence spectrum of &turbulence
+   character(len=*), parameter :: spectrum_words = "'none', 'table', 'reduced'"
+   !> planes a flow force acts in
+   character(len=*), parameter :: flow_plane_words = "'both', 'w', 'v'"
+   !> the geometry of a support that the wear scar takes (gapbeam_wear_geometry)
+   character(len=*), parameter :: support_geometry_words = "'none', 'flat_bar', 'drilled_hole'"
    !> Rotary-inertia rules of the lumped mass matrix (see gapbeam_beam_element).
    character(len=*), parameter :: rotary_inertia_words = "'half_element', 'hrz', 'none'"
    !> Beam theories (see gapbeam_beam_element).
@@ -136,6 +145,13 @@ module gapbeam_description
       real(dp) :: friction = 0.0_dp             !! Coulomb coefficient mu [-]
       real(dp) :: tangential_stiffness = 0.0_dp !! stick stiffness k_t [N/m] (0: = stiffness)
       real(dp) :: wear_coefficient = 0.0_dp     !! Archard: wear volume / normal work [1/Pa]
+      !> the support's geometry for the wear depth: 'none', 'flat_bar' (a flat land of width
+      !> land_width along the tube) or 'drilled_hole' (a hole of hole_diameter through a plate
+      !> of plate_thickness)
+      character(len=16) :: support = 'none'
+      real(dp) :: land_width = 0.0_dp           !! flat bar: width of the land along the tube [m]
+      real(dp) :: plate_thickness = 0.0_dp      !! drilled hole: plate thickness [m]
+      real(dp) :: hole_diameter = 0.0_dp        !! drilled hole: hole diameter [m]
    end type stop_t
 
    !> Harmonic point force F sin(Omega t + phase) at a node dof, at the forcing frequency.
@@ -173,6 +189,49 @@ module gapbeam_description
       real(dp) :: phase_v_deg = 0.0_dp      !! phase phi of its v component [deg]
       type(point_force_t), allocatable :: forces(:)   !! harmonic point forces
    end type forcing_t
+
+   !> Cross flow over the tube (docs/flow.md): its velocity and fluid, the tube's diameter, and
+   !> the fluid-elastic forces as a damping per mode of the open structure (Connors):
+   !>    zeta_fe,j = -rho U_e,j^2 / (2 pi K^2 f_j^2 m),
+   !> U_e,j the mode's effective velocity, U_e,j^2 = int U(x)^2 phi_j(x)^2 dx / int phi_j^2 dx
+   !> (the flow region only in the numerator), m the mass per length with added mass; the mode's
+   !> net damping vanishes at Connors' critical velocity U_c = K f D (m delta / (rho D^2))^(1/2).
+   type :: flow_t
+      real(dp) :: velocity = 0.0_dp            !! U: the reference (gap) velocity [m/s]
+      real(dp) :: fluid_density = 0.0_dp       !! rho [kg/m^3]
+      real(dp) :: tube_diameter = 0.0_dp       !! D: the tube's outer diameter [m]
+      real(dp) :: connors_constant = 3.0_dp    !! K of Connors' relation [-]
+      character(len=16) :: fluid_elastic = 'connors'   !! 'connors' or 'none'
+      character(len=8) :: planes = 'both'      !! planes of the fluid-elastic forces
+      real(dp) :: region_start = 0.0_dp        !! flow region: from x [m]
+      real(dp) :: region_end = 0.0_dp          !! ... to x [m] (both 0: the whole tube)
+      !> non-uniform flow: U(x) = U f(x), f piecewise linear through these points (x [m], f [-]);
+      !> unallocated: f = 1 in the region
+      real(dp), allocatable :: profile_position(:)
+      real(dp), allocatable :: profile_factor(:)
+   end type flow_t
+
+   !> Turbulence buffeting: a random force per unit length q(x, t) over [load_start, load_end]
+   !> with a one-sided spectral density S(f) at every x and the coherence exp(-|dx| / lambda_c)
+   !> between points, independent between the planes (docs/flow.md, gapbeam_turbulence).
+   !> A planar model takes 'both' as w alone.
+   type :: turbulence_t
+      character(len=16) :: spectrum = 'none'     !! 'none', 'table' or 'reduced'
+      real(dp), allocatable :: psd_frequency_hz(:)  !! 'table': frequencies [Hz]
+      real(dp), allocatable :: psd(:)            !! 'table': S(f) [(N/m)^2/Hz], log-log between
+      !> 'reduced': S(f) = (rho U^2 D / 2)^2 (D / U) Phi(f D / U) with these points of Phi
+      real(dp), allocatable :: reduced_frequency(:)   !! f D / U [-]
+      real(dp), allocatable :: reduced_psd(:)         !! Phi [-]
+      real(dp) :: correlation_length = 0.0_dp    !! lambda_c [m] (0: fully correlated)
+      character(len=8) :: planes = 'both'        !! planes loaded
+      real(dp) :: load_start = 0.0_dp            !! loaded from x [m]
+      real(dp) :: load_end = 0.0_dp              !! ... to x [m] (both 0: the whole tube)
+      real(dp) :: cutoff_hz = 0.0_dp             !! highest frequency (0: the spectrum's last)
+      real(dp) :: frequency_resolution_hz = 0.0_dp  !! df (0: 1 / the run's length)
+      integer :: points_per_cycle = 6            !! record grid points per cycle at the cut-off
+      integer :: seed = 1                        !! seed of the random phases
+      integer :: draws = 1                       !! independent records per case
+   end type turbulence_t
 
 contains
 

@@ -10,6 +10,7 @@
 !> gapbeam_ring_contact): sum_r P_r on the (w, v) dofs of their node.
 module gapbeam_model
    use gapbeam_kinds, only: dp
+   use gapbeam_random_load, only: random_load_t, add_random_load
    use gapbeam_law, only: law_slot_t
    implicit none
    private
@@ -75,10 +76,11 @@ module gapbeam_model
       integer, allocatable :: slot_dof(:)        !! global dof of each slot
       real(dp), allocatable :: stop_stiffness(:) !! resolved stiffness of each deck stop
       ! loads beyond the w-plane base motion (add_extra_load)
-      logical :: extra_load = .false.            !! q_v or point forces present
+      logical :: extra_load = .false.            !! q_v, point forces or turbulence present
       real(dp), allocatable :: q_v(:)            !! v-plane base load shape sin(psi) M r_v [kg]
       real(dp) :: phase_v = 0.0_dp               !! phase of the v base motion [rad]
       real(dp), allocatable :: p_sin(:), p_cos(:) !! point forces: sin, cos parts [N, N m]
+      type(random_load_t) :: turbulence          !! turbulence record of one draw (docs/flow.md)
       ! two-dimensional support contacts (circular clearance or friction): rings
       integer :: n_rings = 0                     !! number of ring contacts
       integer, allocatable :: r_dof(:, :)        !! (2, n_rings) global dofs of w and v
@@ -114,7 +116,8 @@ contains
 
    !> Add the loads beyond the w-plane base motion at time t to p: the v-plane base motion
    !> (A/2) Omega^2 sin(Omega t + phi) q_v and the point forces sin(Omega t) p_sin +
-   !> cos(Omega t) p_cos. Nothing for a planar model without point forces.
+   !> cos(Omega t) p_cos, and the turbulence record. Nothing for a planar model without point
+   !> forces or turbulence.
    pure subroutine add_extra_load(model, t, p)
       type(model_t), intent(in) :: model   !! model
       real(dp), intent(in) :: t            !! time [s]
@@ -124,6 +127,7 @@ contains
          * sin(model%omega * t + model%phase_v) * model%q_v
       if (allocated(model%p_sin)) p = p + sin(model%omega * t) * model%p_sin &
          + cos(model%omega * t) * model%p_cos
+      call add_random_load(model%turbulence, t, p)
    end subroutine add_extra_load
 
    !> Does the model need what only some integrators handle: two planes, extra loads, ring

@@ -245,6 +245,21 @@ module gapbeam_output_catalogue
                 // 'stiffness of each ring contact')]
 
    type(dataset_t), parameter :: modes_sets(*) = [ &
+      dataset_t('/flow/frequency_hz', 'Hz', 'n_flow_modes', 'natural frequency of every mode ' &
+                // 'of the open structure, ascending (both planes; written with &flow ' &
+                // 'fluid_density and tube_diameter > 0)'), &
+      dataset_t('/flow/plane', '1', 'n_flow_modes', 'plane of each mode: 1 w, 2 v'), &
+      dataset_t('/flow/structural_ratio', '1', 'n_flow_modes', 'structural damping ratio ' &
+                // 'of each mode (Rayleigh and modal)'), &
+      dataset_t('/flow/velocity_ratio', '1', 'n_flow_modes', '(U_e/U)^2 of each mode: the ' &
+                // 'mode-shape-squared weighted square of the flow profile'), &
+      dataset_t('/flow/critical_velocity', 'm s-1', 'n_flow_modes', 'Connors critical ' &
+                // 'velocity of each mode, the reference velocity at which its net damping ' &
+                // 'vanishes (1.8e308: no flow on the mode)'), &
+      dataset_t('/flow/fluid_ratio', '1', 'n_flow_modes', 'fluid-elastic damping ratio of ' &
+                // 'each mode at &flow velocity (negative)'), &
+      dataset_t('/flow/velocity', 'm s-1', '', 'the reference flow velocity U (&flow ' &
+                // 'velocity)'), &
       dataset_t('/modes/frequency_hz', 'Hz', 'n_modes', 'natural frequency of each mode ' &
                 // '(stops open)'), &
       dataset_t('/modes/shapes', 'kg-1/2', 'mode=n_modes dof=n_dof', 'mass-normalised mode ' &
@@ -457,6 +472,65 @@ module gapbeam_output_catalogue
                 // 'each support (m3 per N m of normal work)'), &
       dataset_t('/wear/stick_fraction', '1', 'n_stops', 'fraction of the contact time each ' &
                 // 'support sticks'), &
+      dataset_t('/wear/depth_time', '31557600 s', 'n_depth', 'operating time in Julian ' &
+                // 'years, 0 to &wear years (written with &wear years > 0)'), &
+      dataset_t('/wear/depth', 'm', 'time=n_depth stop=n_stops', 'wear depth of each ' &
+                // 'support''s scar in the tube wall after that time at the wear volume rate ' &
+                // '(flat bar or drilled hole geometry, docs/flow.md; at most the wall)'), &
+      dataset_t('/wear/years_to_wall_fraction', '31557600 s', 'n_stops', 'operating time ' &
+                // '(Julian years) until the scar of each support reaches wall_fraction of ' &
+                // 'the wall (1.8e308: ' &
+                // 'never)'), &
+      dataset_t('/wear/wall_fraction', '1', '', 'fraction of the wall of ' &
+                // 'years_to_wall_fraction (&wear wall_fraction)'), &
+      dataset_t('/wear/wall_thickness', 'm', '', 'tube wall thickness (&wear wall_thickness)'), &
+      dataset_t('/statistics/draws', '1', '', 'random draws (&turbulence draws) the ' &
+                // 'statistics are taken over'), &
+      dataset_t('/statistics/impact_rate', 's-1', 'n_stops', '' &
+                // 'impacts per second of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/impact_rate_ci', 's-1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/impact_rate (Student t)'), &
+      dataset_t('/statistics/peak_force', 'N', 'n_stops', '' &
+                // 'peak contact force of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/peak_force_ci', 'N', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/peak_force (Student t)'), &
+      dataset_t('/statistics/rms_force', 'N', 'n_stops', '' &
+                // 'RMS contact force of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/rms_force_ci', 'N', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/rms_force (Student t)'), &
+      dataset_t('/statistics/contact_fraction', '1', 'n_stops', '' &
+                // 'fraction of the record each stop is in contact: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/contact_fraction_ci', '1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/contact_fraction (Student t)'), &
+      dataset_t('/statistics/work_rate', 'W', 'n_stops', '' &
+                // 'impact work rate of each stop: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/work_rate (Student t)'), &
+      dataset_t('/statistics/normal_work_rate', 'W', 'n_stops', '' &
+                // 'normal work rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/normal_work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/normal_work_rate (Student t)'), &
+      dataset_t('/statistics/friction_work_rate', 'W', 'n_stops', '' &
+                // 'friction work rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/friction_work_rate_ci', 'W', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/friction_work_rate (Student t)'), &
+      dataset_t('/statistics/wear_volume_rate', 'm3 s-1', 'n_stops', '' &
+                // 'Archard wear volume rate of each support: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/wear_volume_rate_ci', 'm3 s-1', 'n_stops', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/wear_volume_rate (Student t)'), &
+      dataset_t('/statistics/tip_rms_displacement', 'm', '', '' &
+                // 'RMS tip displacement over the history samples: mean over ' &
+                // 'the draws'), &
+      dataset_t('/statistics/tip_rms_displacement_ci', 'm', '', 'half-width of the 95 % ' &
+                // 'confidence interval of /statistics/tip_rms_displacement (Student t)'), &
       dataset_t('/orbit/w', 'm', 'sample=n_hist stop=n_stops', 'displacement w of each ' &
                 // 'support''s node at the history samples'), &
       dataset_t('/orbit/v', 'm', 'sample=n_hist stop=n_stops', 'displacement v of each ' &

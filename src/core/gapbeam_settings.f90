@@ -8,7 +8,8 @@ module gapbeam_settings
    private
    public :: job_t, calibrate_t, solver_settings_t, output_settings_t, initial_state_t, &
       diagnostics_settings_t, reduction_settings_t, model_size_settings_t, sweep_settings_t, &
-      study_settings_t, batch_options_t, starts_given, initial_value_t
+      study_settings_t, batch_options_t, starts_given, initial_value_t, &
+      wear_settings_t
    public :: default_series, default_elements, default_modes
    public :: stop_solution_words, step_control_words, linear_solver_words, method_words
    public :: initial_state_words, analysis_words, calibration_words, sweep_mode_words, &
@@ -214,6 +215,16 @@ module gapbeam_settings
       integer :: chunk = 0                           !! work items between checkpoints (0: auto)
       logical :: checkpoint = .true.                 !! write finished points as they come
    end type sweep_settings_t
+
+   !> &wear: the wear depth in the tube wall over years of operation (the scar geometry is per
+   !> support, in &stops).
+   type :: wear_settings_t
+      real(dp) :: years = 0.0_dp              !! operating time (0: no depth) [a]
+      real(dp) :: wall_thickness = 0.0_dp     !! tube wall thickness [m]
+      real(dp) :: tube_diameter = 0.0_dp      !! tube outer diameter (0: &flow's) [m]
+      real(dp) :: wall_fraction = 0.4_dp      !! the depth whose time is reported, of the wall [-]
+      integer :: depth_points = 51            !! times of /wear/depth from 0 to years [-]
+   end type wear_settings_t
 
    !> &study: what the work-precision and stability studies compare.
    type :: study_settings_t

@@ -4,6 +4,7 @@
 !> a budget per block of an eighth of a forcing period, with the order of the method's
 !> registry entry; steps end at contact switches.
 submodule (gapbeam_stepping) gapbeam_stepping_control
+   use gapbeam_random_load, only: rms_load
    implicit none
 
 contains
@@ -512,6 +513,15 @@ contains
       end do
       self%out_floor(1:n_out) = fl
       self%out_floor(n_out + 1:) = model%omega * fl
+      if (.not. model%turbulence%active) return
+      ! turbulence: the static response to the load's RMS, its rate at the record's cut-off
+      zs = reshape(rms_load(model%turbulence, n), [n, 1])
+      call dpotrs('U', n, 1, kf, n, zs, n, info)
+      fl(1) = abs(dot_product(self%sw, zs(self%si, 1)))
+      fl(2:n_out) = abs(zs(self%out_dof, 1))
+      self%out_floor(1:n_out) = max(self%out_floor(1:n_out), fl)
+      self%out_floor(n_out + 1:) = max(self%out_floor(n_out + 1:), &
+                                       2.0_dp * pi * model%turbulence%cutoff_hz * fl)
    end subroutine tube_floors
 
    !> The end of a step, t0 + h, summed with Kahan's compensation so that millions of steps

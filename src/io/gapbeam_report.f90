@@ -21,6 +21,8 @@ module gapbeam_report
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
+   use gapbeam_input_flow, only: deck_wear_depth
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, on_trajectory_clock
@@ -31,12 +33,13 @@ module gapbeam_report
 contains
 
    !> Modal analysis results: PREFIX.h5, PREFIX.modes.dat, .shapes.dat, .shape_curves.dat.
-   subroutine write_modes(deck, sys, modes, stop_stiffness, err)
+   subroutine write_modes(deck, sys, modes, stop_stiffness, err, fm)
       type(deck_t), intent(in) :: deck                 !! the deck (output prefix, text)
       type(system_t), intent(in) :: sys                !! assembled structure
       type(modes_t), intent(in) :: modes               !! modes
       real(dp), intent(in) :: stop_stiffness(:)        !! resolved stop stiffness (may be empty)
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(flow_modes_t), intent(in), optional :: fm   !! fluid-elastic data (&flow)
       type(output_set_t) :: set
       type(h5_writer_t) :: h5
       real(dp), allocatable :: cols(:, :), tab(:, :), curves(:, :)
@@ -60,6 +63,15 @@ contains
       call h5%put('/modes/shape_w', curves(:, 2:))
       call write_structure(h5, sys)
       call h5%put('/model/stop_stiffness', stop_stiffness, units=stiffness_units(deck))
+      if (present(fm)) then
+         call h5%put('/flow/frequency_hz', fm%frequency_hz)
+         call h5%put('/flow/plane', fm%plane)
+         call h5%put('/flow/structural_ratio', fm%structural_ratio)
+         call h5%put('/flow/velocity_ratio', fm%velocity_ratio)
+         call h5%put('/flow/critical_velocity', fm%critical_velocity)
+         call h5%put('/flow/fluid_ratio', fm%fluid_ratio)
+         call h5%put('/flow/velocity', deck%flow%velocity)
+      end if
       call set%close_h5(h5)
 
       allocate(cols(modes%n_modes, 5))
@@ -144,12 +156,13 @@ contains
    !> Transient results: PREFIX.h5; with &output write_text PREFIX.history.dat and
    !> .poincare.dat (two planes: .orbit.dat, .supports.dat); with the state history PREFIX.xdmf
    !> (and .shape.dat).
-   subroutine write_transient(deck, model, res, diag, err)
+   subroutine write_transient(deck, model, res, diag, err, stats)
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results (the final record)
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
+      type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
       type(output_set_t) :: set
       type(transient_result_t) :: r
       character(len=14), allocatable :: suffixes(:)
@@ -166,7 +179,7 @@ contains
       r = on_trajectory_clock(res, diag%transient_periods, deck%solver%record_periods, &
                               2.0_dp * pi / model%omega)
       call set%begin(deck%job%output, suffixes)
-      call write_transient_h5(set, deck, model, r, diag)
+      call write_transient_h5(set, deck, model, r, diag, stats)
       if (text) call write_transient_tables(set, deck, model, r)
       if (text .and. planes) call write_orbit_tables(set, deck, model, r)
       if (with_state) call write_xdmf(set, deck, model, r)
@@ -197,12 +210,14 @@ contains
    end function on_trajectory_clock
 
    !> PREFIX.h5 of a transient run, under the set's temporary name.
-   subroutine write_transient_h5(set, deck, model, res, diag)
+   subroutine write_transient_h5(set, deck, model, res, diag, stats)
       type(output_set_t), intent(inout) :: set         !! the set
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
+      type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
+      integer :: k
       type(h5_writer_t) :: h5
       character(len=:), allocatable :: filtered
       filtered = trim(merge(' (low-pass filtered)', '                    ', &
@@ -221,6 +236,18 @@ contains
       call write_impacts(h5, res)
       call write_wear_h5(h5, deck, model, res)
       call write_diagnostics(h5, diag)
+      if (present(stats)) then
+         call h5%put('/statistics/draws', stats(1)%n_draws)
+         do k = 1, size(stats)
+            if (stats(k)%name == 'tip_rms_displacement') then
+               call h5%put('/statistics/' // stats(k)%name, stats(k)%mean(1))
+               call h5%put('/statistics/' // stats(k)%name // '_ci', stats(k)%half_width(1))
+            else
+               call h5%put('/statistics/' // stats(k)%name, stats(k)%mean)
+               call h5%put('/statistics/' // stats(k)%name // '_ci', stats(k)%half_width)
+            end if
+         end do
+      end if
       call h5%put('/final/u', res%u)
       call h5%put('/final/v', res%v)
       call h5%put('/final/time', res%t_end)
@@ -329,6 +356,7 @@ contains
       call h5%put('/wear/wear_volume_rate', res%wear_volume_rate)
       call h5%put('/wear/wear_coefficient', [deck%stops%wear_coefficient])
       call h5%put('/wear/stick_fraction', res%stick_fraction)
+      if (deck%wear%years > 0.0_dp) call write_wear_depth(h5, deck, res%wear_volume_rate)
       if (model%sys%planes > 1) then
          call h5%put('/orbit/w', transpose(res%orbit_w))
          call h5%put('/orbit/v', transpose(res%orbit_v))
@@ -347,6 +375,20 @@ contains
       call h5%put('/energy/imbalance', res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation - res%stored_energy_change)
    end subroutine write_wear_h5
+
+   !> /wear/depth: each support's scar depth over &wear years, and the time to a wall fraction.
+   subroutine write_wear_depth(h5, deck, volume_rate)
+      type(h5_writer_t), intent(inout) :: h5           !! open writer
+      type(deck_t), intent(in) :: deck                 !! the deck (&wear years > 0)
+      real(dp), intent(in) :: volume_rate(:)           !! per stop [m^3/s]
+      type(wear_depth_t) :: wd
+      wd = deck_wear_depth(deck, volume_rate)
+      call h5%put('/wear/depth_time', wd%time_years)
+      call h5%put('/wear/depth', transpose(wd%depth))   ! a row per time (C)
+      call h5%put('/wear/years_to_wall_fraction', wd%years_to_fraction)
+      call h5%put('/wear/wall_fraction', deck%wear%wall_fraction)
+      call h5%put('/wear/wall_thickness', deck%wear%wall_thickness)
+   end subroutine write_wear_depth
 
    !> /diagnostics: the label of a transient run, its evidence, its certificate and its starts
    !> (docs/labels.md).

@@ -30,6 +30,10 @@ module gapbeam_jobs
    use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
+   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
+   use gapbeam_flow_load, only: deck_flow_modes
+   use gapbeam_draws_job, only: run_draws
    use gapbeam_study_output, only: write_work_precision, write_stability, &
       work_precision_summary, write_model_size
    implicit none
@@ -87,6 +91,7 @@ contains
       real(dp) :: f1_open
       integer :: j, n_print
       character(len=120) :: line
+      type(flow_modes_t) :: fm
       call describe_structure(dk%structure)
       call assemble(dk%structure, sys)
       call solve_modes(sys, modes, e)
@@ -122,8 +127,38 @@ contains
          write(output_unit, '(a)') 'stop ' // str(j) // ' at node ' // str(dk%stops(j)%node) &
             // ': stiffness ' // str(k_stop(j)) // ' N/m' // rule_text(dk%stops(j)%rule_factor)
       end do
-      call write_modes(dk, sys, modes, k_stop, e)
+      if (dk%flow%fluid_elastic == 'connors' .and. dk%flow%fluid_density > 0.0_dp .and. &
+          dk%flow%tube_diameter > 0.0_dp) then
+         call deck_flow_modes(dk, sys, dk%damping%mass_coefficient, &
+                              dk%damping%stiffness_coefficient, fm, e)
+         if (allocated(e)) return
+         call print_flow_modes(dk, fm, n_print)
+         call write_modes(dk, sys, modes, k_stop, e, fm)
+      else
+         call write_modes(dk, sys, modes, k_stop, e)
+      end if
    end subroutine run_modes
+
+   !> The fluid-elastic data of the first n modes of the open structure (Connors).
+   subroutine print_flow_modes(dk, fm, n)
+      type(deck_t), intent(in) :: dk            !! deck
+      type(flow_modes_t), intent(in) :: fm      !! flow modes
+      integer, intent(in) :: n                  !! modes printed (at most)
+      character(len=120) :: line
+      integer :: j
+      write(output_unit, '(a)') 'cross flow (Connors, K = ' // str(dk%flow%connors_constant) &
+         // ', rho = ' // str(dk%flow%fluid_density) // ' kg/m^3, D = ' &
+         // str(dk%flow%tube_diameter) // ' m) at U = ' // str(dk%flow%velocity) // ' m/s:'
+      write(output_unit, '(a)') ' mode plane  frequency [Hz]   zeta_s     (U_e/U)^2   ' &
+         // 'U_c [m/s]    zeta_fe at U'
+      do j = 1, min(n, fm%n_modes)
+         write(line, '(i5, a6, f16.4, es11.3, es13.4, es13.5, es14.4)') j, &
+            trim(merge('w', 'v', fm%plane(j) == 1)), fm%frequency_hz(j), &
+            fm%structural_ratio(j), fm%velocity_ratio(j), &
+            min(fm%critical_velocity(j), 9.99e99_dp), fm%fluid_ratio(j)
+         write(output_unit, '(a)') trim(line)
+      end do
+   end subroutine print_flow_modes
 
    !> The method and the &solver parameters its registry entry says it reads:
    !> 'newmark (delta 0.5, alpha 0.25), stop force condensed'.
@@ -418,6 +453,7 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
       integer :: j
+      type(draw_statistics_t), allocatable :: stats(:)
       type(reduction_info_t) :: reduced
       type(reduction_check_t) :: check
       type(deck_t) :: dw
@@ -475,6 +511,7 @@ contains
             // str(res%friction_work_rate(j)) // ' W, stick ' &
             // str(100.0_dp * res%stick_fraction(j)) // ' % of the contact time, wear volume ' &
             // 'rate ' // str(res%wear_volume_rate(j)) // ' m^3/s'
+         if (dk%wear%years > 0.0_dp) call print_wear_depth(dk, res%wear_volume_rate, j)
       end do
       if (res%has_energy) write(output_unit, '(a)') 'energy over the record: input ' &
          // str(res%input_work) // ' J = Rayleigh ' // str(res%rayleigh_dissipation) &
@@ -494,7 +531,14 @@ contains
       call untouched_stops(dk, res, diag, dw)
       if (allocated(meter%warning)) call add_warning(dw, meter%warning)
       call print_label(diag)
-      call write_transient(dw, model, res, diag, e)
+      if (dk%turbulence%spectrum /= 'none') then
+         call run_draws(dk, res, stats, e)
+         if (allocated(e)) return
+         call print_draws(stats)
+         call write_transient(dw, model, res, diag, e, stats)
+      else
+         call write_transient(dw, model, res, diag, e)
+      end if
       if (allocated(e)) return
       block
          character(len=:), allocatable :: files
@@ -507,4 +551,36 @@ contains
          write(output_unit, '(a)') 'files: ' // files
       end block
    end subroutine run_transient_analysis
+
+   !> The wear depth of stop j after &wear years and the time to &wear wall_fraction.
+   subroutine print_wear_depth(dk, volume_rate, j)
+      type(deck_t), intent(in) :: dk            !! the deck (&wear years > 0)
+      real(dp), intent(in) :: volume_rate(:)    !! per stop [m^3/s]
+      integer, intent(in) :: j                  !! the stop
+      type(wear_depth_t) :: wd
+      character(len=:), allocatable :: when
+      wd = deck_wear_depth(dk, volume_rate)
+      when = 'never'
+      if (wd%years_to_fraction(j) < huge(1.0_dp)) when = str(wd%years_to_fraction(j)) // ' years'
+      write(output_unit, '(a)') '        wear depth (' // trim(dk%stops(j)%support) // '): ' &
+         // str(wd%depth(size(wd%depth, 1), j)) // ' m after ' // str(dk%wear%years) &
+         // ' years; ' // str(100.0_dp * dk%wear%wall_fraction) // ' % of the wall ' &
+         // str(dk%wear%wall_thickness) // ' m in ' // when
+   end subroutine print_wear_depth
+
+   !> Each output over the draws: its mean and the half-width of its 95 % interval per stop.
+   subroutine print_draws(stats)
+      type(draw_statistics_t), intent(in) :: stats(:)   !! over the draws
+      integer :: k, j
+      character(len=:), allocatable :: line
+      write(output_unit, '(a)') 'statistics over ' // str(stats(1)%n_draws) // ' draws ' &
+         // '(mean +- 95 % half-width; per stop):'
+      do k = 1, size(stats)
+         line = '  ' // stats(k)%name // ':'
+         do j = 1, size(stats(k)%mean)
+            line = line // ' ' // str(stats(k)%mean(j)) // ' +- ' // str(stats(k)%half_width(j))
+         end do
+         write(output_unit, '(a)') line
+      end do
+   end subroutine print_draws
 end module gapbeam_jobs

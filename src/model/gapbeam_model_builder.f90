@@ -15,6 +15,7 @@ module gapbeam_model_builder
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
    use gapbeam_reduction_rule, only: reduction_info_t, auto_cutoff
+   use gapbeam_flow_load, only: turbulence_record, add_fluid_elastic
    use gapbeam_modal_damping, only: apply_modal_damping, first_plane_mass
    implicit none
    private
@@ -24,16 +25,22 @@ contains
 
    !> The model of a deck and the initial state (u0, v0) in its coordinates (modal ones when
    !> the deck asks for a reduction: kind 'modal' with n_modes or cutoff_hz, kind 'auto' with
-   !> the cut-off of gapbeam_reduction_rule); `info` says what the reduction kept.
-   subroutine build_model(deck, model, u0, v0, err, info)
+   !> the cut-off of gapbeam_reduction_rule); `info` says what the reduction kept. The flow's
+   !> forces (fluid-elastic damping, the turbulence record of draw `draw`) are added in the
+   !> model's own coordinates.
+   subroutine build_model(deck, model, u0, v0, err, info, draw)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(model_t), intent(out) :: model              !! model to integrate
       real(dp), allocatable, intent(out) :: u0(:), v0(:)  !! initial state
       type(error_t), allocatable, intent(out) :: err   !! calibration, eigen or reduction failure
       type(reduction_info_t), intent(out), optional :: info  !! the reduction's choices
+      integer, intent(in), optional :: draw            !! turbulence draw (default 1)
       type(model_t) :: full
       type(reduction_info_t) :: ri
       real(dp), allocatable :: basis(:, :), uf(:), vf(:)
+      integer :: d
+      d = 1
+      if (present(draw)) d = draw
       call build_full_model(deck%structure, deck%stops, deck%damping, deck%forcing, full, err)
       if (allocated(err)) return
       call initial_vectors(full, deck%initial, uf, vf)
@@ -43,6 +50,12 @@ contains
          model = full;  u0 = uf;  v0 = vf
          ri%n_reduced = full%n
          if (present(info)) info = ri
+         call add_fluid_elastic(deck, full, model, err)
+         if (allocated(err)) return
+         if (deck%turbulence%spectrum /= 'none') then
+            call turbulence_record(deck, full%sys, d, model%turbulence, err)
+            model%extra_load = .true.
+         end if
          return
       end if
       ri%cutoff_hz = deck%reduction%cutoff_hz
@@ -69,7 +82,16 @@ contains
       if (present(info)) info = ri
       call project(full, basis, uf, u0, err)
       if (.not. allocated(err)) call project(full, basis, vf, v0, err)
-      if (allocated(err)) err%message = 'group &reduction: ' // err%message
+      if (allocated(err)) then
+         err%message = 'group &reduction: ' // err%message
+         return
+      end if
+      call add_fluid_elastic(deck, full, model, err, basis)
+      if (allocated(err)) return
+      if (deck%turbulence%spectrum /= 'none') then
+         call turbulence_record(deck, full%sys, d, model%turbulence, err, basis)
+         model%extra_load = .true.
+      end if
    end subroutine build_model
 
    !> Stiffness of each deck stop, applying the paper's rule where asked:
