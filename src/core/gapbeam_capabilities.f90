@@ -18,9 +18,8 @@ module gapbeam_capabilities
    use gapbeam_model, only: model_t
    implicit none
    private
-   public :: method_caps_t, needs_t, method_table, method_caps, method_exists, &
-      method_word_list, model_needs, method_refusal, solver_refusal, allows_control, &
-      needs_text, features_text, exact_method, is_exact
+   public :: method_caps_t, needs_t, method_table, method_caps, method_exists, method_word_list, &
+      model_needs, method_refusal, solver_refusal, needs_text, exact_method, is_exact
 
    !> What one method can do.
    type :: method_caps_t

@@ -7,7 +7,7 @@ module gapbeam_continuation_types
    private
    public :: continuation_settings_t, continuation_result_t, curve_t, branch_t
    public :: continuation_direction_words, continuation_start_words, jacobian_words, &
-      curve_kind_words, bifurcation_kind_words, max_curve_kinds
+      curve_kind_words
 
    character(len=*), parameter :: continuation_direction_words = "'up', 'down', 'both'"
    character(len=*), parameter :: continuation_start_words = "'transient', 'given'"

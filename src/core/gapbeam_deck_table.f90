@@ -29,8 +29,7 @@ module gapbeam_deck_table
    use gapbeam_deck, only: deck_t
    implicit none
    private
-   public :: walk_deck, node_lo, node_hi, mesh, dof_words, max_list_entries, max_axis_values, &
-      max_periods, &
+   public :: walk_deck, node_lo, node_hi, mesh, dof_words, max_axis_values, max_periods, &
       max_frequency_hz, min_amplitude_pp, max_initial_entries
 
    !> Words of a dof; the position of a word is its code (dof_w = 1, ... dof_theta_v = 4).

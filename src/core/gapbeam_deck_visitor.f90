@@ -16,9 +16,9 @@ module gapbeam_deck_visitor
    use gapbeam_error, only: str
    implicit none
    private
-   public :: deck_visitor_t, deck_spec_t, spec_violation, spec_allowed, word_count, word_item, &
-      word_position, number_text, int_violation
-   public :: kind_real, kind_int, kind_logical, kind_word, kind_text, kind_code
+   public :: deck_visitor_t, deck_spec_t, spec_violation, spec_allowed, word_item, word_position, &
+      number_text, int_violation
+   public :: kind_word, kind_text, kind_code
 
    integer, parameter :: kind_real = 1      !! a real [its unit]
    integer, parameter :: kind_int = 2       !! an integer

@@ -28,8 +28,7 @@ module gapbeam_description
    public :: beam_rho_i, beam_shear_stiffness, beam_shear_coefficient, beam_is_timoshenko
    public :: modal_ratio
    public :: rayleigh_from_ratios, modal_damping_ratio
-   public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_code, dof_name, law_code, law_bilinear, &
-      law_hertz
+   public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_name, law_code, law_bilinear, law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
       stop_shape_words, end_condition_words, tip_condition_words, beam_theory_words
    public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words

@@ -14,7 +14,7 @@ module gapbeam_model
    use gapbeam_law, only: law_slot_t
    implicit none
    private
-   public :: system_t, model_t, load_factor, global_dof, energy_norm, band_kd, add_extra_load, &
+   public :: system_t, model_t, load_factor, global_dof, energy_norm, add_extra_load, &
       has_tube_physics, has_modal_damping
 
    integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices

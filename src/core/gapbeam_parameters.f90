@@ -20,7 +20,7 @@ module gapbeam_parameters
       beam_shear_coefficient, beam_shear_stiffness
    implicit none
    private
-   public :: parameter_t, parameter_set_t, run_parameters, stiffness_units, forcing_text
+   public :: parameter_set_t, run_parameters, stiffness_units, forcing_text
 
    !> One named value (a number, a list of numbers, or a text).
    type :: parameter_t

@@ -29,7 +29,7 @@ module gapbeam_alpha
    use gapbeam_newmark, only: use_dense
    implicit none
    private
-   public :: alpha_stepper_t, alpha_parameters
+   public :: alpha_stepper_t
 
    !> HHT-alpha or generalized-alpha at one step size.
    type, extends(stepper_t) :: alpha_stepper_t

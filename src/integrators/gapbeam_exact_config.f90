@@ -54,7 +54,7 @@ module gapbeam_exact_config
    use gapbeam_exact_modes, only: open_modes_t
    implicit none
    private
-   public :: config_t, block_t, build_config, config_solve, small_solve, mask_text, n_contour
+   public :: config_t, build_config, config_solve, mask_text, n_contour
 
    real(dp), parameter :: tol_cluster = 1.0e-2_dp   ! eigenvalue condition above 1/tol: a block
    integer, parameter :: n_contour = 64             ! trapezoid points on a block's circle

@@ -39,7 +39,7 @@ module gapbeam_exact_segment
    private
    public :: segment_t, start_segment, eval_seg, prune_seg, segment_values, segment_state, &
       modal_window, sign_after, band, add_fn, mono_quad, cubic_root
-   public :: zero_tol
+
 
    real(dp), parameter :: zero_tol = 1.0e-12_dp    !! |phi^(k)| <= zero_tol * scale: zero
    real(dp), parameter :: prune_tol = 1.0e-17_dp   !! a decayed term below this is dropped

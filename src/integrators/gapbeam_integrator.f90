@@ -34,7 +34,7 @@ module gapbeam_integrator
    public :: integrator_t, stepper_t, make_integrator, make_stepper
    public :: start_state, equilibrium_acceleration, contact_forces_at, massless_equilibrium, &
       dof_label, resolve_method, refusal, tube_physics_text, ring_load
-   public :: method_entry_t, method_registry_t, method_registry, zero_counters
+   public :: method_registry_t, method_registry, zero_counters
 
    !> A time integrator: built once, advances states.
    type, abstract :: integrator_t

@@ -26,8 +26,7 @@ module gapbeam_newmark
    use gapbeam_settings, only: solver_settings_t
    implicit none
    private
-   public :: newmark_stepper_t, step_op_t, newmark_constants_t, build_step_op, newmark_predict, &
-      use_dense, condensed_contact, fixed_point_step, half_step_ratio, condensed_step
+   public :: newmark_stepper_t, use_dense, half_step_ratio, condensed_step
 
    !> The constants of one Newmark step size.
    type :: newmark_constants_t

@@ -36,8 +36,8 @@ module gapbeam_transition
    use gapbeam_lapack, only: dgesv, dpotrf, dpotrs
    implicit none
    private
-   public :: linear_parts_t, switch_log_t, setup_linear_parts, mass_dofs, state_matrix, &
-      vector_field, saltation, expm, flow_jacobian, log_segment, reduce_state, expand_state
+   public :: linear_parts_t, switch_log_t, setup_linear_parts, mass_dofs, saltation, &
+      flow_jacobian, log_segment, reduce_state, expand_state
 
    !> The structure condensed onto its dofs with mass, as the flow of x = (u_r, v_r) needs it.
    type :: linear_parts_t

@@ -30,8 +30,7 @@ module gapbeam_checkpoint
    use gapbeam_files, only: remove_file, file_exists, file_size, rename_file
    implicit none
    private
-   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, pack_point, &
-      unpack_point, crc32
+   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, crc32
 
    character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused

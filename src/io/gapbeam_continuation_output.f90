@@ -31,7 +31,7 @@ module gapbeam_continuation_output
    use gapbeam_continuation_types, only: continuation_result_t
    implicit none
    private
-   public :: write_continuation, curve_kind_code
+   public :: write_continuation
 
 contains
 

@@ -18,8 +18,8 @@ module gapbeam_deck_text
    use gapbeam_error, only: error_t, fatal_error, str
    implicit none
    private
-   public :: source_t, group_text_t, assignment_t, value_t, load_file, make_source, &
-      parse_source, lower, basename_stem, present_group, given
+   public :: source_t, value_t, load_file, make_source, parse_source, lower, basename_stem, &
+      present_group, given
    public :: value_number, value_logical, value_string
 
    integer, parameter :: value_number = 1    !! a number (integer or real syntax, NaN, Inf)

@@ -25,8 +25,8 @@ module gapbeam_file_info
    use gapbeam_version, only: program_version, compiler_text, git_commit
    implicit none
    private
-   public :: write_file_info, write_parameter_set, write_structure, write_model, &
-      axis_order_text, creation_time, crc32_hex
+   public :: write_file_info, write_parameter_set, write_structure, write_model, creation_time, &
+      crc32_hex
 
    !> The axis-order rule, as stored in the root attribute `axis_order`.
    character(len=*), parameter :: axis_order_text = 'C order (h5py, numpy, h5dump, ParaView):' &

@@ -31,7 +31,7 @@ module gapbeam_files
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
    public :: process_id, host_name, real_path, file_size, ignore_file_size_signal, errno_text
-   public :: output_prefix_problem, output_name_problem, output_suffix_allowance
+   public :: output_prefix_problem, output_name_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row

@@ -9,7 +9,7 @@ module gapbeam_input_flow
    use gapbeam_wear_geometry, only: wear_depth_history
    implicit none
    private
-   public :: check_flow, wear_tube_diameter, flow_is_random, deck_wear_depth
+   public :: check_flow, deck_wear_depth
 
 contains
 

@@ -29,7 +29,7 @@ module gapbeam_progress_meter
    use gapbeam_clock, only: wall_seconds
    implicit none
    private
-   public :: meter_t, progress_line, hms, stderr_is_terminal
+   public :: meter_t, progress_line, hms
 
    !> A progress meter on standard error.
    type, extends(monitor_t) :: meter_t

@@ -42,7 +42,7 @@ module gapbeam_xdmf
    use gapbeam_hdf5_input, only: h5_reader_t
    implicit none
    private
-   public :: write_xdmf_datasets, make_xdmf, stop_mesh, suggested_warp_scale
+   public :: write_xdmf_datasets, make_xdmf, suggested_warp_scale
 
    !> One piece of text.
    type :: chunk_t

@@ -18,7 +18,7 @@ module gapbeam_draws_job
    use gapbeam_draw_statistics, only: mean_half_width
    implicit none
    private
-   public :: run_draws, draw_output_names, n_draw_outputs
+   public :: run_draws
 
    integer, parameter :: n_draw_outputs = 9
    !> the outputs over draws, as named under /statistics

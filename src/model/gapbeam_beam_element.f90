@@ -16,7 +16,7 @@ module gapbeam_beam_element
    implicit none
    private
    public :: beam_stiffness, beam_consistent_mass, beam_lumped_mass, beam_curvature_row
-   public :: rotary_inertia_coefficient
+
    public :: timoshenko_phi, timoshenko_stiffness, timoshenko_shapes, timoshenko_consistent_mass, &
       timoshenko_lumped_mass
 

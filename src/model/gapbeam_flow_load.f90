@@ -17,7 +17,7 @@ module gapbeam_flow_load
    use gapbeam_turbulence, only: load_shapes, spectrum_band, turbulence_psd, generate_record
    implicit none
    private
-   public :: turbulence_record, record_resolution, deck_flow_modes, add_fluid_elastic
+   public :: turbulence_record, deck_flow_modes, add_fluid_elastic
 
    !> substreams: plane p, component m of that plane -> p * plane_stride + m
    integer, parameter :: plane_stride = 1048576

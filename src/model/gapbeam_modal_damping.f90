@@ -25,7 +25,7 @@ module gapbeam_modal_damping
    use gapbeam_lapack, only: dsyevd
    implicit none
    private
-   public :: modal_damping_matrix, apply_modal_damping, first_plane_mass
+   public :: apply_modal_damping, first_plane_mass
 
    !> relative distance of two omega^2 below which they form one cluster
    real(dp), parameter :: cluster_tolerance = 1.0e-6_dp

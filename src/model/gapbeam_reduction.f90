@@ -39,7 +39,7 @@ module gapbeam_reduction
    use gapbeam_linalg, only: dense_to_band
    implicit none
    private
-   public :: reduce_model, project, plane_modes, attachment_dofs
+   public :: reduce_model, project, plane_modes
 
 contains
 

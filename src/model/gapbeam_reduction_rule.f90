@@ -26,7 +26,7 @@ module gapbeam_reduction_rule
    use gapbeam_description, only: law_bilinear
    implicit none
    private
-   public :: reduction_info_t, auto_cutoff, contact_frequencies, reduction_text
+   public :: reduction_info_t, auto_cutoff, reduction_text
 
    !> What a reduction kept, and why.
    type :: reduction_info_t

@@ -35,8 +35,7 @@ module gapbeam_ring_contact
    implicit none
    private
    public :: ring_open, ring_stick, ring_slip
-   public :: ring_geometry, ring_force, solve_ring, solve_mixed_contacts, ring_forces_at, &
-      onset_regime, &
+   public :: ring_geometry, ring_force, solve_mixed_contacts, ring_forces_at, onset_regime, &
       update_ring_modes, ring_indicators, ring_stored_energy, ring_tangent_gap, ring_anchor_of
 
    integer, parameter :: ring_open = 0    !! no contact (the anchor follows the node)

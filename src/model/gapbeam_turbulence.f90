@@ -40,7 +40,7 @@ module gapbeam_turbulence
    implicit none
    private
    public :: turbulence_psd, spectrum_band, nodal_coherence, load_shapes, generate_record, &
-      gauss_legendre, hermite_at, max_record_bytes
+      gauss_legendre, hermite_at
 
    integer, parameter :: ng = 8                   !! Gauss points per cell direction
    real(dp), parameter :: far = 40.0_dp           !! cell pairs beyond far * lambda skipped
