@@ -1,4 +1,4 @@
-!> The certificate of a label: two independent re-checks of a diagnosed point, each a full
+!> The certificate of a label: independent re-checks of a diagnosed point, each a full
 !> diagnosis (gapbeam_attractor: settling, period, adaptive exponent, label).
 !>
 !> 1. Accuracy: the same start at a second accuracy. Where the run was not exact and every
@@ -8,6 +8,12 @@
 !>    the exponent's fixed steps). A run that was exact has no tighter accuracy: no check.
 !> 2. Perturbed start: the run's own settings from the start plus a random state (seeded by
 !>    the point) of `certify_perturbation` times the energy norm of the attractor's state.
+!>
+!> 3. Persistence (a chaotic label, certify_persistence > 0): the run continued from the end
+!>    of its exponent's periods for certify_persistence x (transient_periods + record_periods);
+!>    a period found there disputes the label ("chaotic transient, then period N after M
+!>    periods"); else the certificate says "chaotic for at least M periods". The label stays
+!>    chaotic: it is the diagnosis within the deck's budget; the longer run is the evidence.
 !>
 !> The point is certified when each check gives the same label and, for the accuracy check
 !> of a periodic label, the same orbit (within orbit_tolerance of its size); otherwise it is
