@@ -137,8 +137,8 @@ contains
       method_caps_t(name='rk45', family='runge_kutta', summary='explicit Dormand-Prince 5(4) ' &
          // 'with its embedded error estimate', implicit=.false., order=5, &
          estimator='embedded', control_order=4, controls="'auto', 'error', 'embedded'", &
-         auto_control='error', two_planes=.true., point_forces=.true., massless=.false., &
-         carries_acceleration=.false., stability_limit=3.3_dp, stages=7, &
+         auto_control='error', two_planes=.true., point_forces=.true., rings=.true., &
+         massless=.false., carries_acceleration=.false., stability_limit=3.3_dp, stages=7, &
          lyapunov_with='newmark', stability_with='rk4', auto_role='fine', &
          title='the embedded Runge-Kutta method rk45', parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exact', family='exact', summary='event-driven closed form of the ' &

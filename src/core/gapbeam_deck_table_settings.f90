@@ -24,13 +24,21 @@ contains
       call walk_sweep(v, deck%sweep)
       call v%begin_group('reduction', 'integrate a modal model instead of the finite ' &
          // 'element model')
-      call v%word('kind', deck%reduction%kind, "'none', 'modal'", meaning="'modal': the " &
-         // 'model projected on the lowest modes of the open structure')
+      call v%word('kind', deck%reduction%kind, "'none', 'modal', 'auto'", meaning="'modal': " &
+         // 'the model projected on the lowest modes of the open structure (in each plane) ' &
+         // "and the static modes of the supports; 'auto': the same with the cut-off of the " &
+         // 'basis rule (docs/methods.md), printed with a convergence check')
       call v%int('n_modes', deck%reduction%n_modes, lo=1, hi=100000, note='at most the ' &
-         // 'modes with mass', meaning='modes kept')
+         // 'modes with mass', meaning="modes kept in each plane (kind = 'modal', cutoff_hz = 0)")
+      call v%real('cutoff_hz', deck%reduction%cutoff_hz, 'Hz', lo=1.0e-3_dp, &
+         hi=max_frequency_hz, zero=.true., meaning="kind = 'modal': keep the modes up to " &
+         // 'this frequency in each plane (at least one); 0: n_modes instead')
       call v%logical('static_correction', deck%reduction%static_correction, &
-         meaning='add the residual flexibility of each stop dof (exact static contact ' &
-         // 'flexibility with few modes)')
+         meaning='add the residual flexibility of each support dof (both directions of a ' &
+         // 'ring) and point-force dof: exact static contact flexibility with few modes')
+      call v%logical('convergence_check', deck%reduction%convergence_check, &
+         meaning="kind = 'auto', transient runs: also run the model with 1.5 x the cut-off " &
+         // 'and print the work rates of both and their difference')
       call v%end_group()
       call walk_study(v, deck%study)
       call walk_model_size(v, deck%model_size)

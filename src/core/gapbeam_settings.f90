@@ -164,9 +164,13 @@ module gapbeam_settings
 
    !> Which model the analysis integrates: the full finite element model or a modal one.
    type :: reduction_settings_t
-      character(len=16) :: kind = 'none'          !! 'none' or 'modal'
+      character(len=16) :: kind = 'none'          !! 'none', 'modal' or 'auto'
       integer  :: n_modes = 4                     !! modes of the open structure kept [-]
+      !> modal: keep the modes up to this frequency in each plane, 0: n_modes instead [Hz]
+      real(dp) :: cutoff_hz = 0.0_dp
       logical  :: static_correction = .true.      !! residual flexibility at each stop dof
+      !> auto: a transient run also runs a richer cut-off and prints the work-rate difference
+      logical  :: convergence_check = .true.
    end type reduction_settings_t
 
    !> &model_size: the ladder and the tolerances.

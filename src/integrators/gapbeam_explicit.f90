@@ -16,6 +16,7 @@ module gapbeam_explicit
    use gapbeam_integrator, only: stepper_t
    use gapbeam_contact_law, only: contact_force
    use gapbeam_linalg, only: dense_matvec
+   use gapbeam_ring_contact, only: ring_force
    implicit none
    private
    public :: central_difference_t, runge_kutta_t
@@ -40,6 +41,7 @@ module gapbeam_explicit
       real(dp), allocatable :: ku(:, :), kv(:, :)  !! stage slopes (n, 7)
       real(dp), allocatable :: ut(:), vt(:), r(:)  !! workspaces
       real(dp), allocatable :: eu(:), ev(:)   !! rk45: embedded errors of the step
+      real(dp), allocatable :: fn(:), ft(:)   !! ring forces of the last evaluation [N]
    contains
       procedure :: prepare => rk_prepare
       procedure :: step => rk_step
@@ -166,25 +168,39 @@ contains
       if (allocated(err)) return
       if (.not. allocated(self%ku)) allocate(self%ku(model%n, 7), self%kv(model%n, 7), &
          self%ut(model%n), self%vt(model%n), self%r(model%n), self%eu(model%n), &
-         self%ev(model%n))
+         self%ev(model%n), self%fn(model%n_rings), self%ft(model%n_rings))
       self%dt = dt
       self%ready = .true.
    end subroutine rk_prepare
 
-   !> Acceleration M^-1 (s(t) q - C v - K u - F(u, v)).
-   subroutine rk_accel(self, model, t, u, v, hold, acc, f)
+   !> Acceleration M^-1 (s(t) q - C v - K u - F(u, v)), the ring supports in the regimes of
+   !> the step's start s0 (held over the step: the integrator ends a step at every switch).
+   subroutine rk_accel(self, model, s0, t, u, v, hold, acc, f)
       class(runge_kutta_t), intent(inout) :: self
       type(model_t), intent(in) :: model
+      type(state_t), intent(in) :: s0
       real(dp), intent(in) :: t, u(:), v(:)
       integer, intent(in) :: hold
       real(dp), intent(out) :: acc(:), f(:)
-      integer :: n, info
+      integer :: n, r
+      real(dp) :: pr(2)
       n = model%n
       call dense_matvec(n, model%sys%k, u, acc)
       call dense_matvec(n, model%c, v, self%r)
       self%r = load_factor(model, t) * model%q - acc - self%r
       call add_extra_load(model, t, self%r)
       call contact_forces(model, u, v, hold, f, self%r)
+      do r = 1, model%n_rings
+         if (r + model%n_contacts == hold) then
+            self%fn(r) = 0.0_dp;  self%ft(r) = 0.0_dp
+            cycle
+         end if
+         associate (dofs => model%r_dof(:, r))
+            call ring_force(model, r, s0%mode(r), s0%sigma(r), s0%anchor(r), u(dofs), v(dofs), &
+                            pr, self%fn(r), self%ft(r))
+            self%r(dofs) = self%r(dofs) + pr
+         end associate
+      end do
       call dense_matvec(n, self%mfac, self%r, acc)
       self%evaluations = self%evaluations + 1
    end subroutine rk_accel
@@ -206,23 +222,25 @@ contains
       associate (ku => self%ku, kv => self%kv, ut => self%ut, vt => self%vt, u => s0%u, &
                  v => s0%v, a => s0%a, u1 => s1%u, v1 => s1%v, a1 => s1%a, f1 => s1%f)
          if (.not. self%embedded) then
-            ku(:, 1) = v;  call rk_accel(self, model, t0, u, v, open_contact, kv(:, 1), f1)
+            ku(:, 1) = v;  call rk_accel(self, model, s0, t0, u, v, open_contact, kv(:, 1), f1)
             ut = u + 0.5_dp * h * ku(:, 1);  vt = v + 0.5_dp * h * kv(:, 1)
-            ku(:, 2) = vt;  call rk_accel(self, model, t0 + 0.5_dp * h, ut, vt, open_contact, &
-                                          kv(:, 2), f1)
+            ku(:, 2) = vt
+            call rk_accel(self, model, s0, t0 + 0.5_dp * h, ut, vt, open_contact, kv(:, 2), f1)
             ut = u + 0.5_dp * h * ku(:, 2);  vt = v + 0.5_dp * h * kv(:, 2)
-            ku(:, 3) = vt;  call rk_accel(self, model, t0 + 0.5_dp * h, ut, vt, open_contact, &
-                                          kv(:, 3), f1)
+            ku(:, 3) = vt
+            call rk_accel(self, model, s0, t0 + 0.5_dp * h, ut, vt, open_contact, kv(:, 3), f1)
             ut = u + h * ku(:, 3);  vt = v + h * kv(:, 3)
-            ku(:, 4) = vt;  call rk_accel(self, model, t0 + h, ut, vt, open_contact, kv(:, 4), f1)
+            ku(:, 4) = vt
+            call rk_accel(self, model, s0, t0 + h, ut, vt, open_contact, kv(:, 4), f1)
             u1 = u + h / 6 * (ku(:, 1) + 2 * ku(:, 2) + 2 * ku(:, 3) + ku(:, 4))
             v1 = v + h / 6 * (kv(:, 1) + 2 * kv(:, 2) + 2 * kv(:, 3) + kv(:, 4))
             ! acceleration and forces at the end (the next step's first stage)
-            call rk_accel(self, model, t0 + h, u1, v1, 0, a1, f1)
+            call rk_accel(self, model, s0, t0 + h, u1, v1, 0, a1, f1)
             self%evaluations = self%evaluations - 1   ! reused as the next first stage
          else
             ku(:, 1) = v;  kv(:, 1) = a
-            if (open_contact > 0) call rk_accel(self, model, t0, u, v, open_contact, kv(:, 1), f1)
+            if (open_contact > 0) call rk_accel(self, model, s0, t0, u, v, open_contact, &
+                                                kv(:, 1), f1)
             call rk_stage(self, model, s0, h, open_contact, 2, c2, [a21], f1)
             call rk_stage(self, model, s0, h, open_contact, 3, c3, [a31, a32], f1)
             call rk_stage(self, model, s0, h, open_contact, 4, c4, [a41, a42, a43], f1)
@@ -233,7 +251,7 @@ contains
             v1 = v + h * (b1 * kv(:, 1) + b3 * kv(:, 3) + b4 * kv(:, 4) + b5 * kv(:, 5) &
                  + b6 * kv(:, 6))
             ku(:, 7) = v1
-            call rk_accel(self, model, t0 + h, u1, v1, 0, kv(:, 7), f1)   ! FSAL: next a
+            call rk_accel(self, model, s0, t0 + h, u1, v1, 0, kv(:, 7), f1)   ! FSAL: next a
             a1 = kv(:, 7)
             ratio = 0.0_dp
             do i = 1, model%n
@@ -250,6 +268,12 @@ contains
             end do
          end if
       end associate
+      if (model%n_rings > 0) then
+         ! the forces of the end's evaluation; the regimes of the start (switches are the
+         ! integrator's: it ends a step at each)
+         s1%fn = self%fn;  s1%ft = self%ft
+         s1%mode = s0%mode;  s1%sigma = s0%sigma;  s1%anchor = s0%anchor
+      end if
    end subroutine rk_step
 
    !> rk45: the embedded (4th against 5th order) estimate of the last step's displacement error.
@@ -288,6 +312,6 @@ contains
          self%vt = self%vt + h * aj(m) * self%kv(:, m)
       end do
       self%ku(:, j) = self%vt
-      call rk_accel(self, model, s0%t + cj * h, self%ut, self%vt, open_contact, self%kv(:, j), f)
+      call rk_accel(self, model, s0, s0%t + cj * h, self%ut, self%vt, open_contact, self%kv(:, j), f)
    end subroutine rk_stage
 end module gapbeam_explicit

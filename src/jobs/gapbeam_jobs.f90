@@ -19,6 +19,8 @@ module gapbeam_jobs
    use gapbeam_eigen, only: solve_modes
    use gapbeam_calibration, only: calibrate_parameter, first_frequency
    use gapbeam_model_builder, only: build_model, resolve_stop_stiffness
+   use gapbeam_reduction_rule, only: reduction_info_t, reduction_text
+   use gapbeam_reduction_check, only: reduction_check_t, check_reduction, check_lines
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_point, only: label_point
    use gapbeam_settings, only: batch_options_t
@@ -416,16 +418,16 @@ contains
       real(dp), allocatable :: u0(:), v0(:)
       real(dp) :: setup
       integer :: j
+      type(reduction_info_t) :: reduced
+      type(reduction_check_t) :: check
       type(deck_t) :: dw
       call describe_structure(dk%structure)
       setup = thread_cpu_seconds()
-      call build_model(dk, model, u0, v0, e)
+      call build_model(dk, model, u0, v0, e, reduced)
       if (allocated(e)) return
       setup = thread_cpu_seconds() - setup
-      if (dk%reduction%kind == 'modal') write(output_unit, '(a)') 'model: modal, ' &
-         // str(dk%reduction%n_modes) // ' modes' // trim(merge(' + static correction', &
-         '                    ', dk%reduction%static_correction)) // ': ' // str(model%n) &
-         // ' coordinates'
+      if (dk%reduction%kind /= 'none') write(output_unit, '(a)') &
+         reduction_text(reduced, dk%solver%tolerance)
       write(output_unit, '(a)') 'forcing: ' // forcing_text(dk) // '; f1 (stops open) = ' &
          // str(model%f1_open_hz) // ' Hz; highest mode ' &
          // str(model%omega_max / (2.0_dp * pi)) &
@@ -481,6 +483,11 @@ contains
          // ' J; imbalance ' // str(res%input_work - res%rayleigh_dissipation &
          - res%contact_damping_dissipation - res%friction_dissipation &
          - res%stored_energy_change) // ' J'
+      if (dk%reduction%kind == 'auto' .and. dk%reduction%convergence_check) then
+         call check_reduction(dk, reduced, model, res, diag%transient_periods, check, e)
+         if (allocated(e)) return
+         write(output_unit, '(a)') check_lines(check, diag%period > 0)
+      end if
       do j = 1, size(failures)
          write(output_unit, '(a)') trim(failures(j))
       end do

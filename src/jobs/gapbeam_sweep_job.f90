@@ -17,6 +17,7 @@ module gapbeam_sweep_job
    use gapbeam_results, only: point_result_t, label_chaotic, label_undecided, label_unsettled, &
       label_failed, certificate_none, certificate_certified, certificate_disputed
    use gapbeam_model_builder, only: build_model
+   use gapbeam_reduction_rule, only: reduction_info_t, reduction_text
    use gapbeam_sweep, only: sweep_plan_t, make_plan, n_points, n_items, item_slots, run_items, &
       group_of_item, group_points, slot_index, combine_point
    use gapbeam_checkpoint, only: checkpoint_t, checkpoint_open, checkpoint_append, &
@@ -61,6 +62,7 @@ contains
       integer, intent(out) :: n_failed                 !! failed runs of the shard
       type(error_t), allocatable, intent(out) :: err   !! setup, I/O or checkpoint failure
       type(model_t) :: base
+      type(reduction_info_t) :: reduced
       type(sweep_plan_t) :: plan
       type(point_result_t), allocatable :: slots(:)
       type(checkpoint_t) :: ck
@@ -79,8 +81,10 @@ contains
       n_failed = 0
       call system_clock(c0, rate)
       cpu0 = process_cpu_seconds()
-      call build_model(deck, base, u0, v0, err)
+      call build_model(deck, base, u0, v0, err, reduced)
       if (allocated(err)) return
+      if (deck%reduction%kind /= 'none') write(output_unit, '(a)') &
+         reduction_text(reduced, deck%solver%tolerance) // ' (every point keeps these modes)'
       call make_plan(deck, plan, err)
       if (allocated(err)) return
       np = n_points(plan);  ni = n_items(plan)

@@ -1,7 +1,8 @@
 !> The model of a deck with numeric variables set to new values (gapbeam_deck_variable): the
 !> deck is copied, the values set and the model rebuilt, so that every rule of the deck (the
 !> stop-stiffness rule, damping ratios) applies again. The forcing variables only change the
-!> forcing of the model, so with the deck's model at hand they skip the rebuild.
+!> forcing of the model, so with the deck's model at hand they skip the rebuild. A modal
+!> reduction by a cut-off (or kind 'auto') keeps the deck's own number of modes at every value.
 module gapbeam_deck_parameter
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t
@@ -10,6 +11,7 @@ module gapbeam_deck_parameter
    use gapbeam_deck_table, only: max_frequency_hz, min_amplitude_pp
    use gapbeam_model, only: model_t
    use gapbeam_model_builder, only: build_model
+   use gapbeam_reduction_rule, only: reduction_info_t
    implicit none
    private
    public :: model_with_values
@@ -29,6 +31,7 @@ contains
       type(error_t), allocatable, intent(out) :: err     !! value out of range, build failure
       type(model_t), intent(in), optional :: base        !! model of `deck`
       type(deck_t) :: d
+      type(reduction_info_t) :: info
       real(dp), allocatable :: u0(:), v0(:)
       integer :: k
       if (present(base) .and. all(vars%group == 'forcing')) then
@@ -55,6 +58,16 @@ contains
          call set_deck_value(d, vars(k), values(k), err)
          if (allocated(err)) return
       end do
+      if (deck%reduction%kind == 'auto' .or. (deck%reduction%kind == 'modal' .and. &
+          deck%reduction%cutoff_hz > 0.0_dp)) then
+         ! every point keeps the deck's own modes (the cut-off chosen at the deck's values), so
+         ! that the points' coordinates are alike and states carry from one to the next
+         call build_model(deck, model, u0, v0, err, info)
+         if (allocated(err)) return
+         d%reduction%kind = 'modal'
+         d%reduction%cutoff_hz = 0.0_dp
+         d%reduction%n_modes = info%modes_per_plane
+      end if
       call build_model(d, model, u0, v0, err)
    end subroutine model_with_values
 end module gapbeam_deck_parameter

@@ -14,6 +14,7 @@ module gapbeam_model_builder
    use gapbeam_eigen, only: band_frequencies
    use gapbeam_calibration, only: calibrate_spring, first_frequency
    use gapbeam_reduction, only: reduce_model, project
+   use gapbeam_reduction_rule, only: reduction_info_t, auto_cutoff
    use gapbeam_modal_damping, only: apply_modal_damping, first_plane_mass
    implicit none
    private
@@ -22,35 +23,50 @@ module gapbeam_model_builder
 contains
 
    !> The model of a deck and the initial state (u0, v0) in its coordinates (modal ones when
-   !> the deck asks for a reduction).
-   subroutine build_model(deck, model, u0, v0, err)
+   !> the deck asks for a reduction: kind 'modal' with n_modes or cutoff_hz, kind 'auto' with
+   !> the cut-off of gapbeam_reduction_rule); `info` says what the reduction kept.
+   subroutine build_model(deck, model, u0, v0, err, info)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(model_t), intent(out) :: model              !! model to integrate
       real(dp), allocatable, intent(out) :: u0(:), v0(:)  !! initial state
       type(error_t), allocatable, intent(out) :: err   !! calibration, eigen or reduction failure
+      type(reduction_info_t), intent(out), optional :: info  !! the reduction's choices
       type(model_t) :: full
+      type(reduction_info_t) :: ri
       real(dp), allocatable :: basis(:, :), uf(:), vf(:)
       call build_full_model(deck%structure, deck%stops, deck%damping, deck%forcing, full, err)
       if (allocated(err)) return
       call initial_vectors(full, deck%initial, uf, vf)
-      if (deck%reduction%kind /= 'modal') then
+      ri%kind = deck%reduction%kind
+      ri%n_full = full%n
+      if (deck%reduction%kind /= 'modal' .and. deck%reduction%kind /= 'auto') then
          model = full;  u0 = uf;  v0 = vf
+         ri%n_reduced = full%n
+         if (present(info)) info = ri
          return
       end if
-      if (full%sys%planes > 1 .or. full%n_rings > 0 .or. full%extra_load) then
-         call fatal_error(err, "group &reduction: kind = 'modal' reduces planar models with " &
-            // "flat frictionless stops and base motion along w; this model has two planes, " &
-            // "a circular clearance, friction or point forces: use kind = 'none'")
-         return
+      ri%cutoff_hz = deck%reduction%cutoff_hz
+      if (deck%reduction%kind == 'auto') then
+         call auto_cutoff(full, deck%solver%tolerance, ri, err)
+         if (allocated(err)) then
+            err%message = 'group &reduction: ' // err%message
+            return
+         end if
       end if
       call reduce_model(full, deck%reduction%n_modes, deck%reduction%static_correction, model, &
-                        basis, err)
+                        basis, err, cutoff_hz=ri%cutoff_hz, modes_kept=ri%modes_per_plane, &
+                        highest_hz=ri%highest_mode_hz, modes_available=ri%modes_available)
       if (allocated(err)) then
          err%message = 'group &reduction: ' // err%message
          return
       end if
       call reduced_modal_damping(full, basis, deck%damping, model, err)
       if (allocated(err)) return
+      ri%n_reduced = model%n
+      ri%planes = full%sys%planes
+      ri%n_static = model%n / full%sys%planes - ri%modes_per_plane
+      ri%f_max_hz = model%omega_max / (2.0_dp * pi)
+      if (present(info)) info = ri
       call project(full, basis, uf, u0, err)
       if (.not. allocated(err)) call project(full, basis, vf, v0, err)
       if (allocated(err)) err%message = 'group &reduction: ' // err%message

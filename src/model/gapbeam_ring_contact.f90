@@ -58,14 +58,16 @@ module gapbeam_ring_contact
 
 contains
 
-   !> Penetration, normal, tangent, tangential coordinate and |grad tau| of ring r at x.
+   !> Penetration, normal, tangent, tangential coordinate and |grad tau| of ring r at x (the
+   !> coordinate, an arc tangent on a circle, only when asked for: the event search and the
+   !> contact solve evaluate the geometry many times per step and need it in stick only).
    pure subroutine ring_geometry(model, r, x, d, n, t, tau, gt)
       type(model_t), intent(in) :: model    !! model (ring data)
       integer, intent(in) :: r              !! ring
       real(dp), intent(in) :: x(2)          !! (w, v) of the node [m]
       real(dp), intent(out) :: d            !! penetration [m]
       real(dp), intent(out) :: n(2), t(2)   !! normal, tangent [-]
-      real(dp), intent(out) :: tau          !! tangential coordinate [m]
+      real(dp), intent(out), optional :: tau  !! tangential coordinate [m]
       real(dp), intent(out) :: gt           !! |grad tau| [-]
       real(dp) :: y(2), rho
       if (model%r_circular(r)) then
@@ -77,16 +79,28 @@ contains
             n = [1.0_dp, 0.0_dp]
          end if
          d = rho - model%r_gap(r)
-         tau = model%r_gap(r) * atan2(n(2), n(1))
          gt = model%r_gap(r) / max(rho, tiny(1.0_dp))
       else
          n = model%r_normal(:, r)
          d = dot_product(n, x) - model%r_gap(r)
-         tau = -n(2) * x(1) + n(1) * x(2)
          gt = 1.0_dp
       end if
+      if (present(tau)) tau = tangent_coordinate(model, r, x, n)
       t = [-n(2), n(1)]
    end subroutine ring_geometry
+
+   !> The tangential coordinate tau of ring r at x with normal n: the arc length g atan2(n_v,
+   !> n_w) on a circle, t.x on a flat stop [m].
+   pure real(dp) function tangent_coordinate(model, r, x, n) result(tau)
+      type(model_t), intent(in) :: model    !! model (ring data)
+      integer, intent(in) :: r              !! ring
+      real(dp), intent(in) :: x(2), n(2)    !! (w, v) of the node [m], its normal [-]
+      if (model%r_circular(r)) then
+         tau = model%r_gap(r) * atan2(n(2), n(1))
+      else
+         tau = -n(2) * x(1) + n(1) * x(2)
+      end if
+   end function tangent_coordinate
 
    !> tau - tau_a, wrapped to a half circumference for a circular clearance [m].
    pure real(dp) function ring_tangent_gap(model, r, tau, anchor) result(dt)
@@ -135,11 +149,11 @@ contains
       logical, intent(in), optional :: extend   !! smooth extension of the normal law
       !> taken as touching (d >= tiny) at a located onset, whatever the round-off of d
       logical, intent(in), optional :: touching
-      real(dp) :: d, n(2), t(2), tau, gt
+      real(dp) :: d, n(2), t(2), gt
       logical :: ext
       ext = .false.
       if (present(extend)) ext = extend
-      call ring_geometry(model, r, x, d, n, t, tau, gt)
+      call ring_geometry(model, r, x, d, n, t, gt=gt)
       if (present(touching)) then
          if (touching) d = max(d, tiny(1.0_dp))
       end if
@@ -154,7 +168,8 @@ contains
          if (mode == ring_slip) then
             ft = -sigma * model%r_mu(r) * fn
          else
-            ft = -model%r_kt(r) * ring_tangent_gap(model, r, tau, anchor) * gt
+            ft = -model%r_kt(r) * ring_tangent_gap(model, r, tangent_coordinate(model, r, x, &
+                                                                               n), anchor) * gt
             ! a ring that touches inside a step begun open: the element's return mapping
             ! (stick from the contact point, limited to the slip force)
             if (mode == ring_open) ft = max(-model%r_mu(r) * abs(fn), &
@@ -207,12 +222,12 @@ contains
       real(dp), intent(out) :: x(2), p(2)    !! end position [m], force [N]
       real(dp), intent(out) :: fn, ft        !! normal, tangential force [N]
       type(ring_problem_t) :: pb
-      real(dp) :: det, d, n(2), t(2), tau, gt, res(2), jac(2, 2), dx(2)
+      real(dp) :: det, d, n(2), t(2), gt, res(2), jac(2, 2), dx(2)
       real(dp) :: xt(2), rt(2), step, nrm, nrm_t, dxn, dxn_old, fe, ft_e
       integer :: it, j, ls
       x = xs;  p = 0.0_dp;  fn = 0.0_dp;  ft = 0.0_dp
       if (hold) return
-      call ring_geometry(model, r, xs, d, n, t, tau, gt)
+      call ring_geometry(model, r, xs, d, n, t, gt=gt)
       if (d <= 0.0_dp) return
       if (normal_law(model, r, d, dot_product(n, vs), .true.) <= 0.0_dp) return
       det = amat(1, 1) * amat(2, 2) - amat(1, 2) * amat(2, 1)
@@ -253,10 +268,10 @@ contains
          x = xs;  p = 0.0_dp
          return
       end if
-      call ring_geometry(model, r, x, d, n, t, tau, gt)
+      call ring_geometry(model, r, x, d, n, t, gt=gt)
       ! the damper pushes the node back beyond the surface: it sits on the surface
       if (d < 0.0_dp) call on_surface(model, pb, x, fe, ft_e)
-      call ring_geometry(model, r, x, d, n, t, tau, gt)
+      call ring_geometry(model, r, x, d, n, t, gt=gt)
       fn = fe;  ft = ft_e
       p = -fn * n + ft * t
    end subroutine solve_ring
@@ -472,8 +487,8 @@ contains
       integer, intent(in) :: r                      !! ring
       real(dp), intent(in) :: sigma                 !! slip direction
       real(dp), intent(in) :: x(2), xd(2), xdd(2)   !! position, velocity, acceleration
-      real(dp) :: d, n(2), t(2), tau, gt, vt, dn, ddd, fn, fdot, rho, curv
-      call ring_geometry(model, r, x, d, n, t, tau, gt)
+      real(dp) :: d, n(2), t(2), gt, vt, dn, ddd, fn, fdot, rho, curv
+      call ring_geometry(model, r, x, d, n, t, gt=gt)
       vt = dot_product(t, xd);  dn = dot_product(n, xd)
       curv = 0.0_dp
       if (model%r_circular(r)) then
@@ -568,8 +583,8 @@ contains
       integer, intent(in) :: mode                   !! regime
       real(dp), intent(in) :: sigma, anchor         !! slip direction, anchor [m]
       real(dp), intent(in) :: x(2), xd(2)           !! position, velocity
-      real(dp) :: p(2), fn, ft, d, n(2), t(2), tau, gt
-      call ring_geometry(model, r, x, d, n, t, tau, gt)
+      real(dp) :: p(2), fn, ft, d, n(2), t(2), gt
+      call ring_geometry(model, r, x, d, n, t, gt=gt)
       e = 0.0_dp
       if (d <= 0.0_dp) return
       e = model%laws(model%r_law(r))%law%energy(model%r_k(r), model%r_c(r), model%r_p(r), d)
