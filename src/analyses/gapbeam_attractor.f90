@@ -42,7 +42,7 @@ module gapbeam_attractor
    implicit none
    private
    public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
-      transient_budget, lyapunov_budget
+      transient_budget, lyapunov_budget, persistence
 
    !> A monitor told the work of one phase shifted by the work of the phases before it.
    type, extends(monitor_t) :: shifted_monitor_t
@@ -200,6 +200,67 @@ contains
          end if
       end subroutine run
    end subroutine diagnose
+
+   !> Persistence of a diagnosed point's chaos: its trajectory continued from pr%u_end,
+   !> pr%v_end (the end of the exponent's periods) for at least n_periods more, in records of
+   !> cfg%record_periods each searched for a period (as diagnose's records). `found`: the period
+   !> of the first record that repeats within the tolerance and whose windows agree (0: none);
+   !> `after`: the periods from the point's start to the end of that record (or of the last
+   !> one run). A period found is confirmed by up to 3 further records (an orbit still losing
+   !> a slowly decaying component repeats first at a multiple of its period): the period of
+   !> the last record that repeats, until two agree.
+   subroutine persistence(model, cfg, out, diag, pr, n_periods, found, after, err, cache)
+      type(model_t), intent(in) :: model                 !! model
+      type(solver_settings_t), intent(in) :: cfg         !! the run's settings
+      type(output_settings_t), intent(in) :: out         !! what to record (no history)
+      type(diagnostics_settings_t), intent(in) :: diag   !! classification settings
+      type(point_result_t), intent(in) :: pr             !! the diagnosed point
+      integer, intent(in) :: n_periods                   !! periods to continue at least
+      integer, intent(out) :: found                      !! period settled on (0: none)
+      integer, intent(out) :: after                      !! periods from the start
+      type(error_t), allocatable, intent(out) :: err     !! solver failure
+      type(integrator_cache_t), intent(inout), optional :: cache   !! this model's integrators
+      type(solver_settings_t) :: c
+      type(transient_result_t) :: res
+      type(point_result_t) :: scratch
+      real(dp), allocatable :: u(:), v(:)
+      real(dp) :: tol
+      integer :: k, n_rec, p
+      logical :: settled
+      found = 0
+      after = pr%transient_periods + cfg%record_periods + pr%lyapunov_periods
+      if (n_periods <= 0 .or. .not. allocated(pr%u_end)) return
+      tol = auto_period_tolerance(model, cfg, diag)
+      c = cfg
+      c%transient_periods = 0
+      c%record_periods = max(1, cfg%record_periods)
+      n_rec = (n_periods + c%record_periods - 1) / c%record_periods
+      u = pr%u_end;  v = pr%v_end
+      do k = 1, n_rec
+         call integrate(model, c, out, u, v, res, err, cache=cache)
+         if (allocated(err)) return
+         after = after + c%record_periods
+         call label_record(res, diag, tol, scratch, p, settled)
+         u = res%u;  v = res%v
+         if (p > 0 .and. settled) then
+            found = p
+            exit
+         end if
+      end do
+      if (found == 0) return
+      ! an orbit still losing a slowly decaying component repeats first at a multiple of its
+      ! period: up to 3 further records, the period of the last one that repeats
+      do k = 1, 3
+         call integrate(model, c, out, u, v, res, err, cache=cache)
+         if (allocated(err)) return
+         call label_record(res, diag, tol, scratch, p, settled)
+         if (p > 0 .and. settled) then
+            if (p == found) exit
+            found = p
+         end if
+         u = res%u;  v = res%v
+      end do
+   end subroutine persistence
 
    !> Period, Lyapunov exponent and label of a finished transient run (no extension: the
    !> settling test is reported, and an unsettled record is labelled so).

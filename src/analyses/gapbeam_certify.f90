@@ -1,4 +1,4 @@
-!> The certificate of a label: two independent re-checks of a diagnosed point, each a full
+!> The certificate of a label: independent re-checks of a diagnosed point, each a full
 !> diagnosis (gapbeam_attractor: settling, period, adaptive exponent, label).
 !>
 !> 1. Accuracy: the same start at a second accuracy. Where the run was not exact and every
@@ -8,6 +8,12 @@
 !>    the exponent's fixed steps). A run that was exact has no tighter accuracy: no check.
 !> 2. Perturbed start: the run's own settings from the start plus a random state (seeded by
 !>    the point) of `certify_perturbation` times the energy norm of the attractor's state.
+!>
+!> 3. Persistence (a chaotic label, certify_persistence > 0): the run continued from the end
+!>    of its exponent's periods for certify_persistence x (transient_periods + record_periods);
+!>    a period found there disputes the label ("chaotic transient, then period N after M
+!>    periods"); else the certificate says "chaotic for at least M periods". The label stays
+!>    chaotic: it is the diagnosis within the deck's budget; the longer run is the evidence.
 !>
 !> The point is certified when each check gives the same label and, for the accuracy check
 !> of a periodic label, the same orbit (within orbit_tolerance of its size); otherwise it is
@@ -23,7 +29,7 @@ module gapbeam_certify
       label_chaotic, certificate_certified, certificate_disputed
    use gapbeam_capabilities, only: method_caps_t, method_table, is_exact
    use gapbeam_integrator, only: resolve_method, refusal
-   use gapbeam_attractor, only: diagnose
+   use gapbeam_attractor, only: diagnose, persistence
    use gapbeam_transient, only: integrator_cache_t
    use gapbeam_starts, only: uniform_numbers, attractor_distance
    use gapbeam_clock, only: thread_cpu_seconds
@@ -50,7 +56,7 @@ contains
       type(point_result_t) :: chk
       type(transient_result_t) :: res
       type(error_t), allocatable :: err
-      character(len=:), allocatable :: what, reason
+      character(len=:), allocatable :: what, reason, why, persisted
       real(dp), allocatable :: du(:), dv(:)
       real(dp) :: cpu0, scale, dn
       logical :: needed
@@ -89,6 +95,12 @@ contains
       call diagnose(model, cfg, out, diag, u0 + du, v0 + dv, res, chk, err, cache=cache)
       call record_check(pr, chk, err, 'perturbed', 'a start perturbed by ' &
          // num(diag%certify_perturbation) // ' of the state norm', diag, reason)
+      ! 3. persistence of a chaotic label: the run continued
+      persisted = ''
+      if (pr%label == label_chaotic .and. diag%certify_persistence > 0.0_dp) then
+         call persistence_check(model, cfg, out, diag, pr, persisted, why, cache)
+         if (len(why) > 0) reason = why
+      end if
       ! the label's own evidence must agree with itself, whatever the checks say
       if (len(contradiction(pr, diag)) > 0) reason = contradiction(pr, diag)
       if (len(reason) == 0) then
@@ -100,12 +112,46 @@ contains
             pr%certificate_reason = 'certified: a perturbed start gives ' &
                // label_text(pr%label) // ' too (the run was exact: no tighter accuracy)'
          end if
+         pr%certificate_reason = pr%certificate_reason // persisted
       else
          pr%certificate = certificate_disputed
          pr%certificate_reason = 'disputed: ' // reason
       end if
       pr%seconds_certify = thread_cpu_seconds() - cpu0
    end subroutine certify_point
+
+   !> The persistence check of a chaotic point: its run continued for certify_persistence x
+   !> (its transient and record periods). `why`: the dispute ('' when the chaos persisted);
+   !> `persisted`: the certificate's note when it did.
+   subroutine persistence_check(model, cfg, out, diag, pr, persisted, why, cache)
+      type(model_t), intent(in) :: model                 !! model of the point
+      type(solver_settings_t), intent(in) :: cfg         !! the run's settings
+      type(output_settings_t), intent(in) :: out         !! recording settings (no history)
+      type(diagnostics_settings_t), intent(in) :: diag   !! the multiple
+      type(point_result_t), intent(in) :: pr             !! the diagnosed point
+      character(len=:), allocatable, intent(out) :: persisted   !! note of a persisting chaos
+      character(len=:), allocatable, intent(out) :: why  !! the dispute ('' when none)
+      type(integrator_cache_t), intent(inout), optional :: cache   !! this model's integrators
+      type(error_t), allocatable :: err
+      real(dp) :: n
+      integer :: found, after
+      n = diag%certify_persistence * real(pr%transient_periods + cfg%record_periods, dp)
+      call persistence(model, cfg, out, diag, pr, nint(min(n, real(huge(1) / 4, dp))), found, &
+                       after, err, cache)
+      persisted = ''
+      why = ''
+      if (allocated(err)) then
+         why = 'the persistence run (' // num(diag%certify_persistence) // ' x the transient ' &
+            // 'and record periods further) failed: ' // err%message
+      else if (found > 0) then
+         why = 'chaotic transient, then period ' // str(found) // ' after ' // str(after) &
+            // ' periods (the run continued for ' // num(diag%certify_persistence) &
+            // ' x its transient and record periods)'
+      else
+         persisted = '; chaotic for at least ' // str(after) // ' periods (the run continued ' &
+            // 'for ' // num(diag%certify_persistence) // ' x its transient and record periods)'
+      end if
+   end subroutine persistence_check
 
    !> A contradiction within a point's own evidence ('' when none): a period beside an
    !> exponent positive beyond chaos_sigmas standard errors (a stable orbit contracts: its

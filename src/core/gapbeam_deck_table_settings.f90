@@ -243,6 +243,9 @@ contains
          meaning='accuracy check: settings tightened by this factor')
       call v%real('certify_perturbation', d%certify_perturbation, '1', lo=1.0e-12_dp, &
          hi=1.0_dp, meaning='perturbed start: size / energy norm of the state')
+      call v%real('certify_persistence', d%certify_persistence, '1', lo=0.0_dp, hi=100.0_dp, &
+         meaning='chaos must persist over this multiple of the transient and record periods ' &
+         // '(0: no check)')
       call v%real('orbit_tolerance', d%orbit_tolerance, '1', lo=1.0e-12_dp, hi=1.0_dp, &
          meaning='two periodic orbits are the same within this x orbit size')
       n = findloc(len_trim(d%starts) > 0, .true., dim=1, back=.true.)

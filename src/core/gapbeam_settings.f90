@@ -149,6 +149,9 @@ module gapbeam_settings
       logical  :: certify = .true.                !! re-check every label independently
       real(dp) :: certify_ratio = 10.0_dp         !! accuracy check: settings tightened by this
       real(dp) :: certify_perturbation = 1.0e-3_dp  !! perturbed start: size / state norm [-]
+      !> a chaotic label is certified only when the chaos persists over this multiple of the
+      !> periods before its record and the record (the run continued; 0: no persistence check)
+      real(dp) :: certify_persistence = 2.0_dp
       real(dp) :: orbit_tolerance = 0.01_dp       !! same periodic orbit: distance / size [-]
       !> initial states of every point, the first one labelled and certified: 'deck' (&initial),
       !> 'rest', 'up' and 'down' (a sweep's neighbour below / above along its lines), 'random'
