@@ -13,7 +13,7 @@ module gapbeam_test_runs
    use gapbeam_testing, only: check, finish
    implicit none
    private
-   public :: run_deck, load_deck, load_or_stop, make_plan_or_stop
+   public :: run_deck, load_deck, load_or_stop, make_plan_or_stop, expect_refused
 
 contains
 
@@ -72,4 +72,27 @@ contains
          call finish(program)
       end if
    end subroutine make_plan_or_stop
+   !> Read deck `path` with one override and expect the one-line error to start with the deck
+   !> and hold every fragment (group, variable, value, what is allowed).
+   subroutine expect_refused(path, name, override, fragments)
+      character(len=*), intent(in) :: path, name, override, fragments(:)
+      type(deck_t) :: d
+      type(error_t), allocatable :: e
+      character(len=200) :: ov(1)
+      character(len=:), allocatable :: missing
+      integer :: i
+      ov(1) = override
+      call read_deck(path, ov, d, e)
+      if (.not. allocated(e)) then
+         call check(name, .false., 'the deck was accepted');  return
+      end if
+      missing = ''
+      if (index(e%message, path // ': ') /= 1) missing = ' [the deck name first]'
+      do i = 1, size(fragments)
+         if (index(e%message, trim(fragments(i))) == 0) missing = missing // ' [' &
+            // trim(fragments(i)) // ']'
+      end do
+      call check(name // ': ' // e%message, len(missing) == 0 .and. &
+         index(e%message, new_line('a')) == 0, 'missing:' // missing)
+   end subroutine expect_refused
 end module gapbeam_test_runs

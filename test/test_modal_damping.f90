@@ -20,6 +20,7 @@ program test_modal_damping
    use gapbeam_lapack, only: dsygv
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, check_deck_variable, &
       set_deck_value, get_deck_value
+   use gapbeam_test_runs, only: expect_refused
    implicit none
    real(dp), parameter :: ratios(3) = [0.01_dp, 0.03_dp, 0.002_dp]
    real(dp), parameter :: beta = 0.5_dp, gamma = 2.0e-6_dp
@@ -226,18 +227,18 @@ contains
 
    !> Bad &damping modal input: one line naming deck, group, variable, value, rule.
    subroutine bad_input()
-      call expect_refused('unknown damping model refused', "&damping model = 'modl' /", &
+      call expect_refused(ref_deck, 'unknown damping model refused', "&damping model = 'modl' /", &
          [character(len=60) :: 'group &damping: model', "'modl'", "'modal'"])
-      call expect_refused('modal damping without ratios refused', &
+      call expect_refused(ref_deck, 'modal damping without ratios refused', &
          "&damping model = 'modal' /", [character(len=60) :: 'group &damping:', &
          "model = 'modal' needs modal_ratios"])
-      call expect_refused('a negative modal ratio refused', &
+      call expect_refused(ref_deck, 'a negative modal ratio refused', &
          "&damping model = 'modal', modal_ratios = 0.01, -0.1 /", [character(len=60) :: &
          'group &damping: modal_ratios(2)', '= -0.1', '[0, 100]'])
-      call expect_refused('modal ratios with another model refused', &
+      call expect_refused(ref_deck, 'modal ratios with another model refused', &
          "&damping model = 'rayleigh', modal_ratios = 0.01 /", [character(len=60) :: &
          'group &damping: modal_ratios', "model = 'rayleigh'", "needs model = 'modal'"])
-      call expect_refused('modal damping with the banded solver refused', &
+      call expect_refused(ref_deck, 'modal damping with the banded solver refused', &
          "&damping model = 'modal', modal_ratios = 0.01 / &solver linear_solver = 'banded' /", &
          [character(len=60) :: 'group &solver: linear_solver', "'banded'", 'modal damping', &
           "'auto' or 'dense'"])
@@ -281,27 +282,4 @@ contains
          allocated(err))
    end subroutine design_variable
 
-   !> Read the reference deck with an override and expect the one-line error to start with
-   !> the deck and hold every fragment (group, variable, value, what is allowed).
-   subroutine expect_refused(name, override, fragments)
-      character(len=*), intent(in) :: name, override, fragments(:)
-      type(deck_t) :: d
-      type(error_t), allocatable :: e
-      character(len=200) :: ov(1)
-      character(len=:), allocatable :: missing
-      integer :: i
-      ov(1) = override
-      call read_deck(ref_deck, ov, d, e)
-      if (.not. allocated(e)) then
-         call check(name, .false., 'the deck was accepted');  return
-      end if
-      missing = ''
-      if (index(e%message, ref_deck // ': ') /= 1) missing = ' [the deck name first]'
-      do i = 1, size(fragments)
-         if (index(e%message, trim(fragments(i))) == 0) missing = missing // ' [' &
-            // trim(fragments(i)) // ']'
-      end do
-      call check(name // ': ' // e%message, len(missing) == 0 .and. &
-         index(e%message, new_line('a')) == 0, 'missing:' // missing)
-   end subroutine expect_refused
 end program test_modal_damping

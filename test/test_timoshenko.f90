@@ -20,6 +20,7 @@ program test_timoshenko
    use gapbeam_reduction, only: reduce_model
    use gapbeam_deck, only: deck_t
    use gapbeam_input, only: read_deck
+   use gapbeam_test_runs, only: expect_refused
    implicit none
    ! a thick steel beam: L/h = 5
    real(dp), parameter :: e_mod = 200.0e9_dp, g_mod = e_mod / 2.6_dp, rho = 7850.0_dp
@@ -431,46 +432,23 @@ contains
 
    !> Bad &beam theory and shear values: one line naming deck, group, variable, value, rule.
    subroutine bad_input()
-      call expect_refused('unknown theory refused', "&beam theory = 'timoshenk' /", &
+      call expect_refused(ref_deck, 'unknown theory refused', "&beam theory = 'timoshenk' /", &
          [character(len=60) :: 'group &beam: theory', "'timoshenk'", &
           "'euler_bernoulli', 'timoshenko'"])
-      call expect_refused('Timoshenko without a shear modulus refused', &
+      call expect_refused(ref_deck, 'Timoshenko without a shear modulus refused', &
          "&beam theory = 'timoshenko' /", [character(len=60) :: 'group &beam: shear_modulus', &
          '= 0', 'must be > 0', "theory = 'timoshenko'"])
-      call expect_refused('negative shear modulus refused', &
+      call expect_refused(ref_deck, 'negative shear modulus refused', &
          "&beam theory = 'timoshenko', shear_modulus = -1.0 /", [character(len=60) :: &
          'group &beam: shear_modulus', '= -1', '>= 0'])
-      call expect_refused('shear coefficient above 1 refused', &
+      call expect_refused(ref_deck, 'shear coefficient above 1 refused', &
          "&beam theory = 'timoshenko', shear_modulus = 8e10, shear_coefficient = 1.5 /", &
          [character(len=60) :: 'group &beam: shear_coefficient', '= 1.5', '[0, 1]'])
-      call expect_refused('general section without a shear coefficient refused', &
+      call expect_refused(ref_deck, 'general section without a shear coefficient refused', &
          "&beam theory = 'timoshenko', shear_modulus = 8e10, width = 0, thickness = 0, " &
          // 'area = 1e-6, second_moment = 1e-12, fibre_distance = 1e-3 /', &
          [character(len=60) :: 'group &beam: shear_coefficient', '= 0', 'must be > 0', &
           'general section'])
    end subroutine bad_input
 
-   !> Read the reference deck with an override and expect the one-line error to start with
-   !> the deck and hold every fragment (group, variable, value, what is allowed).
-   subroutine expect_refused(name, override, fragments)
-      character(len=*), intent(in) :: name, override, fragments(:)
-      type(deck_t) :: d
-      type(error_t), allocatable :: e
-      character(len=200) :: ov(1)
-      character(len=:), allocatable :: missing
-      integer :: i
-      ov(1) = override
-      call read_deck(ref_deck, ov, d, e)
-      if (.not. allocated(e)) then
-         call check(name, .false., 'the deck was accepted');  return
-      end if
-      missing = ''
-      if (index(e%message, ref_deck // ': ') /= 1) missing = ' [the deck name first]'
-      do i = 1, size(fragments)
-         if (index(e%message, trim(fragments(i))) == 0) missing = missing // ' [' &
-            // trim(fragments(i)) // ']'
-      end do
-      call check(name // ': ' // e%message, len(missing) == 0 .and. &
-         index(e%message, new_line('a')) == 0, 'missing:' // missing)
-   end subroutine expect_refused
 end program test_timoshenko
