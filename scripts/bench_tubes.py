@@ -250,7 +250,7 @@ def part_deck(run, out, dat):
     ref = spread[-1]
     if quick:
         cuts, autos, rks, excuts = [], [], [], []
-        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3, 1e-5)]
+        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3,)]
     else:
         cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (150, 300, 700)]
         autos = [run.variant('auto', 0, t, tr, rec) for t in (1e-3, 1e-5)]

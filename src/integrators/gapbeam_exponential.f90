@@ -372,7 +372,7 @@ contains
       integer, intent(in) :: open_contact                !! contact held open (0: none)
       real(dp) :: h, t0, t1, sk, tk, sc, um, vm
       real(dp) :: xe(self%n), ye(self%n), ge(self%n), g1(self%n), g2(self%n), zero(self%n)
-      real(dp) :: ru0(self%n), ru1(self%n)
+      real(dp) :: ru0(self%n), ru1(self%n), rv(self%n)
       integer :: sweep, i
       ! (the node arrays are named through self: an associate name of a component that a
       ! called procedure redefines may be a copy)
@@ -410,8 +410,13 @@ contains
       xe = matmul(self%phi, self%x(:, 1));  ye = matmul(self%phi, self%y(:, 1))
       ru0 = matmul(self%phi_abs, abs(self%x(:, 0)))
       ru1 = matmul(self%phi_abs, abs(self%x(:, 2)))
+      rv = matmul(self%phi_abs, abs(self%y(:, 0))) + matmul(self%phi_abs, abs(self%y(:, 2)))
       ratio = 0.0_dp
       do i = 1, self%n
+         ! the sweeps' difference below the round-off of Phi x, Phi x': nothing to control
+         if (abs(self%eu(i)) <= 16.0_dp * epsilon(1.0_dp) * (ru0(i) + ru1(i))) &
+            self%eu(i) = 0.0_dp
+         if (abs(self%ev(i)) <= 16.0_dp * epsilon(1.0_dp) * rv(i)) self%ev(i) = 0.0_dp
          um = xe(i) - (0.5_dp * (s0%u(i) + s1%u(i)) + 0.125_dp * h * (s0%v(i) - s1%v(i)))
          vm = ye(i) - (1.5_dp * (s1%u(i) - s0%u(i)) / h - 0.25_dp * (s0%v(i) + s1%v(i)))
          ! the interpolant carries the round-off of u = Phi x (eps sum_j |Phi_ij x_j| at each
