@@ -5,7 +5,14 @@ module gapbeam_flow_results
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: flow_modes_t, draw_statistics_t, wear_depth_t
+   public :: flow_modes_t, draw_statistics_t, wear_depth_t, n_draw_outputs, draw_output_names
+
+   integer, parameter :: n_draw_outputs = 9
+   !> the scalar outputs taken over random draws, as named under /statistics (per stop; the
+   !> last, the tip's RMS displacement over the history samples, one value)
+   character(len=*), parameter :: draw_output_names(n_draw_outputs) = [character(len=24) :: &
+      'impact_rate', 'peak_force', 'rms_force', 'contact_fraction', 'work_rate', &
+      'normal_work_rate', 'friction_work_rate', 'wear_volume_rate', 'tip_rms_displacement']
 
    !> Every mode of the open structure (supports inactive), ascending in frequency (two planes:
    !> the modes of each plane, merged; at equal frequency w first), with its fluid-elastic data.

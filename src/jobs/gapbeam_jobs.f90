@@ -532,7 +532,7 @@ contains
       if (allocated(meter%warning)) call add_warning(dw, meter%warning)
       call print_label(diag)
       if (dk%turbulence%spectrum /= 'none') then
-         call run_draws(dk, res, stats, e)
+         call run_draws(dk, u0, v0, res, stats, e)
          if (allocated(e)) return
          call print_draws(stats)
          call write_transient(dw, model, res, diag, e, stats)

@@ -1,0 +1,243 @@
+!> Random draws of the flow excitation in sweeps and transient runs (docs/flow.md):
+!> * draws inside sweep points: a sweep over &flow velocity of the linear cantilever tube
+!>   (test/decks/tube_turbulence.nml, Connors damping, a short-correlation load) with 3 draws
+!>   per point writes /sweep/statistics; each point's mean and half-width equal those of the
+!>   draws run one by one (the point's model with that draw's record, from the deck's start);
+!>   the file is the same bit for bit on 1 and 2 threads, from two shards merged, and after a
+!>   run stopped by its time limit and resumed from its checkpoint; the tube responds more at
+!>   the velocity nearer its critical one.
+!> * the target half-width: the stopping rule on made-up draws (it stops at the first count
+!>   whose watched outputs are all within the target, skips untouched supports, stops at
+!>   draws_max), and on the tube: the count reached is the first within the target.
+program test_flow_draws
+   !$ use omp_lib, only: omp_set_num_threads
+   use gapbeam_kinds, only: dp
+   use gapbeam_error, only: error_t, str
+   use gapbeam_testing, only: check, check_close, check_le, finish, note
+   use gapbeam_deck, only: deck_t
+   use gapbeam_input, only: read_deck
+   use gapbeam_results, only: transient_result_t, point_result_t
+   use gapbeam_settings, only: batch_options_t, output_settings_t
+   use gapbeam_sweep, only: sweep_plan_t, make_plan
+   use gapbeam_sweep_job, only: run_sweep_job
+   use gapbeam_sweep_output, only: sweep_file_t, read_sweep, merge_sweep
+   use gapbeam_files, only: remove_file, file_exists
+   use gapbeam_flow_results, only: n_draw_outputs
+   use gapbeam_draws, only: run_draw, draw_values, draws_enough, collect_draws
+   use gapbeam_draw_statistics, only: mean_half_width, relative_half_width
+   use gapbeam_model_builder, only: build_model
+   use gapbeam_model, only: model_t
+   use gapbeam_deck_variable, only: deck_variable_t
+   implicit none
+   character(len=*), parameter :: buffet = 'test/decks/tube_turbulence.nml'
+
+   call sweep_with_draws()
+   call stopping_rule()
+   call target_on_the_tube()
+   call finish('test_flow_draws')
+
+contains
+
+   !> The overrides of the velocity sweep with draws, output PREFIX.
+   function sweep_overrides(prefix) result(ov)
+      character(len=*), intent(in) :: prefix
+      character(len=200) :: ov(7)
+      ov(1) = "&job analysis = 'sweep', output = '" // prefix // "' /"
+      ov(2) = '&flow fluid_density = 1000.0, tube_diameter = 0.019, connors_constant = 3.0, ' &
+         // 'velocity = 1.0 /'
+      ov(3) = '&turbulence draws = 3, correlation_length = 0.05, frequency_resolution_hz = 4.0 /'
+      ov(4) = "&sweep x_variable = '&flow velocity', x_values = 0.5, 1.4, amplitude_pp = 0.0, " &
+         // 'progress = .false., chunk = 1 /'
+      ov(5) = '&output write_text = .false. /'
+      ov(6) = '&solver transient_periods = 1 /'
+      ov(7) = '&forcing frequency_hz = 4.0 /'   ! a record of 0.25 s, one period of the load
+   end function sweep_overrides
+
+   !> Run the sweep through the job driver (shard i of n, time limit); complete on return.
+   subroutine sweep_job(prefix, shard, n_shards, limit, complete)
+      character(len=*), intent(in) :: prefix
+      integer, intent(in) :: shard, n_shards
+      real(dp), intent(in) :: limit
+      logical, intent(out) :: complete
+      type(deck_t) :: deck
+      type(error_t), allocatable :: err
+      integer :: n_failed
+      complete = .false.
+      call read_deck(buffet, sweep_overrides(prefix), deck, err)
+      if (.not. allocated(err)) call run_sweep_job(deck, batch_options_t(shard_index=shard, &
+         shard_count=n_shards, time_limit_s=limit, quiet=.true.), complete, n_failed, err)
+      if (allocated(err)) call check('sweep ' // prefix // ' runs', .false., err%message)
+   end subroutine sweep_job
+
+   !> Do the points of a sweep file have exactly the statistics of `want`?
+   logical function same_statistics(path, want) result(same)
+      character(len=*), intent(in) :: path
+      type(point_result_t), intent(in) :: want(:)
+      type(sweep_file_t) :: sf
+      type(point_result_t), allocatable :: got(:)
+      type(error_t), allocatable :: err
+      integer :: k
+      same = .false.
+      call read_sweep(path, sf, got, err)
+      if (allocated(err)) return
+      if (size(got) /= size(want)) return
+      do k = 1, size(want)
+         if (got(k)%n_draws /= want(k)%n_draws) return
+         if (.not. (allocated(got(k)%draw_mean) .and. allocated(want(k)%draw_mean))) return
+         if (any(got(k)%draw_mean /= want(k)%draw_mean)) return
+         if (any(got(k)%draw_ci /= want(k)%draw_ci)) return
+      end do
+      same = .true.
+   end function same_statistics
+
+   !> A velocity sweep with 3 draws per point: the statistics, threads, shards, checkpoint.
+   subroutine sweep_with_draws()
+      character(len=*), parameter :: base = 'test_flow_draws_sweep'
+      type(sweep_file_t) :: sf
+      type(point_result_t), allocatable :: pts(:)
+      type(error_t), allocatable :: err
+      type(deck_t) :: deck
+      type(sweep_plan_t) :: plan
+      type(model_t) :: model
+      type(transient_result_t) :: res
+      type(output_settings_t) :: o
+      real(dp), allocatable :: u0(:), v0(:)
+      real(dp) :: x(3), v(1, n_draw_outputs), mean, hw, velocity(2)
+      logical :: complete
+      integer :: p, d
+      !$ call omp_set_num_threads(1)
+      call sweep_job(base, 1, 1, 0.0_dp, complete)
+      call check('sweep with draws: completes', complete .and. file_exists(base // '.h5'))
+      if (.not. complete) return
+      call read_sweep(base // '.h5', sf, pts, err)
+      call check('sweep with draws: the file reads', .not. allocated(err))
+      if (allocated(err)) return
+      call check('sweep with draws: every point has 3 draws', all(pts%n_draws == 3))
+      if (.not. all(pts%n_draws == 3)) return
+      ! each point against its draws run one by one
+      call read_deck(buffet, sweep_overrides(base), deck, err)
+      if (.not. allocated(err)) call make_plan(deck, plan, err)
+      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      if (allocated(err)) return
+      o = deck%output
+      o%history_periods = deck%solver%record_periods
+      velocity = [0.5_dp, 1.4_dp]
+      do p = 1, 2
+         do d = 1, 3
+            call run_draw(deck, plan%set, [velocity(p), 0.0_dp], d, u0, v0, o, res, err)
+            if (allocated(err)) then
+               call check('sweep with draws: a draw runs alone', .false., err%message)
+               return
+            end if
+            call draw_values(res, 0.25_dp, 1, v)
+            x(d) = v(1, n_draw_outputs)
+         end do
+         call mean_half_width(x, mean, hw)
+         call check_close('sweep with draws: point ' // str(p) // ': mean tip RMS = the draws ' &
+                          // 'run alone', pts(p)%draw_mean(1, n_draw_outputs), mean, 1.0e-12_dp)
+         call check_close('sweep with draws: point ' // str(p) // ': its 95 % half-width', &
+                          pts(p)%draw_ci(1, n_draw_outputs), hw, 1.0e-12_dp)
+         call check('sweep with draws: point ' // str(p) // ': the draws differ', hw > 0.0_dp)
+         call note('sweep with draws: U = ' // str(velocity(p)) // ' m/s: tip RMS ' // str(mean) &
+                   // ' +- ' // str(hw) // ' m (3 draws)')
+      end do
+      call check('sweep with draws: nearer U_c (1.66 m/s) the tube responds more', &
+                 pts(2)%draw_mean(1, n_draw_outputs) > pts(1)%draw_mean(1, n_draw_outputs))
+      !$ call omp_set_num_threads(2)
+      call sweep_job(base // '_2t', 1, 1, 0.0_dp, complete)
+      call check('sweep with draws: 2 threads give the same statistics bit for bit', &
+                 complete .and. same_statistics(base // '_2t.h5', pts))
+      !$ call omp_set_num_threads(1)
+      call sweep_job(base // '_part', 1, 2, 0.0_dp, complete)
+      call sweep_job(base // '_part', 2, 2, 0.0_dp, complete)
+      call merge_sweep(base // '_merged', [character(len=64) :: base // '_part.shard_2_of_2.h5', &
+         base // '_part.shard_1_of_2.h5'], .false., err)
+      call check('sweep with draws: two shards merge', .not. allocated(err))
+      call check('sweep with draws: the merged shards have the same statistics', &
+                 same_statistics(base // '_merged.h5', pts))
+      call sweep_job(base // '_resume', 1, 1, 1.0e-9_dp, complete)
+      call check('sweep with draws: a time limit stops it, the checkpoint kept', &
+                 .not. complete .and. file_exists(base // '_resume.checkpoint'))
+      call sweep_job(base // '_resume', 1, 1, 0.0_dp, complete)
+      call check('sweep with draws: resumed from the checkpoint, the same statistics', &
+                 complete .and. same_statistics(base // '_resume.h5', pts))
+      call remove_file(base // '.h5')
+      call remove_file(base // '_2t.h5')
+      call remove_file(base // '_merged.h5')
+      call remove_file(base // '_part.shard_1_of_2.h5')
+      call remove_file(base // '_part.shard_2_of_2.h5')
+      call remove_file(base // '_resume.h5')
+   end subroutine sweep_with_draws
+
+   !> The stopping rule of draws_target_ci on made-up draws of 2 stops.
+   subroutine stopping_rule()
+      type(deck_t) :: deck
+      real(dp) :: vals(12, 2, n_draw_outputs)
+      integer :: n, d
+      deck%turbulence%spectrum = 'table'
+      deck%turbulence%draws = 3
+      deck%turbulence%draws_target_ci = 0.1_dp
+      deck%turbulence%draws_max = 12
+      vals = 0.0_dp
+      ! stop 1's work rate 1 +- 0.1 alternating; stop 2 untouched; the tip 1 exactly
+      do d = 1, 12
+         vals(d, 1, 5) = 1.0_dp + 0.1_dp * (-1.0_dp)**d
+         vals(d, 1, 6) = 2.0_dp
+         vals(d, 1, n_draw_outputs) = 1.0_dp
+      end do
+      n = first_enough(deck, vals)
+      call check('stopping rule: not before draws = 3', .not. draws_enough(deck, vals, 2))
+      call check('stopping rule: stops at the first count within the target (' // str(n) &
+                 // ')', n < 12 .and. relative_half_width(vals(1:n, 1, 5)) <= 0.1_dp .and. &
+                 relative_half_width(vals(1:n - 1, 1, 5)) > 0.1_dp)
+      call check('stopping rule: an untouched support does not hold it up', n < 12)
+      vals(:, 2, 6) = [(real(mod(d, 2), dp), d = 1, 12)]   ! stop 2 now scattered: 1, 0, 1, ...
+      call check('stopping rule: a scattered support holds it up to draws_max', &
+                 first_enough(deck, vals) == 12)
+      deck%turbulence%draws_target_ci = 0.0_dp
+      call check('stopping rule: without a target, draws = 3 draws', &
+                 first_enough(deck, vals) == 3)
+   end subroutine stopping_rule
+
+   !> The first count at which draws_enough holds.
+   integer function first_enough(deck, vals) result(n)
+      type(deck_t), intent(in) :: deck
+      real(dp), intent(in) :: vals(:, :, :)
+      do n = 1, size(vals, 1)
+         if (draws_enough(deck, vals, n)) return
+      end do
+   end function first_enough
+
+   !> The target on the tube (transient, short correlation): the count collect_draws reaches
+   !> is the first whose tip RMS is within the target.
+   subroutine target_on_the_tube()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(transient_result_t) :: res1
+      type(error_t), allocatable :: err
+      type(deck_variable_t) :: none(0)
+      real(dp) :: nothing(0)
+      real(dp), allocatable :: u0(:), v0(:), vals(:, :, :)
+      integer :: n
+      real(dp), parameter :: target = 0.1_dp
+      call read_deck(buffet, [character(len=160) :: '&turbulence draws = 2, ' &
+         // 'correlation_length = 0.05, draws_target_ci = 0.1, draws_max = 8, ' &
+         // 'frequency_resolution_hz = 4.0 /', '&solver transient_periods = 1 /', &
+         '&forcing frequency_hz = 4.0 /'], deck, err)
+      if (.not. allocated(err)) call build_model(deck, model, u0, v0, err)
+      if (.not. allocated(err)) call run_draw(deck, none, nothing, 1, u0, v0, deck%output, &
+                                              res1, err)
+      if (.not. allocated(err)) call collect_draws(deck, none, nothing, u0, v0, deck%output, &
+                                                   res1, 0.25_dp, vals, err)
+      call check('target half-width: the draws run', .not. allocated(err))
+      if (allocated(err)) return
+      n = size(vals, 1)
+      call note('target half-width ' // str(target) // ': ' // str(n) // ' draws, tip RMS ' &
+                // 'relative half-width ' // str(relative_half_width(vals(:, 1, n_draw_outputs))))
+      call check('target half-width: within the target, or draws_max', n == 8 .or. &
+                 relative_half_width(vals(:, 1, n_draw_outputs)) <= target)
+      call check('target half-width: one draw fewer is not within it', n == 2 .or. &
+                 relative_half_width(vals(1:n - 1, 1, n_draw_outputs)) > target)
+      call check('target half-width: more than the first draws were needed', n > 2)
+   end subroutine target_on_the_tube
+end program test_flow_draws
