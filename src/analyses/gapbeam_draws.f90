@@ -24,7 +24,9 @@ module gapbeam_draws
    use gapbeam_model, only: model_t
    use gapbeam_settings, only: output_settings_t
    use gapbeam_results, only: transient_result_t
-   use gapbeam_flow_results, only: draw_statistics_t, n_draw_outputs, draw_output_names
+   use gapbeam_flow_results, only: draw_statistics_t, n_draw_outputs, draw_output_names, &
+      response_psd_t
+   use gapbeam_response_psd, only: add_draw_psd, finish_psd
    use gapbeam_deck_variable, only: deck_variable_t
    use gapbeam_deck_parameter, only: model_with_values
    use gapbeam_transient, only: integrate
@@ -111,7 +113,7 @@ contains
 
    !> Draws 2, 3, ... of a case whose draw 1 is `res1`, until draws_enough: vals(draw, stop,
    !> output) of every draw taken.
-   subroutine collect_draws(deck, vars, values, u, v, out, res1, t_rec, vals, err)
+   subroutine collect_draws(deck, vars, values, u, v, out, res1, t_rec, vals, err, rows, psd)
       type(deck_t), intent(in) :: deck                   !! deck
       type(deck_variable_t), intent(in) :: vars(:)       !! the case's variables
       real(dp), intent(in) :: values(:)                  !! their values
@@ -121,12 +123,17 @@ contains
       real(dp), intent(in) :: t_rec                      !! record length [s]
       real(dp), allocatable, intent(out) :: vals(:, :, :)
       type(error_t), allocatable, intent(out) :: err     !! a draw failed
+      !> with psd: the rows of its series (gapbeam_response_psd; `out` keeps the state history)
+      real(dp), intent(in), optional :: rows(:, :)
+      type(response_psd_t), intent(inout), optional :: psd   !! the response PSD over the draws
       type(transient_result_t) :: res
       real(dp), allocatable :: grown(:, :, :)
       integer :: ns, n
       ns = size(res1%peak_force)
       allocate(vals(max(deck%turbulence%draws, 2), max(ns, 1), n_draw_outputs))
       call draw_values(res1, t_rec, ns, vals(1, :, :))
+      if (present(psd)) call add_draw_psd(deck, res1, rows, psd, err)
+      if (allocated(err)) return
       n = 1
       do while (.not. draws_enough(deck, vals, n))
          n = n + 1
@@ -138,8 +145,11 @@ contains
          call run_draw(deck, vars, values, n, u, v, out, res, err)
          if (allocated(err)) return
          call draw_values(res, t_rec, ns, vals(n, :, :))
+         if (present(psd)) call add_draw_psd(deck, res, rows, psd, err)
+         if (allocated(err)) return
       end do
       vals = vals(1:n, :, :)
+      if (present(psd)) call finish_psd(psd)
    end subroutine collect_draws
 
    !> The statistics of every output over the draws vals(draw, stop, output): ns items (the

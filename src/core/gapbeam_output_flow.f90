@@ -4,7 +4,7 @@ module gapbeam_output_flow
    use gapbeam_output_studies, only: dataset_t
    implicit none
    private
-   public :: sweep_draw_sets
+   public :: sweep_draw_sets, psd_sets
 
    type(dataset_t), parameter :: sweep_draw_sets(*) = [ &
       dataset_t('/sweep/statistics/draws', '1', 'm', 'random draws (&turbulence draws) the ' &
@@ -56,4 +56,18 @@ module gapbeam_output_flow
       dataset_t('/sweep/statistics/tip_rms_displacement_ci', 'm', 'm', &
                 'half-width of the 95 % confidence interval of ' &
                 // '/sweep/statistics/tip_rms_displacement (Student t)')]
+
+   type(dataset_t), parameter :: psd_sets(*) = [ &
+      dataset_t('/statistics/psd_method', '1', '', 'how each draw''s spectrum was estimated ' &
+                // '(&turbulence psd_method: welch or periodogram)'), &
+      dataset_t('/statistics/psd_frequency', 'Hz', 'n_freq', 'frequencies of the response ' &
+                // 'spectral density'), &
+      dataset_t('/statistics/psd_node', '1', 'n_series', 'node of each series of the ' &
+                // 'response spectral density (&turbulence psd_nodes)'), &
+      dataset_t('/statistics/psd_plane', '1', 'n_series', 'plane of each series: 1 w, 2 v'), &
+      dataset_t('/statistics/psd', 'm2 Hz-1', 'series=n_series frequency=n_freq', &
+                'one-sided spectral density of the displacement of each series over the ' &
+                // 'history samples: mean over the draws'), &
+      dataset_t('/statistics/psd_ci', 'm2 Hz-1', 'series=n_series frequency=n_freq', &
+                'half-width of the 95 % confidence interval of /statistics/psd (Student t)')]
 end module gapbeam_output_flow

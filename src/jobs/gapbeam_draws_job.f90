@@ -14,6 +14,9 @@ module gapbeam_draws_job
    use gapbeam_flow_results, only: draw_statistics_t
    use gapbeam_deck_variable, only: deck_variable_t
    use gapbeam_draws, only: collect_draws, draw_statistics
+   use gapbeam_settings, only: output_settings_t
+   use gapbeam_flow_results, only: response_psd_t
+   use gapbeam_response_psd, only: psd_rows
    implicit none
    private
    public :: run_draws
@@ -22,17 +25,27 @@ contains
 
    !> The statistics of every output over the deck's &turbulence draws; res1 is the first
    !> draw's record, (u0, v0) the deck's initial state.
-   subroutine run_draws(dk, u0, v0, res1, stats, e)
+   subroutine run_draws(dk, u0, v0, out, res1, stats, e, psd)
       type(deck_t), intent(in) :: dk                      !! deck with a turbulence spectrum
       real(dp), intent(in) :: u0(:), v0(:)                !! the deck's initial state
+      type(output_settings_t), intent(in) :: out          !! what draw 1 recorded
       type(transient_result_t), intent(in) :: res1        !! draw 1
       type(draw_statistics_t), allocatable, intent(out) :: stats(:)
       type(error_t), allocatable, intent(out) :: e        !! a draw failed
+      !> with &turbulence psd_nodes: the response PSD over the draws (draw 1 with its state
+      !> history)
+      type(response_psd_t), intent(out), optional :: psd
       type(deck_variable_t) :: none(0)
-      real(dp), allocatable :: vals(:, :, :)
+      real(dp), allocatable :: vals(:, :, :), rows(:, :)
       real(dp) :: t_rec, nothing(0)
       t_rec = real(dk%solver%record_periods, dp) / dk%forcing%frequency_hz
-      call collect_draws(dk, none, nothing, u0, v0, dk%output, res1, t_rec, vals, e)
+      if (present(psd)) then
+         call psd_rows(dk, rows, psd, e)
+         if (.not. allocated(e)) call collect_draws(dk, none, nothing, u0, v0, out, res1, &
+                                                    t_rec, vals, e, rows, psd)
+      else
+         call collect_draws(dk, none, nothing, u0, v0, out, res1, t_rec, vals, e)
+      end if
       if (allocated(e)) return
       stats = draw_statistics(vals, size(res1%peak_force))
       write(output_unit, '(a)') str(size(vals, 1)) // ' draws done'
