@@ -34,6 +34,8 @@ program test_flow_draws
    use gapbeam_model, only: model_t
    use gapbeam_deck_variable, only: deck_variable_t
    use gapbeam_kinds, only: pi
+   use, intrinsic :: iso_fortran_env, only: int64
+   use gapbeam_random, only: splitmix64, stream_key
    use gapbeam_draw_statistics, only: periodogram_psd, dft, student_t_quantile
    use gapbeam_flow_results, only: response_psd_t
    use gapbeam_response_psd, only: psd_rows, add_draw_psd, finish_psd, segment_length
@@ -45,6 +47,7 @@ program test_flow_draws
    implicit none
    character(len=*), parameter :: buffet = 'test/decks/tube_turbulence.nml'
 
+   call mixer()
    call sweep_with_draws()
    call stopping_rule()
    call target_on_the_tube()
@@ -53,6 +56,18 @@ program test_flow_draws
    call finish('test_flow_draws')
 
 contains
+
+   !> The counter-based mixer: SplitMix64's published first output, keys that differ by draw
+   !> and substream (the wrapping version gave one key at -O3).
+   subroutine mixer()
+      call check('mixer: SplitMix64 of 0 = 0xE220A8397B1DCDAF (its first output from seed 0)', &
+                 splitmix64(0_int64) == -2152535657050944081_int64)
+      call check('mixer: the keys of draws 1, 2 and of another substream differ', &
+                 stream_key(3, 1, 2097153) /= stream_key(3, 2, 2097153) .and. &
+                 stream_key(3, 1, 2097153) /= stream_key(3, 1, 1048577))
+      call check('mixer: stream_key(3, 1, 2097153) = 7579640446160460174 (its value on 64-bit ' &
+                 // 'wrapping arithmetic)', stream_key(3, 1, 2097153) == 7579640446160460174_int64)
+   end subroutine mixer
 
    !> The overrides of the velocity sweep with draws, output PREFIX.
    function sweep_overrides(prefix) result(ov)
