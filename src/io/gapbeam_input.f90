@@ -20,6 +20,7 @@ module gapbeam_input
       present_group, given
    use gapbeam_input_axes, only: make_sweep_axes, check_continuation, check_sizes
    use gapbeam_input_flow, only: check_flow
+   use gapbeam_input_initial, only: check_initial
    use gapbeam_deck_apply, only: apply_visitor_t, source_where
    use gapbeam_deck_check, only: check_deck_values, deck_names_t, deck_names, group_variables
    use gapbeam_deck_table, only: walk_deck
@@ -87,6 +88,7 @@ contains
       call check_structure(srcs, deck, err);  if (failed(err, path)) return
       call check_stops(deck%structure, deck%stops, err);  if (failed(err, path)) return
       call check_loads(deck, err);  if (failed(err, path)) return
+      call check_initial(deck, err);  if (failed(err, path)) return
       call check_flow(deck, err);  if (failed(err, path)) return
       call check_settings(deck, err);  if (failed(err, path)) return
       call make_sweep_axes(srcs, deck, err);  if (failed(err, path)) return
