@@ -18,9 +18,10 @@ module gapbeam_input_initial
    use gapbeam_settings, only: initial_state_t
    use gapbeam_parameters, only: parameter_set_t, run_parameters
    use gapbeam_hdf5_input, only: h5_reader_t
+   use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v
    implicit none
    private
-   public :: check_initial
+   public :: check_initial, check_mechanism, rigid_planes
 
    !> Relative difference above which a structure value of the file differs from the deck's.
    real(dp), parameter :: same_tolerance = 1.0e-12_dp
@@ -90,10 +91,62 @@ contains
                   // "'translation' or 'given' can)")
                return
             end if
-            call read_initial_file(deck, err)
          end select
       end associate
+      if (deck%initial%kind == 'file' .and. .not. allocated(err)) call read_initial_file(deck, err)
    end subroutine check_initial
+
+   !> A beam that is a mechanism (a pinned root, a free tip and no spring in a plane: the
+   !> rigid rotation about the root in that plane, at zero frequency) is accepted when a stop
+   !> holds every rigid mode: a stop whose dof moves in the mode (a translation at a node past
+   !> the root, or a rotation; a circular clearance holds both planes). Otherwise refused.
+   subroutine check_mechanism(deck, err)
+      type(deck_t), intent(in) :: deck                     !! deck
+      type(error_t), allocatable, intent(inout) :: err     !! a rigid mode no stop holds
+      logical :: rigid(2), held(2)
+      character(len=1), parameter :: plane_name(2) = ['w', 'v']
+      integer :: p
+      if (allocated(err)) return
+      call rigid_planes(deck%structure, deck%stops, rigid, held)
+      do p = 1, 2
+         if (.not. rigid(p) .or. held(p)) cycle
+         call fatal_error(err, "group &root: condition = 'pinned' with a free tip and no " &
+            // '&springs in the ' // plane_name(p) // ' plane is a mechanism (rigid rotation ' &
+            // 'about the root) that no stop holds: add a stop in that plane (a flat stop at ' &
+            // 'a node past the root, or a circular clearance), support the tip (&tip ' &
+            // "condition = 'pinned', ...) or add springs")
+         return
+      end do
+   end subroutine check_mechanism
+
+   !> Per plane (w, v): whether the structure has a rigid mode (the rotation about a pinned
+   !> root with a free tip and no spring in the plane) and whether a stop holds it.
+   pure subroutine rigid_planes(st, stops, rigid, held)
+      type(structure_t), intent(in) :: st                  !! structure
+      type(stop_t), intent(in) :: stops(:)                 !! stops
+      logical, intent(out) :: rigid(2)                     !! a rigid mode in w, in v
+      logical, intent(out) :: held(2)                      !! a stop holds it
+      integer :: i
+      rigid = .false.;  held = .false.
+      if (st%root%condition /= 'pinned' .or. st%tip%condition /= 'free') return
+      rigid(1) = .true.
+      rigid(2) = st%beam%planes > 1
+      do i = 1, size(st%springs)
+         if (any(st%springs(i)%dof == [dof_w, dof_theta])) rigid(1) = .false.
+         if (any(st%springs(i)%dof == [dof_v, dof_theta_v])) rigid(2) = .false.
+      end do
+      do i = 1, size(stops)
+         associate (s => stops(i))
+            if (s%shape == 'circular') then
+               if (s%node > 1) held = .true.
+            else if (s%dof == dof_w .and. s%node > 1 .or. s%dof == dof_theta) then
+               held(1) = .true.
+            else if (s%dof == dof_v .and. s%node > 1 .or. s%dof == dof_theta_v) then
+               held(2) = .true.
+            end if
+         end associate
+      end do
+   end subroutine rigid_planes
 
    !> A variable of one kind given (non-zero) with another kind: refused.
    subroutine only_with(x, name, kind, given_kind, err)

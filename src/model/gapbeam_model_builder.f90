@@ -385,11 +385,11 @@ contains
             v0(g) = init%velocity(i)
          end do
       case ('rotation')
-         call rigid_field(model%sys, 1, init%angle, init%angle, u0)
-         call rigid_field(model%sys, 1, init%angular_velocity, init%angular_velocity, v0)
+         call rigid_field(model%sys, 1, init%angle, 0.0_dp, u0)
+         call rigid_field(model%sys, 1, init%angular_velocity, 0.0_dp, v0)
          if (model%sys%planes > 1) then
-            call rigid_field(model%sys, 3, init%angle_v, init%angle_v, u0)
-            call rigid_field(model%sys, 3, init%angular_velocity_v, init%angular_velocity_v, v0)
+            call rigid_field(model%sys, 3, init%angle_v, 0.0_dp, u0)
+            call rigid_field(model%sys, 3, init%angular_velocity_v, 0.0_dp, v0)
          end if
       case ('translation')
          call rigid_field(model%sys, 1, 0.0_dp, init%translation_velocity, v0)
