@@ -18,10 +18,10 @@ module gapbeam_input_initial
    use gapbeam_settings, only: initial_state_t
    use gapbeam_parameters, only: parameter_set_t, run_parameters
    use gapbeam_hdf5_input, only: h5_reader_t
-   use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v
+   use gapbeam_description, only: rigid_planes
    implicit none
    private
-   public :: check_initial, check_mechanism, rigid_planes
+   public :: check_initial, check_mechanism
 
    !> Relative difference above which a structure value of the file differs from the deck's.
    real(dp), parameter :: same_tolerance = 1.0e-12_dp
@@ -108,6 +108,20 @@ contains
       integer :: p
       if (allocated(err)) return
       call rigid_planes(deck%structure, deck%stops, rigid, held)
+      if (any(rigid) .and. deck%reduction%kind /= 'none') then
+         call fatal_error(err, "group &reduction: kind = '" // trim(deck%reduction%kind) &
+            // "' with a beam that is a mechanism (&root condition = 'pinned', a free tip, " &
+            // 'no &springs): a modal model needs a structure without rigid modes (its ' &
+            // "static modes solve K); use kind = 'none'")
+         return
+      end if
+      if (any(rigid) .and. any(deck%stops%rule_factor > 0.0_dp .and. &
+                               deck%stops%rule_f1_ratio > 0.0_dp)) then
+         call fatal_error(err, 'group &stops: rule_f1_ratio with a beam that is a mechanism ' &
+            // "(&root condition = 'pinned', a free tip, no &springs): its f1 with the stops " &
+            // 'open is 0, so the ratio sets no target; give rule_f1_hz or stiffness')
+         return
+      end if
       do p = 1, 2
          if (.not. rigid(p) .or. held(p)) cycle
          call fatal_error(err, "group &root: condition = 'pinned' with a free tip and no " &
@@ -118,35 +132,6 @@ contains
          return
       end do
    end subroutine check_mechanism
-
-   !> Per plane (w, v): whether the structure has a rigid mode (the rotation about a pinned
-   !> root with a free tip and no spring in the plane) and whether a stop holds it.
-   pure subroutine rigid_planes(st, stops, rigid, held)
-      type(structure_t), intent(in) :: st                  !! structure
-      type(stop_t), intent(in) :: stops(:)                 !! stops
-      logical, intent(out) :: rigid(2)                     !! a rigid mode in w, in v
-      logical, intent(out) :: held(2)                      !! a stop holds it
-      integer :: i
-      rigid = .false.;  held = .false.
-      if (st%root%condition /= 'pinned' .or. st%tip%condition /= 'free') return
-      rigid(1) = .true.
-      rigid(2) = st%beam%planes > 1
-      do i = 1, size(st%springs)
-         if (any(st%springs(i)%dof == [dof_w, dof_theta])) rigid(1) = .false.
-         if (any(st%springs(i)%dof == [dof_v, dof_theta_v])) rigid(2) = .false.
-      end do
-      do i = 1, size(stops)
-         associate (s => stops(i))
-            if (s%shape == 'circular') then
-               if (s%node > 1) held = .true.
-            else if (s%dof == dof_w .and. s%node > 1 .or. s%dof == dof_theta) then
-               held(1) = .true.
-            else if (s%dof == dof_v .and. s%node > 1 .or. s%dof == dof_theta_v) then
-               held(2) = .true.
-            end if
-         end associate
-      end do
-   end subroutine rigid_planes
 
    !> A variable of one kind given (non-zero) with another kind: refused.
    subroutine only_with(x, name, kind, given_kind, err)

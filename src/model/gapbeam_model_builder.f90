@@ -6,7 +6,8 @@ module gapbeam_model_builder
    use gapbeam_error, only: error_t, str, fatal_error
    use gapbeam_laws, only: builtin_laws, law_index
    use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, &
-      forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t
+      forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t, &
+      rigid_planes
    use gapbeam_settings, only: initial_state_t
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: model_t, system_t, global_dof
@@ -166,13 +167,16 @@ contains
       type(error_t), allocatable, intent(out) :: err  !! calibration or eigen failure
       real(dp), allocatable :: omega2(:)
       real(dp) :: f1_open
+      logical :: rigid(2), held(2)
 
       call resolve_stop_stiffness(st, stops, model%stop_stiffness, f1_open, err)
       if (allocated(err)) return
       model%f1_open_hz = f1_open
       call assemble(st, model%sys)
       model%n = model%sys%n_dof
-      call band_frequencies(model%sys, omega2, err)
+      call rigid_planes(st, stops, rigid, held)       ! held: the deck reader checked it
+      model%mechanism = any(rigid)
+      call band_frequencies(model%sys, omega2, err, mechanism=model%mechanism)
       if (allocated(err)) return
       model%omega_max = sqrt(maxval(omega2))
       model%beta = damping%mass_coefficient
