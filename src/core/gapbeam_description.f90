@@ -26,12 +26,13 @@ module gapbeam_description
    public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
    public :: beam_mass_per_length, stop_is_ring
    public :: beam_rho_i, beam_shear_stiffness, beam_shear_coefficient, beam_is_timoshenko
-   public :: modal_ratio
+   public :: modal_ratio, rigid_planes
    public :: rayleigh_from_ratios, modal_damping_ratio
    public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_name, law_code, law_bilinear, law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
       stop_shape_words, end_condition_words, tip_condition_words, beam_theory_words
-   public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words
+   public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words, &
+      psd_method_words, n_psd_nodes
 
    integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
    integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
@@ -53,6 +54,7 @@ module gapbeam_description
    character(len=*), parameter :: fluid_elastic_words = "'connors', 'none'"
    !> forms of the turbulence spectrum of &turbulence
    character(len=*), parameter :: spectrum_words = "'none', 'table', 'reduced'"
+   character(len=*), parameter :: psd_method_words = "'welch', 'periodogram'"
    !> planes a flow force acts in
    character(len=*), parameter :: flow_plane_words = "'both', 'w', 'v'"
    !> the geometry of a support that the wear scar takes (gapbeam_wear_geometry)
@@ -230,9 +232,23 @@ module gapbeam_description
       integer :: points_per_cycle = 6            !! record grid points per cycle at the cut-off
       integer :: seed = 1                        !! seed of the random phases
       integer :: draws = 1                       !! independent records per case
+      !> add draws until the 95 % half-width of every watched output is below this fraction
+      !> of its mean (0: off; docs/flow.md)
+      real(dp) :: draws_target_ci = 0.0_dp
+      integer :: draws_max = 100                 !! most draws with draws_target_ci
+      integer, allocatable :: psd_nodes(:)       !! nodes of the response PSD (none: no PSD)
+      character(len=16) :: psd_method = 'welch'  !! 'welch' or 'periodogram'
+      real(dp) :: psd_resolution_hz = 0.0_dp     !! Welch bin width (0: 1/4 of the record)
    end type turbulence_t
 
 contains
+
+   !> Number of nodes of the response PSD (&turbulence psd_nodes).
+   pure integer function n_psd_nodes(t)
+      type(turbulence_t), intent(in) :: t   !! turbulence
+      n_psd_nodes = 0
+      if (allocated(t%psd_nodes)) n_psd_nodes = size(t%psd_nodes)
+   end function n_psd_nodes
 
    !> Bending stiffness EI [N m^2].
    pure function beam_ei(b) result(ei)
@@ -410,4 +426,33 @@ contains
       w = 2.0_dp * pi * f_hz
       zeta = beta / (2.0_dp * w) + gamma * w / 2.0_dp
    end function modal_damping_ratio
+
+   !> Per plane (w, v): whether the structure has a rigid mode (the rotation about a pinned
+   !> root with a free tip and no spring in the plane) and whether a stop holds it.
+   pure subroutine rigid_planes(st, stops, rigid, held)
+      type(structure_t), intent(in) :: st                  !! structure
+      type(stop_t), intent(in) :: stops(:)                 !! stops
+      logical, intent(out) :: rigid(2)                     !! a rigid mode in w, in v
+      logical, intent(out) :: held(2)                      !! a stop holds it
+      integer :: i
+      rigid = .false.;  held = .false.
+      if (st%root%condition /= 'pinned' .or. st%tip%condition /= 'free') return
+      rigid(1) = .true.
+      rigid(2) = st%beam%planes > 1
+      do i = 1, size(st%springs)
+         if (any(st%springs(i)%dof == [dof_w, dof_theta])) rigid(1) = .false.
+         if (any(st%springs(i)%dof == [dof_v, dof_theta_v])) rigid(2) = .false.
+      end do
+      do i = 1, size(stops)
+         associate (s => stops(i))
+            if (s%shape == 'circular') then
+               if (s%node > 1) held = .true.
+            else if (s%dof == dof_w .and. s%node > 1 .or. s%dof == dof_theta) then
+               held(1) = .true.
+            else if (s%dof == dof_v .and. s%node > 1 .or. s%dof == dof_theta_v) then
+               held(2) = .true.
+            end if
+         end associate
+      end do
+   end subroutine rigid_planes
 end module gapbeam_description

@@ -82,6 +82,8 @@ contains
       associate (md => self%model, s0 => self%sub(self%ix(k)), s1 => self%sub(self%ix(k + 1)))
          do r = 1, md%n_rings
             call ring_state_at(md, s0, s1, r, h, 0.0_dp, act0, val0)
+            ! opened at a located release, whatever force the law leaves there
+            if (s0%mode(r) == ring_open .and. s0%fn(r) <= 0.0_dp) act0 = .false.
             do m = 1, n_sample
                hi = real(m, dp) / n_sample
                if (hi >= th) exit
@@ -146,11 +148,21 @@ contains
             s%mode(r) = onset_mode;  s%sigma(r) = onset_sigma
             call ring_geometry(md, r, s%u(md%r_dof(:, r)), d, n, t, tau, gt)
             s%anchor(r) = tau
+         else if (r > 0 .and. .not. self%ev_friction) then
+            ! a located release: the step redone to the event may end a hair before it, with
+            ! a vanishing normal force; it opens here (held in its regime over the next step,
+            ! the wear meter would count the free flight as sliding or stick)
+            s%mode(r) = ring_open
+            call ring_geometry(md, r, s%u(md%r_dof(:, r)), d, n, t, tau, gt)
+            s%anchor(r) = tau
          end if
          if (jump) then
             call self%restart_after_event(k)
          else
             pr = ring_load(md, s)
+            if (r > 0 .and. .not. (self%ev_onset .or. self%ev_friction)) then
+               s%fn(r) = 0.0_dp;  s%ft(r) = 0.0_dp
+            end if
          end if
       end associate
    end subroutine ring_switches
@@ -225,7 +237,8 @@ contains
 
    !> The ring forces at a located switch of ring `re` (0: a scalar contact's), right limit:
    !> a ring that closes there (onset) is taken as touching even if round-off puts it a hair
-   !> outside; then the acceleration in equilibrium with every force.
+   !> outside, one that opens there (release) carries no force; then the acceleration in
+   !> equilibrium with every force.
    subroutine restart_rings(model, re, onset, s)
       type(model_t), intent(in) :: model        !! model
       integer, intent(in) :: re                 !! ring of the event (<= 0: none)
@@ -238,6 +251,10 @@ contains
          call ring_force(model, r, s%mode(r), s%sigma(r), s%anchor(r), s%u(model%r_dof(:, r)), &
                          s%v(model%r_dof(:, r)), pp, s%fn(r), s%ft(r), &
                          touching=(r == re .and. onset))
+         if (r == re .and. .not. onset) then
+            ! released here: no force on the right
+            pp = 0.0_dp;  s%fn(r) = 0.0_dp;  s%ft(r) = 0.0_dp
+         end if
          pr(model%r_dof(:, r)) = pr(model%r_dof(:, r)) + pp
       end do
       call equilibrium_acceleration(model, s%t, s%u, s%v, s%f, s%a, pr)
