@@ -585,7 +585,8 @@ contains
       call check('a variable on both axes is refused', allocated(err) .and. &
                  has(err, 'both name'))
       call read_deck('inputs/tube_multispan.nml', [character(len=160) :: &
-         "&job analysis = 'sweep' /", "&diagnostics lyapunov_periods = 10 /"], deck, err)
+         "&job analysis = 'sweep' /", '&sweep frequency_hz = 8.0 /', &
+         '&diagnostics lyapunov_periods = 10 /'], deck, err)
       call check('an exponent asked for with ring supports is taken', .not. allocated(err) &
                  .and. deck%diagnostics%lyapunov_periods == 10)
    end subroutine sweep_over_clearance
