@@ -50,7 +50,7 @@ module gapbeam_exponent_pair
    use gapbeam_ring_contact, only: ring_stick, ring_geometry, ring_tangent_gap, update_ring_modes
    implicit none
    private
-   public :: pair_t, pair_start, pair_period, state_separation
+   public :: pair_t, pair_start, pair_period
 
    !> The two trajectories and the separation they started the period with.
    type :: pair_t
