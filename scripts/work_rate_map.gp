@@ -84,9 +84,11 @@ regime(cf, l, p) = (l < -2.5) ? "F" : ((cf <= 0) ? "" : ((cf < 0.5) ? "I" : "S")
 # what disputes the certificate (column 22, absent in older files)
 dmark(dummy) = !valid(22) ? "" : (column(22) == 1 ? "!" : (column(22) == 2 ? "t" : \
    (column(22) == 3 ? "?" : "")))
-set label 1 "I impacting, S sustained contact (sliding whirl); digit: period, C chaotic, u unsettled; F failed; white: no contact; disputed: t chaotic transient, ! contradiction, ? a check disagrees" \
+set label 2 "certificate disputed: t chaotic transient (then a period), ! contradiction in the label's evidence, ? a check run disagrees" \
+   at graph 0.0, graph -0.17 font ",9"
+set label 1 "I impacting, S sustained contact (sliding whirl); digit: period, C chaotic, u unsettled; F failed; white: no contact" \
    at graph 0.0, graph -0.13 font ",9"
-set bmargin 6
+set bmargin 7
 plot datafile using 1:($2*yscale):(hf):(ha):($18 > 0 ? log10($18) : NaN) \
         with boxxyerror fc palette, \
      datafile using 1:($18 > 0 ? NaN : $2*yscale):(hf):(ha) \
