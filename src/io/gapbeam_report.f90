@@ -443,6 +443,8 @@ contains
       call h5%put(g // 'attractors/label', diag%attractor_label)
       call h5%put(g // 'attractors/fraction', diag%attractor_fraction)
       call h5%put(g // 'attractors/lyapunov', diag%attractor_lyapunov)
+      call h5%put(g // 'starts/transient_periods', diag%start_transient)
+      call h5%put(g // 'attractors/mean_transient_periods', diag%attractor_transient)
    end subroutine write_diagnostics
 
    !> PREFIX.history.dat and PREFIX.poincare.dat.

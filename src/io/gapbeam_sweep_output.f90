@@ -23,7 +23,8 @@ module gapbeam_sweep_output
    use gapbeam_hdf5_input, only: h5_reader_t
    use gapbeam_files, only: real_path, file_exists
    use gapbeam_output_set, only: output_set_t
-   use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
+   use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed, &
+      dispute_kind
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_parameter_set, write_model
@@ -488,8 +489,8 @@ contains
       type(h5_writer_t), intent(inout) :: h5             !! writer
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points
-      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :)
-      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :)
+      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :), a_tr(:, :)
+      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :), s_tr(:, :)
       call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
                         a_label, a_frac, a_lyap)
       call h5%put('/sweep/starts/kind', sf%start_kind)
@@ -499,7 +500,35 @@ contains
       call h5%put('/sweep/attractors/label', a_label)
       call h5%put('/sweep/attractors/fraction', a_frac)
       call h5%put('/sweep/attractors/lyapunov', a_lyap)
+      call transient_tables(results, sf%points, size(sf%start_kind), s_tr, a_tr)
+      call h5%put('/sweep/starts/transient_periods', s_tr)
+      call h5%put('/sweep/attractors/mean_transient_periods', a_tr)
    end subroutine write_starts
+
+   !> The starts' transient periods (0 past the end) and the attractors' means (NaN past the
+   !> end), (n_starts, points).
+   subroutine transient_tables(results, points, ns, s_tr, a_tr)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: ns                          !! starts per point
+      integer, allocatable, intent(out) :: s_tr(:, :)    !! per start
+      real(dp), allocatable, intent(out) :: a_tr(:, :)   !! per attractor
+      integer :: j, n
+      allocate(s_tr(ns, size(points)), source=0)
+      allocate(a_tr(ns, size(points)), source=ieee_value(0.0_dp, ieee_quiet_nan))
+      do j = 1, size(points)
+         associate (r => results(points(j)))
+            if (allocated(r%start_transient)) then
+               n = min(ns, size(r%start_transient))
+               s_tr(1:n, j) = r%start_transient(1:n)
+            end if
+            if (allocated(r%attractor_transient)) then
+               n = min(ns, size(r%attractor_transient))
+               a_tr(1:n, j) = r%attractor_transient(1:n)
+            end if
+         end associate
+      end do
+   end subroutine transient_tables
 
    !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
    !> with its axis values and the point's label and certificate), under the set's temporary
@@ -509,7 +538,7 @@ contains
       type(output_set_t), intent(inout) :: set           !! the set
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
-      integer, parameter :: nc = 21
+      integer, parameter :: nc = 22
       integer :: m, ns, nr, nl, j, p
       real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
       character(len=24) :: names(nc), units(nc), xn, yn, xu, yu
@@ -544,6 +573,9 @@ contains
          cols(j, 11) = results(p)%status;  cols(j, 12) = results(p)%certificate
          cols(j, 13) = results(p)%n_attractors;  cols(j, 14) = results(p)%lyapunov_periods
          cols(j, 15) = results(p)%transient_periods
+         cols(j, 22) = 0
+         if (allocated(results(p)%certificate_reason)) cols(j, 22) = dispute_kind( &
+            results(p)%certificate, results(p)%certificate_reason)
       end do
       cols(:, 16) = f;  cols(:, 17) = a
       names = [character(len=24) :: xn, yn, &
@@ -551,15 +583,16 @@ contains
          'rms_force_stop1', 'work_rate_stop1', 'status', 'certificate', 'n_attractors', &
          'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp', &
          'normal_work_rate_total', 'wear_volume_rate_total', 'contact_fraction_max', &
-         'impacts_total']
+         'impacts_total', 'dispute']
       units = [character(len=24) :: xu, yu, 'periods', 'p|0|-1|-2|-3', '1/s', &
          '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm', 'W', &
-         'm3/s', '-', '-']
+         'm3/s', '-', '-', '0|1|2|3']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call set%table('.sweep.dat', sf%title // ': sweep points (label: p = period,' &
          // ' 0 undecided, -1 chaotic, -2 unsettled, -3 failed; certificate: 1 certified,' &
-         // ' 2 disputed, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
+         // ' 2 disputed, 0 none; dispute: 1 contradiction, 2 chaotic transient, 3 a check' &
+         // ' disagrees, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
          // ' from ' // num(minval(sf%grid_x)) // ' to ' // num(maxval(sf%grid_x)) // ' ' &
          // one_word(xu) // ', ' // str(size(sf%grid_y)) // ' ' // trim(yn) // ' from ' &
          // num(minval(sf%grid_y)) // ' to ' // num(maxval(sf%grid_y)) // ' ' // one_word(yu), &
@@ -653,9 +686,10 @@ contains
       type(stat_t) :: st(size(stat_names))
       type(text_list_t) :: tv(size(text_names))
       integer :: total, j, n, k
-      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:)
+      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:), &
+         s_tr(:, :)
       real(dp), allocatable :: rv(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), &
-         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:)
+         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:), a_tr(:, :)
       character(len=:), allocatable :: kinds(:), axis_order
       type(point_result_t), allocatable :: drawn(:)
       logical :: aligned, ok
@@ -721,6 +755,14 @@ contains
       call h5%read('/sweep/attractors/label', a_label)
       call h5%read('/sweep/attractors/fraction', a_frac)
       call h5%read('/sweep/attractors/lyapunov', a_lyap)
+      ! the starts' transients (absent in files written before them: zero, NaN)
+      if (h5%exists('/sweep/starts/transient_periods')) then
+         call h5%read('/sweep/starts/transient_periods', s_tr)
+         call h5%read('/sweep/attractors/mean_transient_periods', a_tr)
+      else
+         allocate(s_tr, mold=s_label);  s_tr = 0
+         allocate(a_tr, mold=a_lyap);  a_tr = ieee_value(0.0_dp, ieee_quiet_nan)
+      end if
       sf%has_model = h5%exists('/model')
       allocate(drawn(n))
       call read_sweep_statistics(h5, drawn, [(j, j = 1, n)], ok)
@@ -758,8 +800,9 @@ contains
             ! the running estimate without the padding past the point's own periods
             r%lyapunov_running = lr(1:min(size(lr, 1), max(0, r%lyapunov_periods)), j)
             r%start_label = s_label(:, j);  r%start_attractor = s_attr(:, j)
-            r%start_lyapunov = s_lyap(:, j)
+            r%start_lyapunov = s_lyap(:, j);  r%start_transient = s_tr(:, j)
             k = r%n_attractors
+            r%attractor_transient = a_tr(1:k, j)
             r%attractor_label = a_label(1:k, j)
             r%attractor_fraction = a_frac(1:k, j)
             r%attractor_lyapunov = a_lyap(1:k, j)
