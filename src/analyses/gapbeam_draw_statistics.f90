@@ -15,7 +15,7 @@ module gapbeam_draw_statistics
    use gapbeam_fft, only: fft
    implicit none
    private
-   public :: student_t_quantile, mean_half_width, welch_psd, incomplete_beta, relative_half_width
+   public :: student_t_quantile, mean_half_width, welch_psd
 
 contains
 
