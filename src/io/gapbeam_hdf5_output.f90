@@ -69,12 +69,10 @@ module gapbeam_hdf5_output
       type(error_t), allocatable :: err                !! the first failure
    contains
       procedure :: create => writer_create             !! create `path.part` for an analysis
-      procedure, private :: put_r0, put_r1, put_r2, put_r3, put_i0, put_i1, put_i2
-      procedure, private :: put_text, put_strings
-      !> A dataset described by the catalogue: real scalar or rank 1-3, integer scalar or rank
-      !> 1-2, a text, a string array.
-      generic :: put => put_r0, put_r1, put_r2, put_r3, put_i0, put_i1, put_i2, put_text, &
-         put_strings
+      procedure, private :: put_real, put_integer, put_text, put_strings
+      !> A dataset described by the catalogue: reals or integers of any rank, a text, a string
+      !> array.
+      generic :: put => put_real, put_integer, put_text, put_strings
       procedure :: attr => writer_attr                 !! string attribute of an object
       procedure :: copy_from => writer_copy_from       !! a group copied from another file
       procedure :: exists => writer_exists             !! whether a dataset or group exists
@@ -122,78 +120,48 @@ contains
          // 'writable?)')
    end subroutine writer_create
 
-   !> Real scalar.
-   subroutine put_r0(self, path, value, units, fill)
+   !> Reals of rank 0 to 3 (an array may have size 0), stored with the Fortran shape; the
+   !> catalogue's entry says which rank the dataset has.
+   subroutine put_real(self, path, value, units, fill)
       class(h5_writer_t), intent(inout) :: self          !! writer
       character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value                      !! value
+      real(dp), intent(in) :: value(..)                  !! value(s)
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, [integer(hsize_t) ::], [value], units, fill)
-   end subroutine put_r0
+      real(dp), allocatable, target :: flat(:)
+      type(c_ptr) :: buf
+      select rank (value)
+      rank (0);  flat = [value]
+      rank (1);  flat = value
+      rank (2);  flat = reshape(value, [size(value)])
+      rank (3);  flat = reshape(value, [size(value)])
+      end select
+      call note(self, .not. allocated(flat), q(path) // ': rank above 3')
+      buf = c_null_ptr
+      if (size(value) > 0 .and. allocated(flat)) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_DOUBLE, shape(value, hsize_t), buf, units, fill)
+   end subroutine put_real
 
-   !> Real rank-1 array (size 0 allowed).
-   subroutine put_r1(self, path, value, units, fill)
+   !> Integers of rank 0 to 3, as put_real.
+   subroutine put_integer(self, path, value, units, fill)
       class(h5_writer_t), intent(inout) :: self          !! writer
       character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:)                   !! values
+      integer, intent(in) :: value(..)                   !! value(s)
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), [value], units, fill)
-   end subroutine put_r1
-
-   !> Real rank-2 array, stored with the Fortran shape.
-   subroutine put_r2(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:, :)                !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), reshape(value, [size(value)]), units, &
-                     fill)
-   end subroutine put_r2
-
-   !> Real rank-3 array, stored with the Fortran shape.
-   subroutine put_r3(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:, :, :)             !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), reshape(value, [size(value)]), units, &
-                     fill)
-   end subroutine put_r3
-
-   !> Integer scalar.
-   subroutine put_i0(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value                       !! value
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, [integer(hsize_t) ::], [value], units, fill)
-   end subroutine put_i0
-
-   !> Integer rank-1 array (size 0 allowed).
-   subroutine put_i1(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value(:)                    !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, shape(value, hsize_t), [value], units, fill)
-   end subroutine put_i1
-
-   !> Integer rank-2 array, stored with the Fortran shape.
-   subroutine put_i2(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value(:, :)                 !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, shape(value, hsize_t), reshape(value, [size(value)]), &
-                        units, fill)
-   end subroutine put_i2
+      integer, allocatable, target :: flat(:)
+      type(c_ptr) :: buf
+      select rank (value)
+      rank (0);  flat = [value]
+      rank (1);  flat = value
+      rank (2);  flat = reshape(value, [size(value)])
+      rank (3);  flat = reshape(value, [size(value)])
+      end select
+      call note(self, .not. allocated(flat), q(path) // ': rank above 3')
+      buf = c_null_ptr
+      if (size(value) > 0 .and. allocated(flat)) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_INTEGER, shape(value, hsize_t), buf, units, fill)
+   end subroutine put_integer
 
    !> A text, whole (newlines kept), as one scalar string.
    subroutine put_text(self, path, text, fill)
@@ -212,32 +180,6 @@ contains
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
       call put_chars(self, path, value, .false., fill)
    end subroutine put_strings
-
-   !> Reals with shape `dims` (column-major) as a new dataset.
-   subroutine put_reals(self, path, dims, flat, units, fill)
-      class(h5_writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer(hsize_t), intent(in) :: dims(:)
-      real(dp), intent(in), target :: flat(:)
-      character(len=*), intent(in), optional :: units, fill
-      type(c_ptr) :: buf
-      buf = c_null_ptr
-      if (size(flat) > 0) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_DOUBLE, dims, buf, units, fill)
-   end subroutine put_reals
-
-   !> Integers with shape `dims` (column-major) as a new dataset.
-   subroutine put_integers(self, path, dims, flat, units, fill)
-      class(h5_writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer(hsize_t), intent(in) :: dims(:)
-      integer, intent(in), target :: flat(:)
-      character(len=*), intent(in), optional :: units, fill
-      type(c_ptr) :: buf
-      buf = c_null_ptr
-      if (size(flat) > 0) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_INTEGER, dims, buf, units, fill)
-   end subroutine put_integers
 
    !> Strings as fixed-length, NUL-padded UTF-8: one scalar holding `value(1)` whole
    !> (`scalar`), or a rank-1 array of `len(value)` bytes each.
