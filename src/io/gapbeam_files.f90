@@ -24,7 +24,7 @@ module gapbeam_files
       c_associated, c_long
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    implicit none
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
@@ -521,7 +521,7 @@ contains
       if (stored /= expected) then
          call remove_file(p)
          call fatal_error(err, here(proc) // 'file ' // q(p) // ' is incomplete: ' &
-            // str_int64(stored) // ' of ' // str_int64(expected) // ' bytes stored (a full ' &
+            // str(stored) // ' of ' // str(expected) // ' bytes stored (a full ' &
             // 'disk, or the file size limit?); it was deleted')
       end if
    end subroutine close_file
@@ -595,27 +595,10 @@ contains
       end do
    end function one_line
 
-   !> A 64-bit integer as text.
-   pure function str_int64(i) result(s)
-      integer(int64), intent(in) :: i                    !! value
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write(buf, '(i0)') i
-      s = trim(buf)
-   end function str_int64
-
    !> Message prefix 'gapbeam_files:<proc>: '.
    pure function here(proc) result(s)
       character(len=*), intent(in) :: proc               !! procedure name
       character(len=:), allocatable :: s
       s = module_name // ':' // proc // ': '
    end function here
-
-   !> Text in single quotes.
-   pure function q(s) result(quoted)
-      character(len=*), intent(in) :: s                  !! text
-      character(len=:), allocatable :: quoted
-      quoted = "'" // s // "'"
-   end function q
-
 end module gapbeam_files

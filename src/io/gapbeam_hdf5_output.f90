@@ -29,7 +29,7 @@
 module gapbeam_hdf5_output
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_files, only: rename_file, remove_file
    use gapbeam_output_catalogue, only: dataset_t, describe, dims_attribute, dims_rank, &
       long_name_text
@@ -46,7 +46,7 @@ module gapbeam_hdf5_output
    private
    public :: h5_writer_t
    ! shared with gapbeam_hdf5_input, the reader
-   public :: library_open, file_access_list, path_exists, at, q
+   public :: library_open, file_access_list, path_exists, at
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an identifier not (or no longer) open
@@ -129,17 +129,21 @@ contains
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
       real(dp), allocatable, target :: flat(:)
+      integer(hsize_t), allocatable :: dims(:)
       type(c_ptr) :: buf
-      select rank (value)
-      rank (0);  flat = [value]
-      rank (1);  flat = value
-      rank (2);  flat = reshape(value, [size(value)])
-      rank (3);  flat = reshape(value, [size(value)])
-      end select
-      call note(self, .not. allocated(flat), q(path) // ': rank above 3')
+      call flat_shape(self, path, shape(value, hsize_t), rank(value), dims)
+      allocate(flat(product(dims)))
+      if (size(flat) > 0) then
+         select rank (value)
+         rank (0);  flat = [value]
+         rank (1);  flat = value
+         rank (2);  flat = reshape(value, [size(flat)])
+         rank (3);  flat = reshape(value, [size(flat)])
+         end select
+      end if
       buf = c_null_ptr
-      if (size(value) > 0 .and. allocated(flat)) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_DOUBLE, shape(value, hsize_t), buf, units, fill)
+      if (size(flat) > 0) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_DOUBLE, dims, buf, units, fill)
    end subroutine put_real
 
    !> Integers of rank 0 to 3, as put_real.
@@ -150,18 +154,36 @@ contains
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
       integer, allocatable, target :: flat(:)
+      integer(hsize_t), allocatable :: dims(:)
       type(c_ptr) :: buf
-      select rank (value)
-      rank (0);  flat = [value]
-      rank (1);  flat = value
-      rank (2);  flat = reshape(value, [size(value)])
-      rank (3);  flat = reshape(value, [size(value)])
-      end select
-      call note(self, .not. allocated(flat), q(path) // ': rank above 3')
+      call flat_shape(self, path, shape(value, hsize_t), rank(value), dims)
+      allocate(flat(product(dims)))
+      if (size(flat) > 0) then
+         select rank (value)
+         rank (0);  flat = [value]
+         rank (1);  flat = value
+         rank (2);  flat = reshape(value, [size(flat)])
+         rank (3);  flat = reshape(value, [size(flat)])
+         end select
+      end if
       buf = c_null_ptr
-      if (size(value) > 0 .and. allocated(flat)) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_INTEGER, shape(value, hsize_t), buf, units, fill)
+      if (size(flat) > 0) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_INTEGER, dims, buf, units, fill)
    end subroutine put_integer
+
+   !> The dimensions of a value of rank 0 to 3 (a higher rank is refused): gfortran (12) gives
+   !> an empty array expression passed as assumed rank (`real(z)` of an empty z) the extent -1,
+   !> taken as 0 here.
+   subroutine flat_shape(self, path, extents, r, dims)
+      class(h5_writer_t), intent(inout) :: self          !! writer
+      character(len=*), intent(in) :: path               !! dataset
+      integer(hsize_t), intent(in) :: extents(:)         !! shape() of the value
+      integer, intent(in) :: r                           !! its rank
+      integer(hsize_t), allocatable, intent(out) :: dims(:)   !! dimensions to store
+      dims = max(0_hsize_t, extents)
+      call note(self, r > 3, q(path) // ': a value of rank ' // str(r) // ' (at most 3)')
+      if (r > 3) dims = [integer(hsize_t) :: 0]
+   end subroutine flat_shape
 
    !> A text, whole (newlines kept), as one scalar string.
    subroutine put_text(self, path, text, fill)
@@ -561,13 +583,6 @@ contains
       if (hdferr == 0) call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
       if (hdferr /= 0) call h5tclose_f(type_id, status)
    end subroutine string_type
-
-   !> Text in single quotes.
-   pure function q(s) result(quoted)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: quoted
-      quoted = "'" // s // "'"
-   end function q
 
    !> `message` without its leading `prefix`.
    pure function without_prefix(message, prefix) result(s)

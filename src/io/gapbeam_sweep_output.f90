@@ -26,7 +26,7 @@ module gapbeam_sweep_output
    use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_file_info, only: write_parameter_set, write_model
+   use gapbeam_file_info, only: write_parameter_set, write_model, udunits
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, &
       set_int_fields, real_fields, set_real_fields, text_field, set_text_field, stop_names, &
       stop_field, set_stop_field
@@ -309,14 +309,14 @@ contains
       call h5%put('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp)
       call h5%put('/sweep/x_variable', sf%x_variable)
       call h5%put('/sweep/y_variable', sf%y_variable)
-      call h5%put('/sweep/grid_x', sf%grid_x, units=unit_string(sf%x_units), fill=sf%x_variable)
-      call h5%put('/sweep/grid_y', sf%grid_y, units=unit_string(sf%y_units), fill=sf%y_variable)
+      call h5%put('/sweep/grid_x', sf%grid_x, units=udunits(sf%x_units), fill=sf%x_variable)
+      call h5%put('/sweep/grid_y', sf%grid_y, units=udunits(sf%y_units), fill=sf%y_variable)
       call h5%put('/sweep/shard_index', sf%shard_index)
       call h5%put('/sweep/shard_count', sf%shard_count)
       call h5%put('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y))
       call h5%put('/sweep/point_index', sf%points)
-      call h5%put('/sweep/x', x, units=unit_string(sf%x_units))
-      call h5%put('/sweep/y', y, units=unit_string(sf%y_units))
+      call h5%put('/sweep/x', x, units=udunits(sf%x_units))
+      call h5%put('/sweep/y', y, units=udunits(sf%y_units))
       call h5%put('/sweep/frequency_hz', f)
       call h5%put('/sweep/amplitude_pp', a)
       allocate(iv(size(int_names), m), rv(size(real_names), m))
@@ -458,14 +458,6 @@ contains
          [character(len=24) :: xn, yn, 'strain', 'strain_rate', 'label', 'certificate'], &
          [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols)
    end subroutine sweep_tables
-
-   !> A deck variable's unit as UDUNITS-2 ('-' is '1', a pure number).
-   pure function unit_string(u) result(t)
-      character(len=*), intent(in) :: u                  !! unit ('-', 'm', 'N m/rad', ...)
-      character(len=:), allocatable :: t
-      t = trim(u)
-      if (t == '-' .or. len(t) == 0) t = '1'
-   end function unit_string
 
    !> Column name of an axis: 'frequency' and 'amplitude_pp' for the forcing (as before),
    !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2'); an axis of several
