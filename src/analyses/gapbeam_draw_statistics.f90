@@ -10,12 +10,19 @@
 !>   segment's mean removed; P(f_k) = 2 |X_k|^2 / (f_s sum w^2) at f_k = k f_s / n_seg,
 !>   0 < k < n_seg/2 (k = 0 and n_seg/2 without the 2), averaged over the segments; its
 !>   integral over f is the signal's variance (Parseval, for the windowed segments).
+!> * Periodogram: the whole signal of n samples (any n), no window, mean removed;
+!>   P(f_k) = 2 |X_k|^2 dt / n at f_k = k / (n dt), 0 < k < n/2 (k = 0 and n/2 without the 2):
+!>   its sum times 1/(n dt) is the variance exactly (Parseval), and a signal periodic in the
+!>   n samples has no leakage. The DFT of any length by Bluestein's chirp z-transform (three
+!>   power-of-two FFTs of length >= 2n - 1).
 module gapbeam_draw_statistics
+   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
-   use gapbeam_fft, only: fft
+   use gapbeam_fft, only: fft, next_power_of_two
    implicit none
    private
-   public :: student_t_quantile, mean_half_width, welch_psd
+   public :: student_t_quantile, mean_half_width, welch_psd, relative_half_width, &
+      periodogram_psd, dft
 
 contains
 
@@ -167,4 +174,60 @@ contains
       psd = psd / (real(n_avg, dp) * norm)
       psd(2:half) = 2.0_dp * psd(2:half)
    end subroutine welch_psd
+
+   !> The forward DFT X_k = sum_j x_j exp(-2 pi i j k / n) of any length n (Bluestein: with
+   !> w_m = exp(i pi m^2 / n), X_k = conj(w_k) sum_j (x_j conj(w_j)) w_(k-j), the convolution
+   !> by power-of-two FFTs; m^2 reduced modulo 2n in integers, so the chirp is exact).
+   pure function dft(x) result(xk)
+      complex(dp), intent(in) :: x(:)         !! signal
+      complex(dp) :: xk(size(x))
+      complex(dp), allocatable :: a(:), b(:), w(:)
+      integer :: n, m, j
+      integer(int64) :: q
+      n = size(x)
+      if (n == 0) return
+      if (iand(n, n - 1) == 0) then
+         xk = x
+         call fft(xk, -1)
+         return
+      end if
+      allocate(w(0:n - 1))
+      do j = 0, n - 1
+         q = mod(int(j, int64) * int(j, int64), 2_int64 * n)
+         w(j) = exp(cmplx(0.0_dp, pi * real(q, dp) / real(n, dp), dp))
+      end do
+      m = next_power_of_two(2 * n - 1)
+      allocate(a(m), b(m), source=(0.0_dp, 0.0_dp))
+      a(1:n) = x * conjg(w)
+      b(1:n) = w
+      do j = 1, n - 1
+         b(m - j + 1) = w(j)
+      end do
+      call fft(a, -1)
+      call fft(b, -1)
+      a = a * b
+      call fft(a, +1)
+      xk = conjg(w) * a(1:n) / real(m, dp)
+   end function dft
+
+   !> The one-sided periodogram of x sampled every dt (the module header): frequencies
+   !> k / (n dt), k = 0..n/2 [Hz], and the density [unit^2/Hz].
+   pure subroutine periodogram_psd(x, dt, f, psd)
+      real(dp), intent(in) :: x(:)                   !! samples
+      real(dp), intent(in) :: dt                     !! sample interval [s]
+      real(dp), allocatable, intent(out) :: f(:)     !! frequencies [Hz]
+      real(dp), allocatable, intent(out) :: psd(:)   !! density
+      complex(dp), allocatable :: z(:)
+      integer :: n, half, k
+      n = size(x)
+      half = n / 2
+      f = [(real(k, dp) / (real(n, dp) * dt), k = 0, half)]
+      z = dft(cmplx(x - sum(x) / real(max(n, 1), dp), 0.0_dp, dp))
+      psd = [(abs(z(k + 1))**2 * dt / real(n, dp), k = 0, half)]
+      if (mod(n, 2) == 0) then
+         psd(2:half) = 2.0_dp * psd(2:half)
+      else
+         psd(2:half + 1) = 2.0_dp * psd(2:half + 1)
+      end if
+   end subroutine periodogram_psd
 end module gapbeam_draw_statistics

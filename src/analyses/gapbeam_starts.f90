@@ -17,6 +17,7 @@
 module gapbeam_starts
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
+   use gapbeam_random, only: splitmix64, add64
    use gapbeam_error, only: error_t, fatal_error
    use gapbeam_model, only: model_t
    use gapbeam_settings, only: diagnostics_settings_t, starts_given
@@ -70,25 +71,15 @@ contains
       real(dp) :: x(n)
       integer(int64) :: key, z
       integer :: i
-      key = splitmix64(splitmix64(int(seed, int64)) + int(stream, int64))
+      ! gapbeam_random's mixer: modulo 2^64 without signed overflow (the wrapping version
+      ! gave one number for every i and stream at -O3)
+      key = splitmix64(add64(splitmix64(int(seed, int64)), int(stream, int64)))
       do i = 1, n
-         z = splitmix64(key + int(i, int64))
+         z = splitmix64(add64(key, int(i, int64)))
          ! the top 53 bits as a fraction in [0, 1)
          x(i) = 2.0_dp * (real(ishft(z, -11), dp) / 9007199254740992.0_dp) - 1.0_dp
       end do
    end function uniform_numbers
-
-   !> SplitMix64 finaliser (wrapping 64-bit arithmetic).
-   pure integer(int64) function splitmix64(x) result(z)
-      integer(int64), intent(in) :: x   !! counter
-      integer(int64), parameter :: golden = -7046029254386353131_int64   ! 0x9E3779B97F4A7C15
-      integer(int64), parameter :: m1 = -4658895280553007687_int64       ! 0xBF58476D1CE4E5B9
-      integer(int64), parameter :: m2 = -7723592293110705685_int64       ! 0x94D049BB133111EB
-      z = x + golden
-      z = ieor(z, ishft(z, -30)) * m1
-      z = ieor(z, ishft(z, -27)) * m2
-      z = ieor(z, ishft(z, -31))
-   end function splitmix64
 
    !> A random initial state (see the module header), stream `stream` of `seed`.
    subroutine random_state(model, seed, stream, amplitude, u, v, err)

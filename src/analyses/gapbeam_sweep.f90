@@ -30,6 +30,8 @@ module gapbeam_sweep
    use gapbeam_deck_parameter, only: model_with_values
    use gapbeam_point, only: start_vector, label_start, integrator_cache_t
    use gapbeam_starts, only: start_list, group_attractors
+   use gapbeam_flow_results, only: draw_statistics_t
+   use gapbeam_draws, only: draws_wanted, collect_draws, draw_statistics, n_draw_outputs
    implicit none
    private
    public :: sweep_plan_t, make_plan, n_points, n_items, n_groups, group_of_item, item_slots, &
@@ -204,9 +206,13 @@ contains
       if (.not. allocated(err)) then
          o = deck%output
          o%history_periods = 0
+         ! draws: the tip's history over the record, for its RMS
+         if (k == 1 .and. draws_wanted(deck)) o%history_periods = deck%solver%record_periods
          call label_start(model, deck%solver, o, deck%diagnostics, u, v, p, &
                           k == 1 .and. deck%diagnostics%certify, res, sr, err, cache)
       end if
+      if (.not. allocated(err) .and. k == 1 .and. draws_wanted(deck)) &
+         call point_draws(deck, plan, model, u, v, o, res, sr, err)
       if (allocated(err)) then
          sr%status = 1
          sr%message = 'point ' // str(p) // ' (' // trim(plan%label(1)) // ' = ' &
@@ -216,6 +222,36 @@ contains
       end if
       sr%seconds = sr%seconds_label + sr%seconds_certify
    end subroutine run_slot
+
+   !> The statistics over the random draws of a sweep point (gapbeam_draws) whose draw 1 is
+   !> `res`, its start (u, v).
+   subroutine point_draws(deck, plan, model, u, v, o, res, sr, err)
+      type(deck_t), intent(in) :: deck                   !! deck
+      type(sweep_plan_t), intent(in) :: plan             !! plan
+      type(model_t), intent(in) :: model                 !! the point's model (draw 1)
+      real(dp), intent(in) :: u(:), v(:)                 !! the point's start
+      type(output_settings_t), intent(in) :: o           !! what a draw records
+      type(transient_result_t), intent(in) :: res        !! draw 1's final record
+      type(point_result_t), intent(inout) :: sr          !! the point
+      type(error_t), allocatable, intent(out) :: err     !! a draw failed
+      type(draw_statistics_t), allocatable :: stats(:)
+      real(dp), allocatable :: vals(:, :, :)
+      real(dp) :: t_rec
+      integer :: j, ns
+      t_rec = real(deck%solver%record_periods, dp) * 2.0_dp * pi / model%omega
+      call collect_draws(deck, plan%set, merge(sr%x, sr%y, plan%set_axis == 1), u, v, o, res, &
+                         t_rec, vals, err)
+      if (allocated(err)) return
+      ns = size(res%peak_force)
+      stats = draw_statistics(vals, ns)
+      sr%n_draws = size(vals, 1)
+      allocate(sr%draw_mean(max(ns, 1), n_draw_outputs), source=0.0_dp)
+      allocate(sr%draw_ci(max(ns, 1), n_draw_outputs), source=0.0_dp)
+      do j = 1, n_draw_outputs
+         sr%draw_mean(1:size(stats(j)%mean), j) = stats(j)%mean
+         sr%draw_ci(1:size(stats(j)%mean), j) = stats(j)%half_width
+      end do
+   end subroutine point_draws
 
    !> A failed slot keeps NaN results of the right shapes, label 'failed'; a line goes on from
    !> the state it was given.

@@ -24,6 +24,7 @@ module gapbeam_deck_table
       forcing_t, point_force_t, stop_side_words, stop_law_words, damping_words, &
       rotary_inertia_words, stop_shape_words, end_condition_words, tip_condition_words, &
       flow_t, turbulence_t, fluid_elastic_words, spectrum_words, flow_plane_words, &
+      psd_method_words, &
       support_geometry_words, beam_theory_words
    use gapbeam_settings, only: job_t, calibrate_t, analysis_words, calibration_words
    use gapbeam_deck, only: deck_t
@@ -47,6 +48,7 @@ module gapbeam_deck_table
    real(dp), parameter :: min_amplitude_pp = 1.0e-30_dp
    real(dp), parameter :: big = sqrt(huge(1.0_dp))   !! scale rule: squares must not overflow
    integer, parameter :: max_modal_ratios = 40004     !! most modal ratios (every mode)
+   integer, parameter :: no_nodes(0) = [integer ::]     !! an empty node list
    real(dp), parameter :: max_modal_ratio = 100.0_dp  !! largest modal damping ratio
 
    interface
@@ -556,7 +558,23 @@ contains
          // 'points per cycle at the cut-off (interpolation error (2 pi/n)^6/46080)')
       call v%int('seed', t%seed, meaning='seed of the random phases (a draw depends on the ' &
          // 'seed and its number only)')
-      call v%int('draws', t%draws, lo=1, hi=100000, meaning='independent records per case')
+      call v%int('draws', t%draws, lo=1, hi=100000, meaning='independent records per case ' &
+         // '(with draws_target_ci: the first ones)')
+      call v%real('draws_target_ci', t%draws_target_ci, '1', lo=0.0_dp, hi=10.0_dp, &
+         note='needs draws >= 2', meaning='add draws until the 95 % half-width of the tip ' &
+         // 'RMS and of every touched support''s work rates is below this fraction of the ' &
+         // 'mean (0: a fixed number of draws)')
+      call v%int('draws_max', t%draws_max, lo=2, hi=100000, meaning='most draws with ' &
+         // 'draws_target_ci')
+      call v%int_list('psd_nodes', t%psd_nodes, 64, no_nodes, lo=1, hi=100000, &
+         note='transient runs; nodes 1..n_elem+1', meaning='nodes whose displacement ' &
+         // 'spectral density (w, and v with two planes) is averaged over the draws')
+      call v%word('psd_method', t%psd_method, psd_method_words, meaning="'welch': Hann " &
+         // "segments, 50 % overlap; 'periodogram': the whole history, no window (exact " &
+         // 'for a history of whole periods of the record)')
+      call v%real('psd_resolution_hz', t%psd_resolution_hz, 'Hz', lo=0.0_dp, &
+         hi=max_frequency_hz, meaning="Welch: bin width (segments of a power of two " &
+         // "samples; 0: a quarter of the history)")
       call v%end_group()
    end subroutine walk_turbulence
 

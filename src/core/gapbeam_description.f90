@@ -31,7 +31,8 @@ module gapbeam_description
    public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_name, law_code, law_bilinear, law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
       stop_shape_words, end_condition_words, tip_condition_words, beam_theory_words
-   public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words
+   public :: fluid_elastic_words, spectrum_words, flow_plane_words, support_geometry_words, &
+      psd_method_words, n_psd_nodes
 
    integer, parameter :: dof_w = 1       !! local dof code of the transverse displacement
    integer, parameter :: dof_theta = 2   !! local dof code of the rotation theta = dw/dx
@@ -53,6 +54,7 @@ module gapbeam_description
    character(len=*), parameter :: fluid_elastic_words = "'connors', 'none'"
    !> forms of the turbulence spectrum of &turbulence
    character(len=*), parameter :: spectrum_words = "'none', 'table', 'reduced'"
+   character(len=*), parameter :: psd_method_words = "'welch', 'periodogram'"
    !> planes a flow force acts in
    character(len=*), parameter :: flow_plane_words = "'both', 'w', 'v'"
    !> the geometry of a support that the wear scar takes (gapbeam_wear_geometry)
@@ -230,9 +232,23 @@ module gapbeam_description
       integer :: points_per_cycle = 6            !! record grid points per cycle at the cut-off
       integer :: seed = 1                        !! seed of the random phases
       integer :: draws = 1                       !! independent records per case
+      !> add draws until the 95 % half-width of every watched output is below this fraction
+      !> of its mean (0: off; docs/flow.md)
+      real(dp) :: draws_target_ci = 0.0_dp
+      integer :: draws_max = 100                 !! most draws with draws_target_ci
+      integer, allocatable :: psd_nodes(:)       !! nodes of the response PSD (none: no PSD)
+      character(len=16) :: psd_method = 'welch'  !! 'welch' or 'periodogram'
+      real(dp) :: psd_resolution_hz = 0.0_dp     !! Welch bin width (0: 1/4 of the record)
    end type turbulence_t
 
 contains
+
+   !> Number of nodes of the response PSD (&turbulence psd_nodes).
+   pure integer function n_psd_nodes(t)
+      type(turbulence_t), intent(in) :: t   !! turbulence
+      n_psd_nodes = 0
+      if (allocated(t%psd_nodes)) n_psd_nodes = size(t%psd_nodes)
+   end function n_psd_nodes
 
    !> Bending stiffness EI [N m^2].
    pure function beam_ei(b) result(ei)

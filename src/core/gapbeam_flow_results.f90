@@ -5,7 +5,15 @@ module gapbeam_flow_results
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: flow_modes_t, draw_statistics_t, wear_depth_t
+   public :: flow_modes_t, draw_statistics_t, wear_depth_t, n_draw_outputs, draw_output_names, &
+      response_psd_t
+
+   integer, parameter :: n_draw_outputs = 9
+   !> the scalar outputs taken over random draws, as named under /statistics (per stop; the
+   !> last, the tip's RMS displacement over the history samples, one value)
+   character(len=*), parameter :: draw_output_names(n_draw_outputs) = [character(len=24) :: &
+      'impact_rate', 'peak_force', 'rms_force', 'contact_fraction', 'work_rate', &
+      'normal_work_rate', 'friction_work_rate', 'wear_volume_rate', 'tip_rms_displacement']
 
    !> Every mode of the open structure (supports inactive), ascending in frequency (two planes:
    !> the modes of each plane, merged; at equal frequency w first), with its fluid-elastic data.
@@ -33,6 +41,18 @@ module gapbeam_flow_results
       real(dp), allocatable :: mean(:)              !! (n_items) mean over the draws
       real(dp), allocatable :: half_width(:)        !! (n_items) 95 % half-width of the mean
    end type draw_statistics_t
+
+   !> The one-sided displacement spectral density at chosen nodes, averaged over the draws.
+   type :: response_psd_t
+      integer :: n_draws = 0                        !! draws averaged
+      character(len=16) :: method = ''              !! 'welch' or 'periodogram'
+      integer, allocatable :: nodes(:)              !! (n_series) node of each series
+      integer, allocatable :: planes(:)             !! (n_series) 1: w, 2: v
+      real(dp), allocatable :: frequency_hz(:)      !! (n_freq) [Hz]
+      real(dp), allocatable :: psd(:, :)            !! (n_freq, n_series) mean [m^2/Hz]
+      real(dp), allocatable :: half_width(:, :)     !! (n_freq, n_series) its 95 % half-width
+      real(dp), allocatable :: draws(:, :, :)       !! (n_freq, n_series, n_draws) each draw's
+   end type response_psd_t
 
    !> Wear depth of each support's scar against time.
    type :: wear_depth_t

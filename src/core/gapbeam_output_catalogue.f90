@@ -21,6 +21,7 @@
 module gapbeam_output_catalogue
    use gapbeam_output_studies, only: dataset_t, work_precision_sets, stability_sets, &
       model_size_sets, continuation_sets
+   use gapbeam_output_flow, only: sweep_draw_sets, psd_sets
    implicit none
    private
    public :: dataset_t, describe, section_names, section_analyses, catalogue_text, &
@@ -706,8 +707,8 @@ contains
       case ('history');  list = history_sets
       case ('state');  list = state_sets
       case ('transient');  list = transient_sets
-      case ('tubes');  list = tube_sets
-      case ('sweep');  list = sweep_sets
+      case ('tubes');  list = [tube_sets, psd_sets]
+      case ('sweep');  list = [sweep_sets, sweep_draw_sets]
       case ('work_precision');  list = work_precision_sets
       case ('stability');  list = stability_sets
       case ('model_size');  list = model_size_sets

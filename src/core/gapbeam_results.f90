@@ -170,6 +170,10 @@ module gapbeam_results
       real(dp) :: x = 0.0_dp                         !! x axis value [its unit]
       real(dp) :: y = 0.0_dp                         !! y axis value [its unit]
       real(dp) :: f1_open_hz = 0.0_dp                !! first frequency of the point's model [Hz]
+      ! --- statistics over random draws (&turbulence draws > 1, docs/flow.md)
+      integer :: n_draws = 0                         !! draws taken (0: none)
+      real(dp), allocatable :: draw_mean(:, :)       !! (stop, output) mean over the draws
+      real(dp), allocatable :: draw_ci(:, :)         !! its 95 % half-width (Student t)
    end type point_result_t
 
    !> One series of the work-precision study.

@@ -550,6 +550,10 @@ contains
            text_reals(pr%accuracy_method), &
            real(size(wear(pr%normal_work_rate)), dp), wear(pr%normal_work_rate), &
            wear(pr%sliding_distance), wear(pr%friction_work_rate), wear(pr%wear_volume_rate)]
+      ! statistics over draws (when the point has them): draws, items, outputs, mean, ci
+      if (pr%n_draws > 0) x = [x, real(pr%n_draws, dp), real(size(pr%draw_mean, 1), dp), &
+         real(size(pr%draw_mean, 2), dp), reshape(pr%draw_mean, [size(pr%draw_mean)]), &
+         reshape(pr%draw_ci, [size(pr%draw_ci)])]
    end function pack_point
 
    !> A wear array of a point, empty when the point has none.
@@ -580,7 +584,7 @@ contains
       real(dp), intent(in) :: x(:)                !! packed record
       type(point_result_t), intent(out) :: pr     !! the point
       logical, intent(out) :: ok                  !! record well formed
-      integer :: k, m, ns, nr, n
+      integer :: k, m, ns, nr, n, nd, ni, no
       integer, parameter :: n_scalars = 26
       real(dp) :: s(n_scalars)
       ok = .false.
@@ -627,11 +631,20 @@ contains
       ok = .false.
       if (k + 1 > size(x)) return
       k = k + 1
-      ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns /= size(x)) return
+      ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns > size(x)) return
       pr%normal_work_rate = x(k + 1:k + ns);  k = k + ns
       pr%sliding_distance = x(k + 1:k + ns);  k = k + ns
       pr%friction_work_rate = x(k + 1:k + ns);  k = k + ns
-      pr%wear_volume_rate = x(k + 1:k + ns)
+      pr%wear_volume_rate = x(k + 1:k + ns);  k = k + ns
+      ! the statistics over draws, when there are any
+      if (k < size(x)) then
+         if (k + 3 > size(x)) return
+         nd = nint(x(k + 1));  ni = nint(x(k + 2));  no = nint(x(k + 3));  k = k + 3
+         if (nd < 1 .or. ni < 0 .or. no < 0 .or. k + 2 * ni * no /= size(x)) return
+         pr%n_draws = nd
+         pr%draw_mean = reshape(x(k + 1:k + ni * no), [ni, no]);  k = k + ni * no
+         pr%draw_ci = reshape(x(k + 1:k + ni * no), [ni, no])
+      end if
       ok = .true.
    end subroutine unpack_point
 

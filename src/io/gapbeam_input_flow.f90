@@ -7,6 +7,7 @@ module gapbeam_input_flow
    use gapbeam_deck, only: deck_t
    use gapbeam_flow_results, only: wear_depth_t
    use gapbeam_wear_geometry, only: wear_depth_history
+   use gapbeam_description, only: n_psd_nodes
    implicit none
    private
    public :: check_flow, deck_wear_depth
@@ -123,6 +124,9 @@ contains
             if (t%draws > 1) call fatal_error(err, 'group &turbulence: draws = ' &
                // str(t%draws) // " with spectrum = 'none': draws are random records of a " &
                // "turbulence spectrum ('table' or 'reduced')")
+            if (t%draws_target_ci > 0.0_dp .or. n_psd_nodes(t) > 0) call fatal_error(err, &
+               "group &turbulence: draws_target_ci and psd_nodes with spectrum = 'none': " &
+               // "they are statistics of a turbulence spectrum ('table' or 'reduced')")
             return
          case ('table')
             call check_table('turbulence', 'psd_frequency_hz', 'psd', t%psd_frequency_hz, &
@@ -153,8 +157,39 @@ contains
          if (allocated(err)) return
          if (t%planes == 'v' .and. deck%structure%beam%planes < 2) call fatal_error(err, &
             "group &turbulence: planes = 'v' needs &beam planes = 2")
+         if (.not. allocated(err)) call check_draw_options(deck, err)
       end associate
    end subroutine check_turbulence
+
+   !> The target half-width and the response PSD.
+   subroutine check_draw_options(deck, err)
+      type(deck_t), intent(in) :: deck
+      type(error_t), allocatable, intent(inout) :: err
+      integer :: i
+      associate (t => deck%turbulence)
+         if (t%draws_target_ci > 0.0_dp .and. t%draws < 2) then
+            call fatal_error(err, 'group &turbulence: draws_target_ci = ' &
+               // str(t%draws_target_ci) // ' with draws = ' // str(t%draws) // ': a ' &
+               // 'half-width needs draws >= 2 to start from')
+         else if (t%draws_target_ci > 0.0_dp .and. t%draws_max < t%draws) then
+            call fatal_error(err, 'group &turbulence: draws_max = ' // str(t%draws_max) &
+               // ': must be at least draws = ' // str(t%draws))
+         else if (n_psd_nodes(t) > 0 .and. deck%job%analysis /= 'transient') then
+            call fatal_error(err, 'group &turbulence: psd_nodes with analysis = ''' &
+               // trim(deck%job%analysis) // "': the response PSD is written by analysis " &
+               // "= 'transient'")
+         end if
+         if (allocated(err)) return
+         do i = 1, n_psd_nodes(t)
+            if (t%psd_nodes(i) > deck%structure%beam%n_elem + 1) then
+               call fatal_error(err, 'group &turbulence: psd_nodes(' // str(i) // ') = ' &
+                  // str(t%psd_nodes(i)) // ': the beam has nodes 1..' &
+                  // str(deck%structure%beam%n_elem + 1))
+               return
+            end if
+         end do
+      end associate
+   end subroutine check_draw_options
 
    subroutine check_wear(deck, err)
       type(deck_t), intent(in) :: deck
@@ -203,10 +238,6 @@ contains
       select case (deck%job%analysis)
       case ('modes', 'calibrate', 'transient')
       case ('sweep')
-         if (deck%turbulence%draws > 1) call fatal_error(err, 'group &turbulence: draws = ' &
-            // str(deck%turbulence%draws) // " with analysis = 'sweep': a sweep point runs " &
-            // "draw 1 only (statistics over draws are made by analysis = 'transient'); " &
-            // 'give draws = 1, or vary &turbulence seed between sweeps')
       case default
          call fatal_error(err, "group &job: analysis = '" // trim(deck%job%analysis) &
             // "' does not take flow excitation (&flow velocity > 0 with fluid_elastic, or a " &

@@ -21,7 +21,8 @@ module gapbeam_report
    use gapbeam_parameters, only: run_parameters, stiffness_units
    use gapbeam_deflection, only: shape_points, deflection, nodal_values
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
-   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
+   use gapbeam_psd_output, only: write_response_psd
    use gapbeam_input_flow, only: deck_wear_depth
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, real_fields, &
       text_field
@@ -158,13 +159,14 @@ contains
    !> Transient results: PREFIX.h5; with &output write_text PREFIX.history.dat and
    !> .poincare.dat (two planes: .orbit.dat, .supports.dat); with the state history PREFIX.xdmf
    !> (and .shape.dat).
-   subroutine write_transient(deck, model, res, diag, err, stats)
+   subroutine write_transient(deck, model, res, diag, err, stats, psd)
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results (the final record)
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(error_t), allocatable, intent(out) :: err   !! I/O failure; no file changed then
       type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
+      type(response_psd_t), intent(in), optional :: psd           !! response PSD over them
       type(output_set_t) :: set
       type(transient_result_t) :: r
       character(len=14), allocatable :: suffixes(:)
@@ -181,7 +183,7 @@ contains
       r = on_trajectory_clock(res, diag%transient_periods, deck%solver%record_periods, &
                               2.0_dp * pi / model%omega)
       call set%begin(deck%job%output, suffixes)
-      call write_transient_h5(set, deck, model, r, diag, stats)
+      call write_transient_h5(set, deck, model, r, diag, stats, psd)
       if (text) call write_transient_tables(set, deck, model, r)
       if (text .and. planes) call write_orbit_tables(set, deck, model, r)
       if (with_state) call write_xdmf(set, deck, model, r)
@@ -212,13 +214,14 @@ contains
    end function on_trajectory_clock
 
    !> PREFIX.h5 of a transient run, under the set's temporary name.
-   subroutine write_transient_h5(set, deck, model, res, diag, stats)
+   subroutine write_transient_h5(set, deck, model, res, diag, stats, psd)
       type(output_set_t), intent(inout) :: set         !! the set
       type(deck_t), intent(in) :: deck                 !! the deck
       type(model_t), intent(in) :: model               !! model
       type(transient_result_t), intent(in) :: res      !! results
       type(point_result_t), intent(in) :: diag         !! period, exponent, label
       type(draw_statistics_t), intent(in), optional :: stats(:)   !! over random draws
+      type(response_psd_t), intent(in), optional :: psd           !! response PSD over them
       integer :: k
       type(h5_writer_t) :: h5
       character(len=:), allocatable :: filtered
@@ -250,6 +253,7 @@ contains
             end if
          end do
       end if
+      if (present(psd)) call write_response_psd(h5, psd)
       call h5%put('/final/u', res%u)
       call h5%put('/final/v', res%v)
       call h5%put('/final/time', res%t_end)

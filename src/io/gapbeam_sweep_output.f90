@@ -30,6 +30,7 @@ module gapbeam_sweep_output
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, &
       set_int_fields, real_fields, set_real_fields, text_field, set_text_field, stop_names, &
       stop_field, set_stop_field
+   use gapbeam_sweep_statistics, only: write_sweep_statistics, read_sweep_statistics
    use gapbeam_warning_text, only: untouched_sweep_warnings, is_untouched_warning, &
       warning_length
    implicit none
@@ -338,6 +339,7 @@ contains
       do k = 1, size(stop_names)
          call h5%put('/sweep/' // trim(stop_names(k)), stop_table(results, sf%points, k, ns))
       end do
+      call write_sweep_statistics(h5, results, sf%points, ns)
       call h5%put('/sweep/poincare/strain', per_point(results, sf%points, 1, nr))
       call h5%put('/sweep/poincare/strain_rate', per_point(results, sf%points, 2, nr))
       call h5%put('/sweep/lyapunov_running', per_point(results, sf%points, 3, nl))
@@ -525,7 +527,8 @@ contains
       real(dp), allocatable :: rv(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), &
          s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:)
       character(len=:), allocatable :: kinds(:), axis_order
-      logical :: aligned
+      type(point_result_t), allocatable :: drawn(:)
+      logical :: aligned, ok
       call h5%open(path, err);  if (allocated(err)) return
       call h5%read_attr('/', 'axis_order', axis_order, err)
       if (allocated(err)) then
@@ -589,6 +592,9 @@ contains
       call h5%read('/sweep/attractors/fraction', a_frac)
       call h5%read('/sweep/attractors/lyapunov', a_lyap)
       sf%has_model = h5%exists('/model')
+      allocate(drawn(n))
+      call read_sweep_statistics(h5, drawn, [(j, j = 1, n)], ok)
+      aligned = aligned .and. ok
       call h5%close(err)
       if (allocated(err)) return
       sf%start_kind = kinds
@@ -624,6 +630,11 @@ contains
             r%attractor_label = a_label(1:k, j)
             r%attractor_fraction = a_frac(1:k, j)
             r%attractor_lyapunov = a_lyap(1:k, j)
+            r%n_draws = drawn(j)%n_draws
+            if (allocated(drawn(j)%draw_mean)) then
+               call move_alloc(drawn(j)%draw_mean, r%draw_mean)
+               call move_alloc(drawn(j)%draw_ci, r%draw_ci)
+            end if
          end associate
       end do
    end subroutine read_sweep

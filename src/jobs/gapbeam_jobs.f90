@@ -11,7 +11,7 @@ module gapbeam_jobs
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_description, only: structure_t, beam_ei, beam_rho_a, beam_mass, &
       modal_damping_ratio, dof_w, modal_ratio, beam_is_timoshenko, beam_shear_coefficient, &
-      beam_shear_stiffness
+      beam_shear_stiffness, n_psd_nodes
    use gapbeam_model, only: system_t, model_t
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, series_result_t, &
       stable_step_t, candidate_t, label_text
@@ -23,7 +23,7 @@ module gapbeam_jobs
    use gapbeam_reduction_check, only: reduction_check_t, check_reduction, check_lines
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_point, only: label_point
-   use gapbeam_settings, only: batch_options_t
+   use gapbeam_settings, only: batch_options_t, output_settings_t
    use gapbeam_progress_meter, only: meter_t
    use gapbeam_parameters, only: forcing_text
    use gapbeam_studies, only: work_precision, stability_study, stability_series
@@ -31,7 +31,7 @@ module gapbeam_jobs
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
    use gapbeam_input_flow, only: deck_wear_depth
-   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t
+   use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_flow_load, only: deck_flow_modes
    use gapbeam_draws_job, only: run_draws
    use gapbeam_study_output, only: write_work_precision, write_stability, &
@@ -454,6 +454,8 @@ contains
       real(dp) :: setup
       integer :: j
       type(draw_statistics_t), allocatable :: stats(:)
+      type(response_psd_t) :: psd
+      type(output_settings_t) :: out
       type(reduction_info_t) :: reduced
       type(reduction_check_t) :: check
       type(deck_t) :: dw
@@ -481,7 +483,9 @@ contains
          n_run + 2.0_dp * real(dk%diagnostics%lyapunov_periods, dp), 0.0_dp, &
          .not. opt%quiet, opt%progress_interval_s)
       ! the point pipeline: every start labelled, the first certified, attractors grouped
-      call label_point(model, dk%solver, dk%output, dk%diagnostics, u0, v0, 1, res, diag, e, &
+      out = dk%output   ! the response PSD needs every dof at the history samples
+      if (n_psd_nodes(dk%turbulence) > 0) out%state_history = .true.
+      call label_point(model, dk%solver, out, dk%diagnostics, u0, v0, 1, res, diag, e, &
                        failures, meter)
       ! settling, convergence and an adaptive exponent may have run more than the estimate
       meter%total = max(meter%total, meter%done)
@@ -531,8 +535,14 @@ contains
       call untouched_stops(dk, res, diag, dw)
       if (allocated(meter%warning)) call add_warning(dw, meter%warning)
       call print_label(diag)
-      if (dk%turbulence%spectrum /= 'none') then
-         call run_draws(dk, res, stats, e)
+      if (dk%turbulence%spectrum /= 'none' .and. n_psd_nodes(dk%turbulence) > 0) then
+         call run_draws(dk, u0, v0, out, res, stats, e, psd)
+         if (allocated(e)) return
+         if (.not. dk%output%state_history) deallocate(res%history_u)
+         call print_draws(stats)
+         call write_transient(dw, model, res, diag, e, stats, psd)
+      else if (dk%turbulence%spectrum /= 'none') then
+         call run_draws(dk, u0, v0, out, res, stats, e)
          if (allocated(e)) return
          call print_draws(stats)
          call write_transient(dw, model, res, diag, e, stats)

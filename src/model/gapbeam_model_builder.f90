@@ -28,13 +28,15 @@ contains
    !> the cut-off of gapbeam_reduction_rule); `info` says what the reduction kept. The flow's
    !> forces (fluid-elastic damping, the turbulence record of draw `draw`) are added in the
    !> model's own coordinates.
-   subroutine build_model(deck, model, u0, v0, err, info, draw)
+   subroutine build_model(deck, model, u0, v0, err, info, draw, basis_out)
       type(deck_t), intent(in) :: deck                 !! validated deck
       type(model_t), intent(out) :: model              !! model to integrate
       real(dp), allocatable, intent(out) :: u0(:), v0(:)  !! initial state
       type(error_t), allocatable, intent(out) :: err   !! calibration, eigen or reduction failure
       type(reduction_info_t), intent(out), optional :: info  !! the reduction's choices
       integer, intent(in), optional :: draw            !! turbulence draw (default 1)
+      !> the reduced basis (u = basis z); unallocated for the full model
+      real(dp), allocatable, intent(out), optional :: basis_out(:, :)
       type(model_t) :: full
       type(reduction_info_t) :: ri
       real(dp), allocatable :: basis(:, :), uf(:), vf(:)
@@ -92,6 +94,7 @@ contains
          call turbulence_record(deck, full%sys, d, model%turbulence, err, basis)
          model%extra_load = .true.
       end if
+      if (present(basis_out)) call move_alloc(basis, basis_out)
    end subroutine build_model
 
    !> Stiffness of each deck stop, applying the paper's rule where asked:
