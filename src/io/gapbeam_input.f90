@@ -603,18 +603,6 @@ contains
          if (len(why) > 0) call fatal_error(err, 'group &stops: ' // why)
       end do
       if (allocated(err)) return
-      if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
-          (deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep')) then
-         ! the two trajectories restart from (u, v) every period: a stick anchor is not part
-         ! of it, and the fixed steps they take cannot end at every stick-slip switch
-         call fatal_error(err, 'group &diagnostics: lyapunov_periods = ' &
-            // str(deck%diagnostics%lyapunov_periods) // ': the Lyapunov exponent is not ' &
-            // 'available with ring supports (circular clearance or friction: their stick ' &
-            // 'state is not part of the state (u, v) the exponent perturbs); set ' &
-            // 'lyapunov_periods = 0, the default with ring supports (the label then comes ' &
-            // 'from the period detection alone)')
-         return
-      end if
       if (deck%damping%model == 'modal' .and. deck%solver%linear_solver == 'banded') then
          call fatal_error(err, "group &solver: linear_solver = 'banded': modal damping " &
             // "(&damping model = 'modal') makes the damping matrix dense; use 'auto' or " &
