@@ -46,6 +46,7 @@ import time
 
 DECK = 'inputs/tube_multispan.nml'
 RK45 = "&solver method = 'rk45' /"
+EXP = "&solver method = 'exponential' /"
 MAP = 'inputs/tube_map.nml'
 PERIODIC = '&forcing frequency_hz = 7.0 / &stops gap = 0.05e-3, 0.05e-3 /'
 
@@ -202,6 +203,8 @@ def describe(r):
     label = 'auto' if r['kind'] == 'auto' else 'cut %g Hz' % r['cutoff_hz']
     if r.get('method') == 'rk45':
         label += ' rk45'
+    elif r.get('method') == 'exponential':
+        label += ' exp'
     return '%s (%d coord.), tol %.0e' % (label, r['n'], r['tolerance'])
 
 
@@ -211,6 +214,7 @@ def part_deck(run, out, dat):
     full = run.variant('none', 0, 1e-4, tr, rec)
     auto = run.variant('auto', 0, 1e-4, tr, rec)
     rk = run.variant('auto', 0, 1e-4, tr, rec, RK45)
+    ex = run.variant('auto', 0, 1e-4, tr, rec, EXP)
     ratio = full['cpu_per_simulated_s'] / auto['cpu_per_simulated_s']
     out.append('== the tube deck (%s: 8 Hz, 0.2 mm), %d + %d periods, release build, serial'
                % (DECK, tr, rec))
@@ -227,36 +231,53 @@ def part_deck(run, out, dat):
     out.append("  'auto' basis under rk45 (&solver method = 'rk45'): %.2f s cpu, %.3f s cpu per "
                'simulated second, %d steps' % (rk['cpu_s'], rk['cpu_per_simulated_s'],
                                                 rk['steps']))
+    out.append("  'auto' basis under the modal exponential integrator (&solver method = "
+               "'exponential'): %.2f s cpu, %.3f s cpu per simulated second, %d steps"
+               % (ex['cpu_s'], ex['cpu_per_simulated_s'], ex['steps']))
     out.append('  CPU per simulated second: full / reduced = %.2f; full / reduced under rk45 = '
-               '%.2f' % (ratio, full['cpu_per_simulated_s'] / rk['cpu_per_simulated_s']))
-    spread = [run.variant('none', 0, t, tr, rec) for t in (1e-3, 1e-5, 1e-6)]
-    rows = [full, auto, rk] + spread
+               '%.2f; full / reduced under exponential = %.2f' % (
+                   ratio, full['cpu_per_simulated_s'] / rk['cpu_per_simulated_s'],
+                   full['cpu_per_simulated_s'] / ex['cpu_per_simulated_s']))
+    quick = os.environ.get('BENCH_TUBES_QUICK', '0') == '1'
+    spread = [run.variant('none', 0, t, tr, rec) for t in ((1e-6,) if quick else
+                                                           (1e-3, 1e-5, 1e-6))]
+    rows = [full, auto, rk, ex] + spread
     out += support_table(rows, [describe(r) for r in rows])
     out.append('  differences against the full model at 1e-4 (the reduced run, then the full '
                "model's own spread between tolerances):")
-    for r in [auto, rk] + spread:
+    for r in [auto, rk, ex] + spread:
         out += diff_line(describe(r), r, full)
     ref = spread[-1]
-    cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (150, 300, 700)]
-    autos = [run.variant('auto', 0, t, tr, rec) for t in (1e-3, 1e-5)]
-    rks = [run.variant('auto', 0, t, tr, rec, RK45) for t in (1e-3, 1e-5)]
+    if quick:
+        cuts, autos, rks, excuts = [], [], [], []
+        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3,)]
+    else:
+        cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (150, 300, 700)]
+        autos = [run.variant('auto', 0, t, tr, rec) for t in (1e-3, 1e-5)]
+        rks = [run.variant('auto', 0, t, tr, rec, RK45) for t in (1e-3, 1e-5)]
+        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3, 1e-5, 1e-6)]
+        excuts = [run.variant('modal', c, 1e-4, tr, rec, EXP) for c in (300, 700)]
     out.append('  against the full model at 1e-6 (every run, for the chart):')
-    for r in [full] + spread[:2] + [auto] + cuts + autos + [rk] + rks:
+    for r in [full] + spread[:-1] + [auto] + cuts + autos + [rk] + rks + [ex] + exs + excuts:
         e = wear_errors(r, ref)
         out.append('    %-34s %8.3f s cpu/s  W_N %7.2f %%  W_f %7.2f %%  impact rate %7.2f %%  '
                    'peak %7.2f %%' % (describe(r), r['cpu_per_simulated_s'], 100 * e['wn'],
                                       100 * e['wf'], 100 * e['impacts'], 100 * e['peak']))
         dat.append('deck %s %s %g %g %d %.6g %.6g %.6g %.6g %.6g %.6g' % (
-            'full' if r['kind'] == 'none' else r['kind'] + ('_rk45' if r.get('method') ==
-                                                           'rk45' else ''), r['kind'],
+            'full' if r['kind'] == 'none' else r['kind'] + {'rk45': '_rk45', 'exponential':
+                                                           '_exp'}.get(r.get('method'), ''),
+            r['kind'],
             r['cutoff_hz'],
             r['tolerance'], r['n'], r['cpu_per_simulated_s'], e['wn'], e['wf'],
             e['impacts'], e['peak'], r['steps']))
+    if quick:
+        return ratio
     pf = run.variant('none', 0, 1e-4, 2, 4, profile=True)
     pa = run.variant('auto', 0, 1e-4, 2, 4, profile=True)
     pr = run.variant('auto', 0, 1e-4, 2, 4, RK45, profile=True)
+    pe = run.variant('auto', 0, 1e-4, 2, 4, EXP, profile=True)
     out.append('  where the steps go (2 + 4 periods at 1e-4):')
-    for name, p in (('full', pf), ('auto', pa), ('auto rk45', pr)):
+    for name, p in (('full', pf), ('auto', pa), ('auto rk45', pr), ('auto exp', pe)):
         out.append('    %-9s %8d steps with every support open (mean %.3g s), %8d with a '
                    'support in contact (mean %.3g s)' % (name, p['open_steps'],
                                                         p['open_mean_dt'], p['contact_steps'],
@@ -306,7 +327,9 @@ def part_map(run, out):
     full = run.map_run('none')
     red = run.map_run('auto')
     rk = run.map_run('auto', RK45)
+    ex = run.map_run('auto', EXP)
     same_rk = 0
+    same_ex = 0
     n = len(full['x'])
     same = 0
     lines = []
@@ -322,8 +345,13 @@ def part_map(run, out):
               for k in range(len(rk['contact_fraction'][p]))]
         if cf == cr:
             same += 1
+        ce = [contact_class(ex['contact_fraction'][p][k], ex['normal_work_rate'][p][k],
+                            ex['friction_work_rate'][p][k])
+              for k in range(len(ex['contact_fraction'][p]))]
         if cf == ck:
             same_rk += 1
+        if cf == ce:
+            same_ex += 1
         wf = sum(full['normal_work_rate'][p])
         wr = sum(red['normal_work_rate'][p])
         lines.append('    %5.2f Hz %6.3f mm  full %-8s reduced %-8s  W_N %9.3e / %9.3e W%s' % (
@@ -341,6 +369,11 @@ def part_map(run, out):
                'ratio %.2f; the same contact class as the full map at %d of %d points (%.1f %%)'
                % (rk['cpu_s'], rk['wall_s'], full['cpu_s'] / rk['cpu_s'], same_rk, n,
                   100.0 * same_rk / n))
+    out.append("  reduced under the modal exponential integrator (&solver method = "
+               "'exponential'): %.1f s cpu (%.1f s wall); cpu ratio %.2f; the same contact "
+               'class as the full map at %d of %d points (%.1f %%)'
+               % (ex['cpu_s'], ex['wall_s'], full['cpu_s'] / ex['cpu_s'], same_ex, n,
+                  100.0 * same_ex / n))
     out.append('  per point (class of baffle 1, baffle 2; summed normal work rate):')
     out += lines
 

@@ -19,7 +19,9 @@
 # deck's own). BENCH_LOCK=FILE runs every case under `flock FILE` (nothing else shares the CPU
 # while it runs). BENCH_TUBES_MAP='&sweep n_frequency = 5, n_y = 3 /' (any namelist fragment)
 # runs a subset of the map's points; BENCH_TUBES_CASES='periodic deck' draws the periodic
-# panel of the chart too (default 'deck'). The whole benchmark costs about an hour of CPU (the full model at tolerance
+# panel of the chart too (default 'deck'). BENCH_TUBES_QUICK=1 runs the deck part's side-by-side
+# set only (full, default, rk45 and exponential at 1e-4, the full model at 1e-6 as the reference,
+# the exponential integrator at 1e-3). The whole benchmark costs about an hour of CPU (the full model at tolerance
 # 1e-6 on 70 periods alone takes about 6 minutes); every run is serial.
 set -euo pipefail
 

@@ -6,7 +6,7 @@
 #        (cases='periodic deck' draws both panels when the periodic part was run; default 'deck')
 #
 # datafile: one line per run (scripts/bench_tubes.py): case (periodic | deck), curve (full |
-# modal | auto | auto_rk45), kind, cut-off [Hz], tolerance, coordinates, CPU per simulated second [s/s],
+# modal | auto | auto_rk45 | auto_exp | modal_exp), kind, cut-off [Hz], tolerance, coordinates, CPU per simulated second [s/s],
 # then the largest relative errors over the supports of the normal work rate, friction work
 # rate, impact rate and peak force against the case's reference (the full model at the
 # tightest tolerance), and the steps.
@@ -36,8 +36,11 @@ do for [c in cases] {
    plot datafile u (sel(c, 'full') ? $7 : NaN):(pos($8)) w lp pt 7 lw 2 t 'full model, tolerance 1e-3..1e-5', \
         datafile u (sel(c, 'auto') ? $7 : NaN):(pos($8)) w lp pt 5 lw 2 t "reduced, kind = 'auto', Newmark, tolerance 1e-3..1e-5", \
         datafile u (sel(c, 'auto_rk45') ? $7 : NaN):(pos($8)) w lp pt 13 lw 2 t "reduced, kind = 'auto', rk45, tolerance 1e-3..1e-5", \
+        datafile u (sel(c, 'auto_exp') ? $7 : NaN):(pos($8)) w lp pt 11 lw 2 t "reduced, kind = 'auto', exponential, tolerance 1e-3..1e-6", \
         datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)) w p pt 9 ps 1.5 t 'reduced, cut-off [Hz] (label)', \
+        datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)) w p pt 8 ps 1.5 t 'reduced, cut-off [Hz], exponential', \
+        datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)):(sprintf('%g', $4)) w labels offset 2.5,-0.5 notitle, \
         datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)):(sprintf('%g', $4)) w labels offset 2.5,0.5 notitle, \
-        datafile u (sel(c, 'full') || sel(c, 'auto') || sel(c, 'auto_rk45') ? $7 : NaN):(pos($8)):(sprintf('%.0e', $5)) w labels offset 0,-1 tc rgb 'gray40' notitle
+        datafile u (sel(c, 'full') || sel(c, 'auto') || sel(c, 'auto_rk45') || sel(c, 'auto_exp') ? $7 : NaN):(pos($8)):(sprintf('%.0e', $5)) w labels offset 0,-1 tc rgb 'gray40' notitle
 }
 unset multiplot

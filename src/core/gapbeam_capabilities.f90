@@ -25,7 +25,7 @@ module gapbeam_capabilities
    type :: method_caps_t
       character(len=24) :: name = ''           !! the deck's word (&solver method)
       !> implementation family: 'newmark', 'alpha', 'central_difference', 'runge_kutta',
-      !> 'exact' (the registry binds it to a type; a test may add its own)
+      !> 'exponential', 'exact' (the registry binds it to a type; a test may add its own)
       character(len=24) :: family = ''
       character(len=96) :: summary = ''        !! one line
       character(len=48) :: title = ''          !! how a sentence names it ('Newmark')
@@ -140,6 +140,13 @@ contains
          massless=.false., carries_acceleration=.false., stability_limit=3.3_dp, stages=7, &
          lyapunov_with='newmark', stability_with='rk4', auto_role='fine', &
          title='the embedded Runge-Kutta method rk45', parameters='rtol=rk_rtol atol=rk_atol'), &
+      method_caps_t(name='exponential', family='exponential', summary='modal exponential: ' &
+         // 'the linear modes and harmonic loads exact, the contact forces collocated', &
+         implicit=.false., order=4, estimator='embedded', control_order=3, &
+         controls="'auto', 'error', 'embedded'", auto_control='error', two_planes=.true., &
+         point_forces=.true., rings=.true., massless=.false., carries_acceleration=.false., &
+         stages=8, lyapunov_with='newmark', title='the modal exponential integrator', &
+         parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exact', family='exact', summary='event-driven closed form of the ' &
          // 'piecewise-linear model: the accuracy reference', exact=.true., order=0, &
          controls=all_controls, nonlinear_laws=.false., jacobian=.true., &

@@ -18,7 +18,8 @@ module gapbeam_settings
    !> the method words: 'auto' and every method of the registry (gapbeam_capabilities'
    !> method_table, in its order; a test checks that they agree)
    character(len=*), parameter :: method_words = "'auto', 'newmark', 'hht', 'generalized_alpha', " &
-      // "'central_difference', 'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', 'exact'"
+      // "'central_difference', 'linear_acceleration', 'fox_goodwin', 'rk4', 'rk45', " &
+      // "'exponential', 'exact'"
    character(len=*), parameter :: stop_solution_words = "'condensed', 'fixed_point'"
    character(len=*), parameter :: step_control_words = "'auto', 'error', 'fixed', 'half_step', " &
       // "'embedded'"

@@ -16,6 +16,7 @@ submodule (gapbeam_integrator) gapbeam_integrator_registry
    use gapbeam_explicit, only: central_difference_t, runge_kutta_t
    use gapbeam_stepping, only: stepping_integrator_t
    use gapbeam_exact, only: exact_integrator_t
+   use gapbeam_exponential, only: exponential_t
    implicit none
 
 contains
@@ -52,6 +53,8 @@ contains
          allocate(proto, source=central_difference_t())
       case ('runge_kutta')
          allocate(proto, source=runge_kutta_t(embedded=caps%estimator == 'embedded'))
+      case ('exponential')
+         allocate(proto, source=exponential_t())
       case ('exact')
       case default
          error stop 'gapbeam_integrator_registry: method_table has a family without an ' &

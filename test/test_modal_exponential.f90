@@ -1,0 +1,222 @@
+!> The modal exponential integrator (method 'exponential'): a linear free and forced response
+!> exact to round-off with steps far beyond every mode's period (against the matrix exponential
+!> in extended precision); the order of convergence of its nonlinear part on a contact case;
+!> agreement with the exact integrator on a piecewise-linear reduced model (flat stop) and
+!> with rk45 at a tight tolerance on a reduced tube with rings and friction; the energy balance.
+program test_modal_exponential
+   use gapbeam_kinds, only: dp, pi
+   use gapbeam_error, only: error_t, str
+   use gapbeam_testing, only: check, check_close, check_le, finish, note
+   use gapbeam_deck, only: deck_t
+   use gapbeam_model, only: model_t
+   use gapbeam_state, only: state_t
+   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_integrator, only: integrator_t, stepper_t, make_integrator, make_stepper, &
+      start_state
+   use gapbeam_results, only: transient_result_t
+   use gapbeam_transient, only: integrate
+   use gapbeam_test_runs, only: load_or_stop, run_deck
+   use gapbeam_expm_reference, only: expm_run
+   implicit none
+   character(len=*), parameter :: prog = 'test_modal_exponential'
+   character(len=*), parameter :: beam = 'test/decks/moon_shaw_10p5hz_half_element.nml'
+   character(len=*), parameter :: tube = 'test/decks/tube_cantilever.nml'
+
+   call linear_response_exact()
+   call convergence_order()
+   call flat_stop_against_exact()
+   call tube_against_rk45()
+   call finish(prog)
+
+contains
+
+   !> A beam without its stop (free, then forced by the base, Rayleigh damping): steps of T/4
+   !> (omega_max h about 2e3) against the matrix exponential of the first-order system in
+   !> extended precision.
+   subroutine linear_response_exact()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      real(dp), allocatable :: u0(:), v0(:), ur(:), vr(:), u(:), v(:)
+      class(stepper_t), allocatable :: st
+      type(state_t) :: s0, s1
+      type(error_t), allocatable :: err
+      real(dp) :: period, h, ratio, eu, ev
+      integer :: j, k, switches, n, steps
+      character(len=16) :: amp(2)
+      character(len=200) :: ov(2)
+      logical :: ok
+      amp = [character(len=16) :: '0.0', '3.7e-3']
+      do k = 1, 2
+         ov(1) = '&stops gap = 1.0 / &forcing amplitude_pp = ' // trim(amp(k)) // ' /'
+         ov(2) = '&initial kind = ''given'', node = 5, dof = ''w'', displacement = 1.0e-3, ' &
+                 // 'velocity = 0.2 /'
+         call load_or_stop(prog, beam, ov, deck, model, u0, v0)
+         period = 2.0_dp * pi / model%omega
+         n = model%n
+         if (allocated(ur)) deallocate(ur, vr)
+         allocate(ur(n), vr(n))
+         call expm_run(model, u0, v0, 3, 64, ur, vr, switches)
+         call make_stepper('exponential', st, err)
+         if (allocated(err)) then
+            call check('exponential stepper', .false., err%message);  return
+         end if
+         steps = 4
+         h = period / steps
+         call st%prepare(model, deck%solver, h, err)
+         if (allocated(err)) then
+            call check('exponential prepares', .false., err%message);  return
+         end if
+         call start_state(model, 0.0_dp, u0, v0, s0)
+         s1 = s0
+         do j = 1, 3 * steps
+            call st%step(model, s0, s1, ok, ratio, 0)
+            s0 = s1
+         end do
+         u = s0%u;  v = s0%v
+         eu = maxval(abs(u - ur)) / maxval(abs(ur))
+         ev = maxval(abs(v - vr)) / maxval(abs(vr))
+         call note('linear ' // merge('forced', 'free  ', k == 2) // ' response, h = T/4 ' &
+            // '(omega_max h = ' // str(model%omega_max * h) // '), 3 periods: error ' &
+            // str(eu) // ' (u), ' // str(ev) // ' (v) of the largest value')
+         call check_le('linear ' // trim(merge('forced', 'free  ', k == 2)) // ' response ' &
+            // 'with steps of T/4 exact to round-off (u)', eu, 1.0e-11_dp)
+         call check_le('linear ' // trim(merge('forced', 'free  ', k == 2)) // ' response ' &
+            // 'with steps of T/4 exact to round-off (v)', ev, 1.0e-11_dp)
+         call check('no contact switch in the reference', switches == 0)
+      end do
+   end subroutine linear_response_exact
+
+   !> The end state of one forcing period on the flat-stop beam (reduced to 4 modes with its
+   !> static mode) under fixed steps T/n with located events, against the exact integrator:
+   !> the error's order as n doubles.
+   subroutine convergence_order()
+      type(deck_t) :: deck
+      type(model_t) :: model
+      real(dp), allocatable :: u0(:), v0(:)
+      type(state_t) :: s_ref, s
+      class(integrator_t), allocatable :: integ
+      type(solver_settings_t) :: cfg
+      type(error_t), allocatable :: err
+      real(dp) :: period, e(4), p
+      integer :: k
+      integer, parameter :: steps(4) = [64, 128, 256, 512]
+      call load_or_stop(prog, beam, [character(len=80) :: &
+         "&reduction kind = 'modal', n_modes = 4 /"], deck, model, u0, v0)
+      period = 2.0_dp * pi / model%omega
+      cfg = deck%solver
+      cfg%method = 'exact'
+      call make_integrator(model, cfg, integ, err)
+      if (allocated(err)) then
+         call check('exact integrator', .false., err%message);  return
+      end if
+      call start_state(model, 0.0_dp, u0, v0, s_ref)
+      call integ%advance(s_ref, 2.0_dp * period, err=err)
+      do k = 1, size(steps)
+         cfg = deck%solver
+         cfg%method = 'exponential';  cfg%step_control = 'fixed'
+         cfg%steps_per_period = steps(k)
+         call make_integrator(model, cfg, integ, err)
+         if (allocated(err)) then
+            call check('exponential integrator', .false., err%message);  return
+         end if
+         call start_state(model, 0.0_dp, u0, v0, s)
+         call integ%advance(s, 2.0_dp * period, err=err)
+         if (allocated(err)) then
+            call check('exponential, fixed steps T/' // str(steps(k)), .false., err%message)
+            return
+         end if
+         e(k) = maxval(abs(s%u - s_ref%u)) / maxval(abs(s_ref%u))
+      end do
+      ! the mean order over the three halvings (the located events make each one's noisy)
+      p = log(e(1) / e(4)) / log(8.0_dp)
+      call note('flat stop, 2 periods, fixed steps T/64 .. T/512: errors ' // str(e(1)) // ', ' &
+         // str(e(2)) // ', ' // str(e(3)) // ', ' // str(e(4)) // '; observed orders ' &
+         // str(log(e(1) / e(2)) / log(2.0_dp)) // ', ' // str(log(e(2) / e(3)) / log(2.0_dp)) &
+         // ', ' // str(log(e(3) / e(4)) / log(2.0_dp)) // '; mean ' // str(p))
+      call check('fixed steps converge to the exact integrator (errors fall as steps halve)', &
+         e(2) < e(1) .and. e(3) < e(2) .and. e(4) < e(3))
+      call check_le('mean order of convergence on the contact case at least 3.5 (observed ' &
+         // str(p) // ')', -p, -3.5_dp)
+   end subroutine convergence_order
+
+   !> The flat-stop beam reduced (4 modes and the static mode): impacts and peak force under
+   !> error control against the exact integrator (the contact fraction is noted only: the
+   !> stepping recorder interpolates the onsets and releases linearly, whatever the method).
+   subroutine flat_stop_against_exact()
+      type(model_t) :: model
+      type(transient_result_t) :: rx, re
+      type(error_t), allocatable :: err
+      character(len=200) :: base(1)
+      base(1) = "&reduction kind = 'modal', n_modes = 4 / &solver transient_periods = 0, " &
+         // 'record_periods = 4 /'
+      call run_deck(beam, [character(len=200) :: base(1), "&solver method = 'exact' /"], &
+                    model, rx, err)
+      if (allocated(err)) then
+         call check('exact run', .false., err%message);  return
+      end if
+      call run_deck(beam, [character(len=200) :: base(1), "&solver method = 'exponential', " &
+                    // 'tolerance = 1.0e-7 /'], model, re, err)
+      if (allocated(err)) then
+         call check('exponential run', .false., err%message);  return
+      end if
+      call note('flat stop, reduced: impacts ' // str(re%n_impacts(1)) // ' (exact ' &
+         // str(rx%n_impacts(1)) // '), peak force ' // str(re%peak_force(1)) // ' N (exact ' &
+         // str(rx%peak_force(1)) // '), contact fraction ' // str(re%contact_fraction(1)) &
+         // ' (exact ' // str(rx%contact_fraction(1)) // ')')
+      call check('flat stop, reduced: the same impacts as the exact integrator', &
+                 re%n_impacts(1) == rx%n_impacts(1))
+      call check_close('flat stop, reduced: peak force as the exact integrator', &
+                       re%peak_force(1), rx%peak_force(1), 1.0e-4_dp)
+   end subroutine flat_stop_against_exact
+
+   !> The rattling cantilever tube (rings, friction, point forces, two planes) reduced: work
+   !> rates, sliding, impacts and peak forces against rk45 at the same tight tolerance; the
+   !> energy balance.
+   subroutine tube_against_rk45()
+      type(model_t) :: model
+      type(transient_result_t) :: rk, re
+      type(error_t), allocatable :: err
+      character(len=200) :: base(1)
+      real(dp) :: ek, ee
+      integer :: k
+      base(1) = "&reduction kind = 'auto' / &solver tolerance = 1.0e-6, transient_periods = 2, " &
+         // 'record_periods = 3 / &output energy_balance = .true. /'
+      call run_deck(tube, [character(len=200) :: base(1), "&solver method = 'rk45' /"], &
+                    model, rk, err)
+      if (allocated(err)) then
+         call check('rk45 run', .false., err%message);  return
+      end if
+      call run_deck(tube, [character(len=200) :: base(1), "&solver method = 'exponential' /"], &
+                    model, re, err)
+      if (allocated(err)) then
+         call check('exponential run', .false., err%message);  return
+      end if
+      do k = 1, size(rk%n_impacts)
+         call note('tube, support ' // str(k) // ': impacts ' // str(re%n_impacts(k)) &
+            // ' (rk45 ' // str(rk%n_impacts(k)) // '), W_N ' // str(re%normal_work_rate(k)) &
+            // ' (' // str(rk%normal_work_rate(k)) // '), W_f ' // str(re%friction_work_rate(k)) &
+            // ' (' // str(rk%friction_work_rate(k)) // '), sliding ' &
+            // str(re%sliding_distance(k)) // ' (' // str(rk%sliding_distance(k)) // ')')
+         call check('tube, support ' // str(k) // ': the same impacts as rk45', &
+                    re%n_impacts(k) == rk%n_impacts(k))
+         call check_close('tube, support ' // str(k) // ': normal work rate as rk45', &
+                          re%normal_work_rate(k), rk%normal_work_rate(k), 1.0e-3_dp, 1.0e-12_dp)
+         call check_close('tube, support ' // str(k) // ': friction work rate as rk45', &
+                          re%friction_work_rate(k), rk%friction_work_rate(k), 1.0e-3_dp, &
+                          1.0e-12_dp)
+         call check_close('tube, support ' // str(k) // ': peak force as rk45', &
+                          re%peak_force(k), rk%peak_force(k), 1.0e-3_dp, 1.0e-9_dp)
+      end do
+      ek = imbalance(rk);  ee = imbalance(re)
+      call note('tube energy imbalance (of the input work): exponential ' // str(ee) &
+                // ', rk45 ' // str(ek))
+      call check_le('tube: energy balance closes to 1e-4 of the input work', abs(ee), 1.0e-4_dp)
+   end subroutine tube_against_rk45
+
+   !> Energy imbalance of a run relative to its input work.
+   real(dp) function imbalance(r)
+      type(transient_result_t), intent(in) :: r
+      imbalance = (r%input_work - r%rayleigh_dissipation - r%contact_damping_dissipation &
+                   - r%friction_dissipation - r%stored_energy_change) / abs(r%input_work)
+   end function imbalance
+end program test_modal_exponential
