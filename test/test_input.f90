@@ -666,6 +666,8 @@ contains
       call expect_error("text after a closing '/'", base // forcing // ' junk', &
          [character(len=60) :: 'line 3', "text after the '/' that closes group &forcing", &
          "'junk'"])
+      call expect_error("a deck cut after '&'", job // '&', [character(len=60) :: &
+         'line 2', "must be followed directly by a group name (after group &job)"])
       call expect_error('stray text between groups', job // 'stray text' // nl // beam, &
          [character(len=60) :: 'line 2', 'text outside a group (after group &job)'])
       call expect_error("a second '/' in a group", base // '&forcing frequency_hz=9.8 / ' &

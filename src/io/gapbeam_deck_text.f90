@@ -225,7 +225,7 @@ contains
                   // 'a deck has one of each group')
                return
             end if
-            call parse_group(c, g, err)
+            call parse_group(c, closed, g, err)
             if (allocated(err)) return
             src%groups = [src%groups, g]
             closed = g%name;  closed_line = c%line
@@ -250,9 +250,10 @@ contains
       if (len(closed) > 0) t = ' (after group &' // closed // ')'
    end function after
 
-   !> '&name ... /' at the cursor.
-   subroutine parse_group(c, g, err)
+   !> '&name ... /' at the cursor; `closed` names the group before it ('' for none).
+   subroutine parse_group(c, closed, g, err)
       type(cursor_t), intent(inout) :: c
+      character(len=*), intent(in) :: closed
       type(group_text_t), intent(out) :: g
       type(error_t), allocatable, intent(inout) :: err
       type(assignment_t) :: item
@@ -262,7 +263,7 @@ contains
       c%p = c%p + 1
       if (.not. is_letter(peek(c))) then
          call fatal_error(err, at(c) // "'" // group_token(c) // "': '&' must be followed " &
-            // 'directly by a group name' // meant(c))
+            // 'directly by a group name' // after(closed) // meant(c))
          return
       end if
       g%name = lower(read_name(c))
