@@ -29,7 +29,8 @@
 # so that a shard's points (a part of the grid) get the grid's tiles on the grid's frame. A failed
 # point (NaN exponent) carries a black cross. A single frequency or a single amplitude (a line
 # sweep) gives a strip of tiles in a shorter picture.
-# Terminal: scripts/terminal.gp (format png, pdf or svg); 1000x650 (1000x330 for a strip).
+# Terminal: scripts/terminal.gp (format png, pdf or svg); 1000x650 (1000x330 for a strip, taller when its legend
+# needs it).
 
 if (!exists("datafile") || !exists("outfile")) {
    print "chaos_map.gp: set datafile and outfile, e.g. gnuplot -e \"datafile='x.sweep.dat'; outfile='x.png'\" scripts/chaos_map.gp"
@@ -107,7 +108,10 @@ nfailed = int(STATS_sum)
 
 # The terminal (format png, pdf or svg; see scripts/terminal.gp), from this script's folder.
 dirof_(s, i) = (i < 1) ? "." : ((s[i:i] eq "/") ? s[1:i-1] : dirof_(s, i - 1))
-width = 1000; height = strip ? 330 : 650
+# a strip grows with its legend (rows as high as its large markers) so that the legend stays
+# one column beside the strip
+nkey = words(present) + (nquiet > 0) + (ndisputed > 0) + (ncontra > 0) + (ntransient > 0)
+width = 1000; height = strip ? (330 > 150 + 42 * nkey ? 330 : 150 + 42 * nkey) : 650
 load dirof_(ARG0, strlen(ARG0)) . "/terminal.gp"
 ringsize = cairo ? 1.2 : 0.8
 
