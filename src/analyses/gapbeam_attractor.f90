@@ -21,10 +21,13 @@
 !> state, and rescaled to that size after every period (both states restart there in
 !> equilibrium); lambda = sum ln(d_k / d_0) / ((N - N_a) T) over the periods after the first
 !> N_a = max(q, N / 10) (the separation aligning with the most expanding direction). The
-!> uncertainty sigma is the standard error from the means of 10 batches of the rest, whole
-!> multiples of the orbit's period q when a period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
+!> uncertainty sigma is the larger of the standard errors from 10 batches of the rest and from
+!> overlapping batches of a quarter of it, whole multiples of the orbit's period q when a
+!> period was found; see exponent_estimate. N starts at `lyapunov_periods` and grows (to
 !> the N that sigma ~ 1/sqrt(N) predicts, with a 20 % margin, at most 4 x at a time) until
-!> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods.
+!> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods;
+!> a record that met its target is then doubled (within lyapunov_max_periods) and lambda and
+!> sigma are those of the whole, so that the stop's own luck is half of what is reported.
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
