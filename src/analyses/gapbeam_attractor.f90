@@ -45,8 +45,7 @@ module gapbeam_attractor
    use gapbeam_exponent_pair, only: pair_t, pair_start, pair_period
    implicit none
    private
-   public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
-      transient_budget, lyapunov_budget, persistence, exponent_estimate
+   public :: point_diagnostics, diagnose, persistence, exponent_estimate
 
    !> A monitor told the work of one phase shifted by the work of the phases before it.
    type, extends(monitor_t) :: shifted_monitor_t

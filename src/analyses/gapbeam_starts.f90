@@ -26,8 +26,7 @@ module gapbeam_starts
    use gapbeam_diagnostics, only: orbit_distance, statistics_distance
    implicit none
    private
-   public :: uniform_numbers, random_state, same_attractor, group_attractors, attractor_distance, &
-      start_list
+   public :: uniform_numbers, random_state, group_attractors, attractor_distance, start_list
 
 contains
 

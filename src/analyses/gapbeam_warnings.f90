@@ -44,8 +44,7 @@ module gapbeam_warnings
    use gapbeam_lapack, only: dgbtrf, dgbtrs, dpbtrf, dpbtrs
    implicit none
    private
-   public :: deck_warnings, scale_warnings, reach_bounds
-   public :: gap_span_fraction, amplitude_span_fraction, width_span_ratio, depth_span_fraction
+   public :: deck_warnings, reach_bounds
 
    real(dp), parameter :: gap_span_fraction = 0.1_dp        !! gap / L that warns
    real(dp), parameter :: amplitude_span_fraction = 0.2_dp  !! A_pp / L that warns

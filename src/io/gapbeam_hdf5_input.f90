@@ -9,8 +9,8 @@ module gapbeam_hdf5_input
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_hdf5_output, only: library_open, file_access_list, path_exists, at, q
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
+   use gapbeam_hdf5_output, only: library_open, file_access_list, path_exists, at
    use hdf5, only: hid_t, hsize_t, size_t, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
       h5pclose_f, h5oopen_f, h5oclose_f, h5sclose_f, h5sget_simple_extent_ndims_f, &
       h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
