@@ -16,8 +16,7 @@ program main
    use gapbeam_warning_text, only: warning_length, warning_prefix
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
-   use gapbeam_files, only: make_parent_directory, ignore_file_size_signal, &
-      output_prefix_problem, output_name_problem
+   use gapbeam_files, only: make_parent_directory, output_prefix_problem, output_name_problem
    use gapbeam_output_catalogue, only: catalogue_text, section_names, section_analyses
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &
@@ -29,7 +28,7 @@ program main
    use gapbeam_usage, only: usage_lines, help_text, version_text
    use gapbeam_deck_help, only: deck_help
    use gapbeam_continuation_job, only: run_continuation_job   ! issue 14
-   use gapbeam_stop_signal, only: catch_stop_signal
+   use gapbeam_stop_signal, only: catch_stop_signal, ignore_file_size_signal
    implicit none
    integer, parameter :: status_error = 1, status_usage = 2, status_locked = 4
    type(deck_t) :: deck

@@ -3,7 +3,9 @@
 # from a gapbeam PREFIX.sweep.dat (columns: 1 frequency [Hz], 2 amplitude_pp [m], 3 period,
 # 4 label (p >= 1: period p; 0: undecided; -1: chaotic), 5 lyapunov [1/s], 6 lyapunov_error
 # [1/s], 7 impacts_stop1, 8 peak_force_stop1 [N], 9 rms_force_stop1 [N], 10 work_rate_stop1 [W],
-# 11 status, 12 certificate (1 certified, 2 disputed, 0 none), ...). A sweep over other deck
+# 11 status, 12 certificate (1 certified, 2 disputed, 0 none), ..., 22 dispute (1 a contradiction
+# within the label's own evidence, 2 a chaotic transient that settled on a period, 3 a check run
+# disagrees, 0 none)). A sweep over other deck
 # variables has their values in columns 1 and 2: give label1, label2 and scale2.
 #
 # Usage:
@@ -14,7 +16,11 @@
 # [Hz], forcing amplitude [mm p-p]), scale2 (factor on column 2, default 1e3).
 # Colours: chaotic red; undecided grey; period 1 blue, 2 green, 3 orange, 4 purple, 5-8 cyan,
 # more than 8 brown; unsettled (the transient did not settle) dark grey; failed black. A point
-# whose certificate is disputed carries a black cross (x), counted in the legend. The legend (right) lists the classes present with their point counts. A
+# whose certificate is disputed carries a marker of what disputes it, counted in the legend: an
+# open triangle for a contradiction (a period beside a positive exponent, or chaos beside a
+# detected period), an open diamond for a chaotic transient (the chaos did not persist: the run
+# continued settled on a period), a cross (x) for a check run giving another label (files
+# without column 22: a cross for every disputed point). The legend (right) lists the classes present with their point counts. A
 # small white dot with a black ring marks a point whose stop 1 saw no impact in the recorded periods (the linear,
 # non-impacting response; such points are usually 'undecided' as long as the free vibration of
 # the first mode has not died out).
@@ -35,6 +41,8 @@ if (!exists("label2") || strlen(label2) == 0) { label2 = "forcing amplitude [mm 
 if (!exists("scale2")) { scale2 = 1.0e3 }
 # the certificate column (absent in files written before issue 11)
 disputed(dummy) = (valid(12) && column(12) == 2) ? 1 : 0
+# what disputes it (column 22; absent in files written before it: a check, for every dispute)
+dkind(dummy) = (disputed(0) == 0) ? 0 : (valid(22) ? int(column(22)) : 3)
 
 # Distinct values of a column: a datablock of "value count" rows (smooth frequency sorts and
 # merges equal values); format with enough digits that distinct grid values stay distinct.
@@ -86,8 +94,12 @@ do for [k = 1:10] {
 }
 stats datafile using (($7 == 0 && $4 > -2.5) ? 1 : 0) nooutput
 nquiet = int(STATS_sum)
-stats datafile using (disputed(0)) nooutput
+stats datafile using (dkind(0) == 3 ? 1 : 0) nooutput
 ndisputed = int(STATS_sum)
+stats datafile using (dkind(0) == 1 ? 1 : 0) nooutput
+ncontra = int(STATS_sum)
+stats datafile using (dkind(0) == 2 ? 1 : 0) nooutput
+ntransient = int(STATS_sum)
 npts = STATS_records
 # failed points (their exponent is NaN in the table): marked with a black cross
 stats datafile using (($5 != $5) ? 1 : 0) nooutput
@@ -129,9 +141,17 @@ plot for [w in present] datafile \
         with points pt 7 ps ringsize lc rgb "white" notitle, \
      for [q = 1:(nquiet > 0 ? 1 : 0)] datafile using 1:(($7 == 0 && $4 > -2.5) ? $2*scale2 : 1/0) \
         with points pt 6 ps ringsize lc rgb "black" title ringtitle, \
-     for [q = 1:(ndisputed > 0 ? 1 : 0)] datafile using 1:(disputed(0) ? $2*scale2 : 1/0) \
+     for [q = 1:(ndisputed > 0 ? 1 : 0)] datafile using 1:(dkind(0) == 3 ? $2*scale2 : 1/0) \
         with points pt 2 ps 2.0*ringsize lw 2 lc rgb "black" \
         title sprintf("x: %d point%s whose check run gives another label", ndisputed, \
-           (ndisputed == 1) ? "" : "s")
+           (ndisputed == 1) ? "" : "s"), \
+     for [q = 1:(ncontra > 0 ? 1 : 0)] datafile using 1:(dkind(0) == 1 ? $2*scale2 : 1/0) \
+        with points pt 8 ps 2.0*ringsize lw 2 lc rgb "black" \
+        title sprintf("triangle: %d label%s contradicting its own evidence", ncontra, \
+           (ncontra == 1) ? "" : "s"), \
+     for [q = 1:(ntransient > 0 ? 1 : 0)] datafile using 1:(dkind(0) == 2 ? $2*scale2 : 1/0) \
+        with points pt 12 ps 2.0*ringsize lw 2 lc rgb "black" \
+        title sprintf("diamond: %d chaotic transient%s, then a period", ntransient, \
+           (ntransient == 1) ? "" : "s")
 
 unset output

@@ -3,12 +3,19 @@
 
 Usage:
     python3 scripts/code_metrics.py [--root DIR] [--top N] [--all-procedures] [--dot]
+    python3 scripts/code_metrics.py --check [--root DIR]
     python3 scripts/code_metrics.py > metrics.txt
 
     --root DIR        repository to measure (default: the one holding this script)
     --top N           length of the longest-procedure lists (default 10)
     --all-procedures  list every procedure of src/, app/, bench/ (longest first)
     --dot             print the module `use` graph in Graphviz DOT instead of the report
+    --check           check the house rules instead of the report: the folder rule (a layer folder
+                      of src/ uses only itself and the folders below it: core < model <
+                      integrators < analyses; io uses only core and io; jobs uses any folder of
+                      src/; app and bench use src/), no source file over 1,000 lines and no
+                      procedure over 150 lines (own lines: internal procedures apart); one line per breach, exit status 1 when
+                      there is one, else 0 and one line 'rules kept'
 
 Python 3 standard library only. Reads every .f90 file under src/, app/ and bench/ (the code)
 and test/ (reported separately). Output, plain text:
@@ -60,7 +67,18 @@ import subprocess
 import sys
 from collections import defaultdict
 
-LAYERS = ['src/core', 'src/model', 'src/integrators', 'src/analyses', 'src/io']
+LAYERS = ['src/core', 'src/model', 'src/integrators', 'src/analyses', 'src/io', 'src/jobs']
+# the folder rule: which folders the modules of a folder may use
+BELOW = {'src/core': ['src/core'],
+         'src/model': ['src/core', 'src/model'],
+         'src/integrators': ['src/core', 'src/model', 'src/integrators'],
+         'src/analyses': ['src/core', 'src/model', 'src/integrators', 'src/analyses'],
+         'src/io': ['src/core', 'src/io'],
+         'src/jobs': LAYERS,
+         'app': LAYERS + ['app'],
+         'bench': LAYERS + ['bench']}
+MAX_FILE_LINES = 1000
+MAX_PROC_LINES = 150
 EXTERNAL = re.compile(r'^(iso_\w+|ieee_\w+|omp_lib(_kinds)?|hdf5|h5\w*|mpi\w*|openacc)$')
 PREFIX = r'(?:(?:pure|impure|elemental|recursive|non_recursive|module)\s+)'
 TYPESPEC = (r'(?:(?:real|integer|logical|complex|character|double\s+precision|type|class)'
@@ -372,6 +390,36 @@ def proc_table(procs, n, key):
     return out
 
 
+def check_rules(code_files, units, procs, by_name, graph):
+    """The folder rule and the size limits; one line per breach; 1 when there is one."""
+    breaches = []
+    for u in units:
+        folder = folder_of(u.src.rel)
+        if folder not in BELOW:
+            breaches.append(f'{u.src.rel}: folder {folder} has no place in the folder rule '
+                            '(scripts/code_metrics.py BELOW, docs/architecture.md)')
+            continue
+        for d in graph[u.name]:
+            dfolder = folder_of(by_name[d].src.rel)
+            if dfolder not in BELOW[folder]:
+                breaches.append(f'{u.src.rel}: {u.name} uses {d} ({dfolder}): {folder} may use '
+                                f'only {", ".join(BELOW[folder])}')
+    for f in code_files:
+        if len(f.lines) > MAX_FILE_LINES:
+            breaches.append(f'{f.rel}: {len(f.lines)} lines (at most {MAX_FILE_LINES})')
+    for p in procs:
+        if p.own > MAX_PROC_LINES:
+            breaches.append(f'{p.src.rel}:{p.start}: procedure {p.name}: {p.own} lines of '
+                            f'its own (at most {MAX_PROC_LINES})')
+    for b in breaches:
+        print(b)
+    if not breaches:
+        print(f'rules kept: the folder rule ({len(units)} units), files <= {MAX_FILE_LINES} '
+              f'lines ({len(code_files)} files), procedures <= {MAX_PROC_LINES} lines '
+              f'({len(procs)} procedures)')
+    return 1 if breaches else 0
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description='gapbeam code metrics (see the module docstring).')
@@ -379,6 +427,7 @@ def main():
     ap.add_argument('--top', type=int, default=10)
     ap.add_argument('--all-procedures', action='store_true')
     ap.add_argument('--dot', action='store_true')
+    ap.add_argument('--check', action='store_true')
     if len(sys.argv) > 1 and sys.argv[1] in ('-h', '--help'):
         print(__doc__)
         return 0
@@ -408,6 +457,8 @@ def main():
             elif name not in deps:
                 deps.append(name)
         graph[u.name] = deps
+    if opts.check:
+        return check_rules(code_files, units, procs, by_name, graph)
     if opts.dot:
         print('digraph gapbeam_use {')
         print('  rankdir=BT; node [shape=box, fontsize=10];')

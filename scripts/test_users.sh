@@ -16,6 +16,8 @@
 #   scripts/plot.sh writes PNG, PDF and SVG (a %PDF / <svg header) and refuses another format;
 #   fpm.toml declares gapbeam as its only executable (the benchmark is an example);
 #   scripts/test_docs.py (every deck variable documented, README within its length).
+#   scripts/code_metrics.py --check (the folder rule of src/, no file over 1,000 lines, no
+#   procedure over 150 lines).
 # Prints `test_users.sh: N checks, M failed`; exit status 1 if a check failed.
 set -uo pipefail
 exe=$1
@@ -149,6 +151,9 @@ check "fpm.toml: gapbeam is the only executable, the benchmark an example" $? "$
 if command -v python3 >/dev/null 2>&1; then
    python3 "${root}/scripts/test_docs.py" "${root}"
    check "scripts/test_docs.py ran to the end" $?
+   why=$(python3 "${root}/scripts/code_metrics.py" --check --root "${root}")
+   check "house rules: the folder rule, files <= 1000 lines, procedures <= 150 lines" $? \
+      "$(printf '%s' "${why}" | head -n 3 | tr '\n' ';')"
 fi
 
 printf 'test_users.sh: %d checks, %d failed\n' "${n}" "${failed}"

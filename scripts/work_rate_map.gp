@@ -8,7 +8,10 @@
 # is white. From a gapbeam PREFIX.sweep.dat (columns: 1 x (frequency [Hz]), 2 y, 3 period,
 # 4 label (p >= 1: period p; 0 undecided; -1 chaotic; -2 unsettled; -3 failed), ...,
 # 18 normal_work_rate_total [W], 19 wear_volume_rate_total [m3/s], 20 contact_fraction_max,
-# 21 impacts_total).
+# 21 impacts_total, 22 dispute). A disputed certificate adds its own mark: 't' a chaotic
+# transient (the chaos did not persist: the run continued settled on a period), '!' a label
+# contradicting its own evidence (a period beside a positive exponent, chaos beside a period),
+# '?' a check run giving another label (column 22; files without it: no mark).
 #
 # Usage:
 #   gnuplot -e "datafile='x.sweep.dat'; outfile='x.work_rate_map.png'" scripts/work_rate_map.gp
@@ -78,12 +81,18 @@ set key off
 regime(cf, l, p) = (l < -2.5) ? "F" : ((cf <= 0) ? "" : ((cf < 0.5) ? "I" : "S") . \
    ((l > 0.5) ? sprintf("%d", int(p)) : ((l < -0.5 && l > -1.5) ? "C" : \
    ((l < -1.5) ? "u" : ""))))
+# what disputes the certificate (column 22, absent in older files)
+dmark(dummy) = !valid(22) ? "" : (column(22) == 1 ? "!" : (column(22) == 2 ? "t" : \
+   (column(22) == 3 ? "?" : "")))
+set label 2 "certificate disputed: t chaotic transient (then a period), ! contradiction in the label's evidence, ? a check run disagrees" \
+   at graph 0.0, graph -0.17 font ",9"
 set label 1 "I impacting, S sustained contact (sliding whirl); digit: period, C chaotic, u unsettled; F failed; white: no contact" \
    at graph 0.0, graph -0.13 font ",9"
-set bmargin 6
+set bmargin 7
 plot datafile using 1:($2*yscale):(hf):(ha):($18 > 0 ? log10($18) : NaN) \
         with boxxyerror fc palette, \
      datafile using 1:($18 > 0 ? NaN : $2*yscale):(hf):(ha) \
         with boxxyerror fc rgb "white" fs solid 1.0 border lc rgb "#bbbbbb", \
-     datafile using 1:($2*yscale):(regime($20, $4, $3)) with labels font ",10" tc rgb "black"
+     datafile using 1:($2*yscale):(regime($20, $4, $3) . dmark(0)) with labels font ",10" \
+        tc rgb "black"
 set output

@@ -12,7 +12,7 @@ program test_exponents
    use gapbeam_model, only: model_t
    use gapbeam_test_runs, only: load_or_stop
    use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
-      certificate_disputed
+      certificate_disputed, dispute_kind, dispute_contradiction
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_attractor, only: diagnose
    use gapbeam_certify, only: certify_point, contradiction
@@ -21,6 +21,9 @@ program test_exponents
    implicit none
    character(len=*), parameter :: tube = 'test/decks/tube_planar.nml'
    character(len=*), parameter :: chaos = 'inputs/moon_shaw_9p8hz.nml'
+   !> a mass held by friction on a ring support (stuck, or stick-slip with a larger forcing)
+   character(len=*), parameter :: ring = 'test/decks/stick_ring.nml'
+   character(len=*), parameter :: slip = '&forcing amplitude_pp = 0.1013211836 /'
    !> the tube's exponent to 1 % or over 600 periods
    character(len=*), parameter :: tight = &
       '&diagnostics lyapunov_rel_error = 0.01, lyapunov_max_periods = 600 /'
@@ -29,6 +32,8 @@ program test_exponents
    call modal_model_gives_the_same_exponent()
    call chaotic_exponent_within_its_errors()
    call contradictions_are_disputed()
+   call stuck_ring_gives_the_least_damped_rate()
+   call stick_slip_exponent_converges()
    call finish('test_exponents')
 
 contains
@@ -183,5 +188,58 @@ contains
          // 'start agrees (' // pr%certificate_reason // ')', &
          pr%certificate == certificate_disputed .and. pr%perturbed_label == pr%label .and. &
          index(pr%certificate_reason, 'contradicts') > 0)
+      call check('... and the charts mark it as a contradiction (dispute code 1)', &
+         dispute_kind(pr%certificate, pr%certificate_reason) == dispute_contradiction)
    end subroutine contradictions_are_disputed
+   !> A support that sticks for ever (test/decks/stick_ring.nml: mu N = 1 N against a base
+   !> force of 0.4 N) leaves a linear structure, the mass held by the stick spring and the
+   !> contact spring. Its damping is C = 2 M (mass-proportional), so every underdamped mode
+   !> decays at exactly -C/(2M) = -1 1/s whatever the stiffnesses (its eigenvalues are
+   !> -1 +- i omega_d; the w mode adds the contact damper: -1 - 20/(2 x 1.00005) = -11 1/s):
+   !> the largest exponent is -1 1/s. The perturbed trajectory must keep the stick anchor of
+   !> the period before (rebuilt from (u, v) the stick spring would lose its stretch every
+   !> period). Newmark's trapezoidal steps under error control change the decay rate by
+   !> O((omega h)^2): the exponent converges to -1 as the tolerance falls (measured, release:
+   !> -0.8675 at 1e-4, -0.9904 at 1e-5, -0.99885 at 1e-6, each +- 1.3e-3 .. 1.7e-4).
+   subroutine stuck_ring_gives_the_least_damped_rate()
+      type(point_result_t) :: p4, p5
+      real(dp) :: e4, e5
+      call run(ring, [character(len=80) :: '&solver tolerance = 1.0e-4 /'], p4)
+      call run(ring, [character(len=80) :: '&solver tolerance = 1.0e-5 /'], p5)
+      e4 = abs(p4%lyapunov + 1.0_dp);  e5 = abs(p5%lyapunov + 1.0_dp)
+      call note('stuck ring: lambda ' // str(p4%lyapunov) // ' +- ' // str(p4%lyapunov_error) &
+         // ' (tolerance 1e-4), ' // str(p5%lyapunov) // ' +- ' // str(p5%lyapunov_error) &
+         // ' 1/s (1e-5); closed form -1 1/s')
+      call check('stuck ring: the support sticks all the time (no sliding)', &
+                 p5%sliding_distance(1) == 0.0_dp)
+      call check('stuck ring: an exponent with a stated error over ' &
+         // str(p5%lyapunov_periods) // ' periods', p5%lyapunov_periods > 0 .and. &
+         p5%lyapunov_error > 0.0_dp)
+      call check_le('stuck ring: |lambda + 1| at tolerance 1e-5 (the trapezoidal steps'' ' &
+         // 'error, 0.0096 measured)', e5, 0.015_dp)
+      call check_le('stuck ring: the error falls at least 5 x from tolerance 1e-4 to 1e-5', &
+         5.0_dp * e5, e4)
+   end subroutine stuck_ring_gives_the_least_damped_rate
+
+   !> The same mass forced at 2 m/s^2 (twice mu N / m) sticks and slips twice a period: the
+   !> trajectories' regimes, slip directions and anchors switch at their own located events
+   !> (the stick anchor is set where each slider stops). Its exponent (a stable orbit) is
+   !> negative beyond 3 sigma, and the same within 3 combined sigma at a 10 x tighter
+   !> tolerance (measured, release: -2.7647 +- 0.0009 at 1e-3, -2.7635 +- 0.0009 at 1e-4,
+   !> -2.7633 +- 0.0009 1/s at 1e-5).
+   subroutine stick_slip_exponent_converges()
+      type(point_result_t) :: p3, p4
+      real(dp) :: bound
+      call run(ring, [character(len=80) :: slip, '&solver tolerance = 1.0e-3 /'], p3)
+      call run(ring, [character(len=80) :: slip, '&solver tolerance = 1.0e-4 /'], p4)
+      call note('stick-slip: lambda ' // str(p3%lyapunov) // ' +- ' // str(p3%lyapunov_error) &
+         // ' (tolerance 1e-3), ' // str(p4%lyapunov) // ' +- ' // str(p4%lyapunov_error) &
+         // ' 1/s (1e-4); sliding ' // str(p4%sliding_distance(1)) // ' m in the record')
+      call check('stick-slip: the support slides', p4%sliding_distance(1) > 0.0_dp)
+      call check('stick-slip: negative beyond 3 sigma', &
+                 p4%lyapunov + 3.0_dp * p4%lyapunov_error < 0.0_dp)
+      bound = 3.0_dp * sqrt(p3%lyapunov_error**2 + p4%lyapunov_error**2)
+      call check_le('stick-slip: |lambda(1e-3) - lambda(1e-4)| <= 3 combined sigma', &
+                    abs(p3%lyapunov - p4%lyapunov), bound)
+   end subroutine stick_slip_exponent_converges
 end program test_exponents

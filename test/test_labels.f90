@@ -269,6 +269,15 @@ contains
          p2%start_label(2) == 2 .and. all(abs(p2%attractor_fraction - 0.5_dp) < 1.0e-12_dp))
       call check('20.75 Hz: one attractor for both starts', p1%n_attractors == 1 .and. &
          abs(p1%attractor_fraction(1) - 1.0_dp) < 1.0e-12_dp)
+      call note('20.75 Hz: transient periods of the starts ' // str(p1%start_transient(1)) &
+         // ', ' // str(p1%start_transient(2)) // '; mean ' // str(p1%attractor_transient(1)))
+      call check('20.75 Hz: each start ran at least the deck''s transient, and the attractor''s ' &
+         // 'transient is the mean over its two starts', &
+         all(p1%start_transient >= deck%solver%transient_periods) .and. &
+         abs(p1%attractor_transient(1) - 0.5_dp * sum(p1%start_transient)) < 1.0e-12_dp)
+      call check('21.0 Hz: each attractor''s transient is its one start''s', &
+         all(abs(p2%attractor_transient(p2%start_attractor) - real(p2%start_transient, dp)) &
+             < 1.0e-12_dp))
    end subroutine coexisting_attractors_at_a_hysteresis_point
 
    !> Up, down and two random starts with certificates, on 1 and 2 threads: the same results

@@ -16,7 +16,7 @@ program test_persistence
    use gapbeam_model, only: model_t
    use gapbeam_test_runs, only: load_or_stop
    use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
-      certificate_certified, certificate_disputed
+      certificate_certified, certificate_disputed, dispute_kind, dispute_transient, dispute_none
    use gapbeam_attractor, only: diagnose
    use gapbeam_certify, only: certify_point
    implicit none
@@ -66,6 +66,8 @@ contains
       call check('18.7 Hz: the persistence check disputes with "chaotic transient, then ' &
          // 'period 4 after N periods"', caught%certificate == certificate_disputed .and. &
          index(caught%certificate_reason, expect) == 1)
+      call check('18.7 Hz: the charts mark it as a chaotic transient (dispute code 2)', &
+         dispute_kind(caught%certificate, caught%certificate_reason) == dispute_transient)
       after = 0
       if (index(caught%certificate_reason, expect) == 1) then
          read(caught%certificate_reason(len(expect) + 1:), *, iostat=ios) after
@@ -100,5 +102,7 @@ contains
       call check('19.2 Hz: chaotic and certified, the chaos persisting', &
          pr%label == label_chaotic .and. pr%certificate == certificate_certified .and. &
          index(pr%certificate_reason, 'chaotic for at least ') > 0)
+      call check('19.2 Hz: no dispute marker in the charts (dispute code 0)', &
+         dispute_kind(pr%certificate, pr%certificate_reason) == dispute_none)
    end subroutine persistent_chaos_stays_certified
 end program test_persistence

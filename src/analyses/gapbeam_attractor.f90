@@ -39,10 +39,10 @@ module gapbeam_attractor
    use gapbeam_transient, only: integrate, integrator_cache_t
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_progress, only: monitor_t
+   use gapbeam_exponent_pair, only: pair_t, pair_start, pair_period
    implicit none
    private
-   public :: largest_lyapunov, point_diagnostics, diagnose, auto_period_tolerance, &
-      transient_budget, lyapunov_budget, persistence
+   public :: point_diagnostics, diagnose, persistence
 
    !> A monitor told the work of one phase shifted by the work of the phases before it.
    type, extends(monitor_t) :: shifted_monitor_t
@@ -448,9 +448,12 @@ contains
       type(integrator_cache_t), target :: own
       class(integrator_t), pointer :: integ
       type(state_t) :: sa, sb
+      type(pair_t) :: pair
       real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
+      logical, allocatable :: counted(:)
       real(dp) :: d0, d, period, x_norm, target, sigma, lambda
-      integer :: k, n, n_max, n_next, q
+      integer :: k, n, n_max, n_next, q, m
+      logical :: rings
 
       period = 2.0_dp * pi / model%omega
       n_max = lyapunov_budget(diag)
@@ -473,11 +476,24 @@ contains
       end if
       ua = u;  va = v
       allocate(logs(n_max), strain(2, n_max))
+      allocate(counted(n_max), source=.true.)
+      ! ring supports: whole states carried from period to period (gapbeam_exponent_pair)
+      rings = model%n_rings > 0
+      if (rings) call pair_start(model, u, v, d0, pair)
       k = 0
       n = diag%lyapunov_periods
       do
          do while (k < n)
             k = k + 1
+            if (rings) then
+               call pair_period(model, integ, period, pair, logs(k), counted(k), err)
+               if (allocated(err)) return
+               ua = pair%a%u;  va = pair%a%v
+               strain(1, k) = dot_product(model%sys%strain_row, ua)
+               strain(2, k) = dot_product(model%sys%strain_row, va)
+               if (present(monitor)) call monitor%update(real(2 * k, dp))
+               cycle
+            end if
             ! both start each period in equilibrium, so that the acceleration the methods carry
             ! is the same function of (u, v) in both: the map compared is that of (u, v)
             call start_state(model, 0.0_dp, ua, va, sa)
@@ -497,7 +513,7 @@ contains
             end if
             if (present(monitor)) call monitor%update(real(2 * k, dp))
          end do
-         call exponent_estimate(logs(1:n), period, q, lambda, sigma)
+         call exponent_estimate(pack(logs(1:n), counted(1:n)), period, q, lambda, sigma)
          target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
          lyap%converged = sigma <= target
          if (lyap%converged .or. n >= n_max) exit
@@ -516,11 +532,16 @@ contains
       lyap%periods = n
       lyap%section = strain(:, 1:n)
       lyap%uncertainty = sigma
+      lyap%discordant = count(.not. counted(1:n))
+      lyap%retried = pair%retried
       allocate(lyap%running(n))
       d = 0.0_dp
+      m = 0
       do k = 1, n
-         d = d + logs(k)
-         lyap%running(k) = d / (real(k, dp) * period)
+         if (counted(k)) then
+            d = d + logs(k);  m = m + 1
+         end if
+         lyap%running(k) = d / (real(max(m, 1), dp) * period)
       end do
       lyap%exponent = lambda
       u_end = ua;  v_end = va
@@ -540,6 +561,9 @@ contains
       type(method_caps_t) :: c
       character(len=:), allocatable :: reason
       call resolve_method(model, cfg, one, reason)
+      ! ring supports: the run's own method and step control (only error control ends steps
+      ! at every stick-slip switch; gapbeam_exponent_pair)
+      if (model%n_rings > 0) return
       c = method_caps(one%method)
       if (len_trim(c%lyapunov_with) > 0) then
          one%method = c%lyapunov_with;  one%newmark_delta = 0.5_dp;  one%newmark_alpha = 0.25_dp

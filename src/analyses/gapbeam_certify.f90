@@ -35,7 +35,7 @@ module gapbeam_certify
    use gapbeam_clock, only: thread_cpu_seconds
    implicit none
    private
-   public :: certify_point, accuracy_settings, contradiction
+   public :: certify_point, contradiction
 
    integer, parameter :: stream_perturbation = 1000   !! generator stream offset of the checks
 

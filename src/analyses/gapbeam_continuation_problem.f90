@@ -38,7 +38,7 @@ module gapbeam_continuation_problem
    implicit none
    private
    public :: problem_t, point_t, map_at, orbit_eval, wdot, wvec, correct_point, tangent_of, &
-      measure_point, solve_linear, test_value, test_kinds, null_vector, below_range
+      measure_point, solve_linear, test_value, null_vector, below_range
 
    integer, parameter :: test_kinds = 5   !! fold, branch point, period doubling, NS, grazing
 

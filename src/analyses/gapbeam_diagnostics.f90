@@ -11,7 +11,7 @@ module gapbeam_diagnostics
    implicit none
    private
    public :: detect_period, period_search, classify, window_difference, orbit_distance, &
-      statistics_distance, n_statistics, repeat_distance
+      statistics_distance, repeat_distance
 
    integer, parameter :: n_statistics = 10   !! mean, std, 10/50/90 % quantiles of x and y
 

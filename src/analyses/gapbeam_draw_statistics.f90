@@ -21,8 +21,8 @@ module gapbeam_draw_statistics
    use gapbeam_fft, only: fft, next_power_of_two
    implicit none
    private
-   public :: student_t_quantile, mean_half_width, welch_psd, incomplete_beta, &
-      relative_half_width, periodogram_psd, dft
+   public :: student_t_quantile, mean_half_width, welch_psd, relative_half_width, &
+      periodogram_psd, dft
 
 contains
 

@@ -27,7 +27,7 @@ module gapbeam_point
    use gapbeam_progress, only: monitor_t
    implicit none
    private
-   public :: start_vector, label_start, label_point, stream_random, integrator_cache_t
+   public :: start_vector, label_start, label_point, integrator_cache_t
 
    integer, parameter :: stream_random = 1000000   !! generator streams of the random starts
 

@@ -22,7 +22,7 @@ module gapbeam_reduction_check
    use gapbeam_transient, only: integrate
    implicit none
    private
-   public :: reduction_check_t, check_reduction, check_lines, richer_factor
+   public :: reduction_check_t, check_reduction, check_lines
 
    real(dp), parameter :: richer_factor = 1.5_dp   !! richer cut-off / the checked one [-]
 

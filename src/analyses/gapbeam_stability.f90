@@ -19,7 +19,7 @@ module gapbeam_stability
    use gapbeam_capabilities, only: method_caps_t, method_caps
    implicit none
    private
-   public :: spectral_radius, test_problem, largest_stable_step, step_is_stable
+   public :: spectral_radius, largest_stable_step
 
 contains
 

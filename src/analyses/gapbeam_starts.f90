@@ -26,8 +26,7 @@ module gapbeam_starts
    use gapbeam_diagnostics, only: orbit_distance, statistics_distance
    implicit none
    private
-   public :: uniform_numbers, random_state, same_attractor, group_attractors, attractor_distance, &
-      start_list
+   public :: uniform_numbers, random_state, group_attractors, attractor_distance, start_list
 
 contains
 
@@ -144,7 +143,8 @@ contains
    end function same_attractor
 
    !> Group the starts of a point (all diagnosed) into distinct attractors; the summary goes
-   !> into `pr` (start_label, start_attractor, start_lyapunov, n_attractors, attractor_*).
+   !> into `pr` (start_label, start_attractor, start_lyapunov, start_transient, n_attractors,
+   !> attractor_*: an attractor's transient is the mean over the starts that reached it).
    !> Failed starts (status /= 0) join no attractor (start_attractor 0) but count among the
    !> starts of the fractions.
    pure subroutine group_attractors(starts, diag, pr)
@@ -155,10 +155,12 @@ contains
       integer, allocatable :: first(:)
       ns = size(starts)
       allocate(pr%start_label(ns), pr%start_attractor(ns), pr%start_lyapunov(ns), first(ns))
+      allocate(pr%start_transient(ns))
       pr%start_attractor = 0
       na = 0
       do k = 1, ns
          pr%start_lyapunov(k) = starts(k)%lyapunov
+         pr%start_transient(k) = starts(k)%transient_periods
          if (starts(k)%status /= 0) then
             pr%start_label(k) = label_failed
             cycle
@@ -177,11 +179,14 @@ contains
          end if
       end do
       pr%n_attractors = na
-      allocate(pr%attractor_label(na), pr%attractor_fraction(na), pr%attractor_lyapunov(na))
+      allocate(pr%attractor_label(na), pr%attractor_fraction(na), pr%attractor_lyapunov(na), &
+               pr%attractor_transient(na))
       do j = 1, na
          pr%attractor_label(j) = starts(first(j))%label
          pr%attractor_lyapunov(j) = starts(first(j))%lyapunov
          pr%attractor_fraction(j) = real(count(pr%start_attractor == j), dp) / real(ns, dp)
+         pr%attractor_transient(j) = real(sum(pr%start_transient, mask=pr%start_attractor &
+            == j), dp) / real(count(pr%start_attractor == j), dp)
       end do
    end subroutine group_attractors
 end module gapbeam_starts

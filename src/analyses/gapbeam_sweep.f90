@@ -35,7 +35,7 @@ module gapbeam_sweep
    implicit none
    private
    public :: sweep_plan_t, make_plan, n_points, n_items, n_groups, group_of_item, item_slots, &
-      group_points, slot_index, point_values, run_slot, run_items, combine_point
+      group_points, slot_index, run_items, combine_point
 
    !> What a sweep runs: its axes, its starts, its groups.
    type :: sweep_plan_t

@@ -37,15 +37,14 @@ module gapbeam_warnings
    use gapbeam_error, only: error_t, str
    use gapbeam_deck, only: deck_t
    use gapbeam_warning_text, only: warning_length
-   use gapbeam_description, only: dof_name, stop_t
+   use gapbeam_description, only: dof_name, stop_t, rigid_planes
    use gapbeam_model, only: model_t
    use gapbeam_model_builder, only: build_full_model, initial_vectors
    use gapbeam_linalg, only: dense_to_band
    use gapbeam_lapack, only: dgbtrf, dgbtrs, dpbtrf, dpbtrs
    implicit none
    private
-   public :: deck_warnings, scale_warnings, reach_bounds
-   public :: gap_span_fraction, amplitude_span_fraction, width_span_ratio, depth_span_fraction
+   public :: deck_warnings, reach_bounds
 
    real(dp), parameter :: gap_span_fraction = 0.1_dp        !! gap / L that warns
    real(dp), parameter :: amplitude_span_fraction = 0.2_dp  !! A_pp / L that warns
@@ -63,9 +62,31 @@ contains
       character(len=warning_length), allocatable :: lines(:)
       character(len=warning_length), allocatable :: more(:)
       lines = scale_warnings(deck)
+      more = mechanism_warnings(deck)
+      if (size(more) > 0) lines = joined(lines, more)
       more = reach_warnings(deck)
       if (size(more) > 0) lines = joined(lines, more)
    end function deck_warnings
+
+   !> A beam that is a mechanism held by its stops (the deck reader refuses one that no stop
+   !> holds): a note that between impacts it moves freely.
+   pure function mechanism_warnings(deck) result(lines)
+      type(deck_t), intent(in) :: deck                 !! validated deck
+      character(len=warning_length), allocatable :: lines(:)
+      logical :: rigid(2), held(2)
+      character(len=:), allocatable :: planes
+      allocate(lines(0))
+      if (.not. allocated(deck%stops)) return
+      call rigid_planes(deck%structure, deck%stops, rigid, held)
+      if (.not. any(rigid)) return
+      planes = 'w plane'
+      if (rigid(2)) planes = 'v plane'
+      if (all(rigid)) planes = 'w and v planes'
+      call add(lines, "the beam is a mechanism: &root condition = 'pinned' with a free tip " &
+         // 'and no &springs leaves the rigid rotation about the root free in the ' // planes &
+         // ' (f = 0), held only by the stops; between impacts it moves freely, and a ' &
+         // 'one-sided stop holds it on one side only (the beam may leave it and drift)')
+   end function mechanism_warnings
 
    !> Gaps, base amplitude and section far outside the model's scale (the span L).
    pure function scale_warnings(deck) result(lines)

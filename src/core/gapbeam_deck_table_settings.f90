@@ -133,7 +133,30 @@ contains
       integer :: n, i, m
       call v%begin_group('initial', 'initial state relative to the base (list)', .true.)
       call v%word('kind', ini%kind, initial_state_words, meaning="'rest': u = u' = 0 " &
-         // "relative to the base; 'given': the listed values, zero elsewhere")
+         // "relative to the base; 'given': the listed values, zero elsewhere; 'rotation': " &
+         // "a rigid rotation about the root; 'translation': a rigid translational velocity; " &
+         // "'file': the final state of an earlier transient run (initial_file)")
+      call v%real('angular_velocity', ini%angular_velocity, 'rad/s', lo=-big, hi=big, &
+         note="kind = 'rotation'", meaning='rigid rotation rate about the root in the w ' &
+         // "plane: w' = Omega x, theta' = Omega at every free dof")
+      call v%real('angular_velocity_v', ini%angular_velocity_v, 'rad/s', lo=-big, hi=big, &
+         note="kind = 'rotation', planes = 2", meaning="the same in the v plane: v' = " &
+         // "Omega_v x, theta_v' = Omega_v")
+      call v%real('angle', ini%angle, 'rad', lo=-big, hi=big, note="kind = 'rotation'; " &
+         // 'not with a clamped root or a supported tip (it would move a fixed dof)', &
+         meaning='rigid rotation angle about the root in the w plane: w = angle x, theta = ' &
+         // 'angle (small rotations)')
+      call v%real('angle_v', ini%angle_v, 'rad', lo=-big, hi=big, note="kind = 'rotation', " &
+         // 'planes = 2; as angle', meaning='the same in the v plane')
+      call v%real('translation_velocity', ini%translation_velocity, 'm/s', lo=-big, hi=big, &
+         note="kind = 'translation'", meaning="rigid translational velocity in w: w' = V, " &
+         // "theta' = 0 at every free dof (the supports hold their own dofs)")
+      call v%real('translation_velocity_v', ini%translation_velocity_v, 'm/s', lo=-big, &
+         hi=big, note="kind = 'translation', planes = 2", meaning="the same in v: v' = V_v")
+      call v%text('initial_file', ini%initial_file, note="kind = 'file'; a transient run's " &
+         // 'file of the same structure, full model', meaning='HDF5 file of an earlier ' &
+         // 'transient run whose final state (/final/u, /final/v at /final/time) starts this ' &
+         // 'one; relative to the working directory')
       m = 0
       if (allocated(ini%node)) m = size(ini%node)
       n = v%entries(m, max_initial_entries)

@@ -26,7 +26,7 @@ module gapbeam_description
    public :: beam_ei, beam_rho_a, beam_fibre_distance, beam_mass, n_nodes, forcing_omega
    public :: beam_mass_per_length, stop_is_ring
    public :: beam_rho_i, beam_shear_stiffness, beam_shear_coefficient, beam_is_timoshenko
-   public :: modal_ratio
+   public :: modal_ratio, rigid_planes
    public :: rayleigh_from_ratios, modal_damping_ratio
    public :: dof_w, dof_theta, dof_v, dof_theta_v, dof_name, law_code, law_bilinear, law_hertz
    public :: stop_side_words, stop_law_words, damping_words, rotary_inertia_words, &
@@ -426,4 +426,33 @@ contains
       w = 2.0_dp * pi * f_hz
       zeta = beta / (2.0_dp * w) + gamma * w / 2.0_dp
    end function modal_damping_ratio
+
+   !> Per plane (w, v): whether the structure has a rigid mode (the rotation about a pinned
+   !> root with a free tip and no spring in the plane) and whether a stop holds it.
+   pure subroutine rigid_planes(st, stops, rigid, held)
+      type(structure_t), intent(in) :: st                  !! structure
+      type(stop_t), intent(in) :: stops(:)                 !! stops
+      logical, intent(out) :: rigid(2)                     !! a rigid mode in w, in v
+      logical, intent(out) :: held(2)                      !! a stop holds it
+      integer :: i
+      rigid = .false.;  held = .false.
+      if (st%root%condition /= 'pinned' .or. st%tip%condition /= 'free') return
+      rigid(1) = .true.
+      rigid(2) = st%beam%planes > 1
+      do i = 1, size(st%springs)
+         if (any(st%springs(i)%dof == [dof_w, dof_theta])) rigid(1) = .false.
+         if (any(st%springs(i)%dof == [dof_v, dof_theta_v])) rigid(2) = .false.
+      end do
+      do i = 1, size(stops)
+         associate (s => stops(i))
+            if (s%shape == 'circular') then
+               if (s%node > 1) held = .true.
+            else if (s%dof == dof_w .and. s%node > 1 .or. s%dof == dof_theta) then
+               held(1) = .true.
+            else if (s%dof == dof_v .and. s%node > 1 .or. s%dof == dof_theta_v) then
+               held(2) = .true.
+            end if
+         end associate
+      end do
+   end subroutine rigid_planes
 end module gapbeam_description

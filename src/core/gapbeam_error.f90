@@ -4,10 +4,11 @@
 !> no convergence, file I/O) returns an allocated `error_t` in its last argument;
 !> the caller checks `allocated(err)` at once. Only `app/main.f90` ends the run.
 module gapbeam_error
+   use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: error_t, fatal_error, str, printable
+   public :: error_t, fatal_error, str, printable, quoted
 
    !> A recoverable failure: 'where: what (values)'.
    type :: error_t
@@ -16,7 +17,7 @@ module gapbeam_error
 
    !> Number or logical to text, without surrounding blanks.
    interface str
-      module procedure str_int, str_real, str_logical
+      module procedure str_int, str_int64, str_real, str_logical
    end interface str
 
 contains
@@ -78,6 +79,22 @@ contains
       write(buf, '(i0)') i
       s = trim(buf)
    end function str_int
+
+   !> 64-bit integer to text.
+   pure function str_int64(i) result(s)
+      integer(int64), intent(in) :: i          !! value
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function str_int64
+
+   !> Text in single quotes, for messages: 'results/x.h5'.
+   pure function quoted(text) result(s)
+      character(len=*), intent(in) :: text     !! text
+      character(len=:), allocatable :: s
+      s = "'" // text // "'"
+   end function quoted
 
    !> Real to text with enough digits to tell values apart (`g0` style, 8 significant digits).
    pure function str_real(x) result(s)

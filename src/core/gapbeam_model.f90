@@ -100,6 +100,9 @@ module gapbeam_model
       integer, allocatable :: c_tdof(:)          !! tangent dof of each contact (0: none)
       real(dp) :: omega_max = 0.0_dp             !! highest natural frequency [rad/s]
       real(dp) :: f1_open_hz = 0.0_dp            !! first frequency, stops open [Hz]
+      !> a mechanism: rigid modes (omega = 0) that only the stops hold (a pinned root, a free
+      !> tip, no spring in a plane)
+      logical :: mechanism = .false.
       !> the contact laws, indexed by c_law and r_law (gapbeam_laws: the built-in ones, in the
       !> order of their codes)
       type(law_slot_t), allocatable :: laws(:)

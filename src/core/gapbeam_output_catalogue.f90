@@ -447,6 +447,10 @@ module gapbeam_output_catalogue
                 // 'starts that reached each attractor'), &
       dataset_t('/diagnostics/attractors/lyapunov', 's-1', 'n_attractors', 'largest Lyapunov ' &
                 // 'exponent of each attractor''s first start'), &
+      dataset_t('/diagnostics/starts/transient_periods', '1', 'n_starts', 'periods each ' &
+                // 'start ran before its final record (transient and settling extensions)'), &
+      dataset_t('/diagnostics/attractors/mean_transient_periods', '1', 'n_attractors', &
+                'mean over the starts reaching each attractor of their transient periods'), &
       dataset_t('/final/u', 'm', 'n_dof', 'displacement of each dof at the end of the run, ' &
                 // 'before the Lyapunov periods (w in m, theta in rad: /model/dof_type)'), &
       dataset_t('/final/v', 'm s-1', 'n_dof', 'velocity of each dof at the end of the run (w ' &
@@ -669,6 +673,12 @@ module gapbeam_output_catalogue
       dataset_t('/sweep/attractors/lyapunov', 's-1', 'point=m attractor=n_starts', 'largest ' &
                 // 'Lyapunov exponent of each attractor''s first start (NaN past ' &
                 // 'n_attractors)'), &
+      dataset_t('/sweep/starts/transient_periods', '1', 'point=m start=n_starts', 'periods ' &
+                // 'each start ran before its final record (transient and settling ' &
+                // 'extensions; 0 past the end)'), &
+      dataset_t('/sweep/attractors/mean_transient_periods', '1', 'point=m attractor=n_starts', &
+                'mean over the starts reaching each attractor of their transient periods (NaN ' &
+                // 'past n_attractors)'), &
       dataset_t('/sweep/title', '1', '', '&job title'), &
       dataset_t('/sweep/grid_frequency_hz', 'Hz', 'n_f', 'forcing frequency axis of the sweep ' &
                 // 'grid (or the one &forcing value)'), &

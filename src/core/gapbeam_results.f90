@@ -8,10 +8,16 @@ module gapbeam_results
    private
    public :: modes_t, transient_result_t, allocate_result, lyapunov_t, point_result_t, &
       series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach, certificate_text
+   public :: dispute_kind, dispute_none, dispute_contradiction, dispute_transient, dispute_other
    public :: label_chaotic, label_undecided, label_unsettled, label_failed
    public :: certificate_none, certificate_certified, certificate_disputed
 
    integer, parameter :: label_chaotic = -1     !! label code of a chaotic response
+   ! what disputes a certificate (dispute_kind; the charts mark each with its own marker)
+   integer, parameter :: dispute_none = 0           !! certified, or no certificate
+   integer, parameter :: dispute_contradiction = 1  !! the label contradicts its own evidence
+   integer, parameter :: dispute_transient = 2      !! a chaotic transient settled on a period
+   integer, parameter :: dispute_other = 3          !! a check disagreed (accuracy, perturbed)
    integer, parameter :: label_undecided = 0    !! neither periodic nor provably chaotic
    integer, parameter :: label_unsettled = -2   !! the transient did not settle
    integer, parameter :: label_failed = -3      !! the run failed (no label)
@@ -101,6 +107,10 @@ module gapbeam_results
       real(dp), allocatable :: running(:)        !! estimate after each period [1/s]
       integer :: periods = 0                     !! periods averaged [-]
       logical :: converged = .false.             !! the uncertainty met its target
+      !> periods not counted: the two trajectories' step sequences differed (ring supports,
+      !> error control; gapbeam_exponent_pair)
+      integer :: discordant = 0
+      integer :: retried = 0                     !! periods run again from the other side
       !> root strain [-] and its rate [1/s] of the reference trajectory at the end of each
       !> period (forcing phase 0): (2, periods)
       real(dp), allocatable :: section(:, :)
@@ -166,6 +176,11 @@ module gapbeam_results
       integer, allocatable :: attractor_label(:)     !! label of each attractor
       real(dp), allocatable :: attractor_fraction(:) !! fraction of the starts reaching it [-]
       real(dp), allocatable :: attractor_lyapunov(:) !! exponent of its first start [1/s]
+      !> periods each start ran before its final record (the deck's transient and the
+      !> settling extensions: a chaotic transient lengthens it)
+      integer, allocatable :: start_transient(:)
+      !> mean of start_transient over the starts that reached each attractor [periods]
+      real(dp), allocatable :: attractor_transient(:)
       ! --- the values of the sweep axes at this point
       real(dp) :: x = 0.0_dp                         !! x axis value [its unit]
       real(dp) :: y = 0.0_dp                         !! y axis value [its unit]
@@ -253,6 +268,25 @@ contains
       case default;  t = 'none'
       end select
    end function certificate_text
+
+   !> What disputes a certificate, from its code and reason (gapbeam_certify writes the
+   !> reasons: 'disputed: the label ... contradicts ...' for a contradiction within the
+   !> point's own evidence, 'disputed: chaotic transient, then period N after M periods' for a
+   !> chaos that did not persist, otherwise a check's disagreement).
+   pure integer function dispute_kind(code, reason) result(kind)
+      integer, intent(in) :: code                 !! certificate code
+      character(len=*), intent(in) :: reason      !! certificate reason
+      kind = dispute_none
+      if (code /= certificate_disputed) return
+      if (index(reason, 'disputed: chaotic transient') == 1) then
+         kind = dispute_transient
+      else if (index(reason, 'disputed: the label ') == 1 .and. &
+               index(reason, ' contradicts ') > 0) then
+         kind = dispute_contradiction
+      else
+         kind = dispute_other
+      end if
+   end function dispute_kind
 
    !> Text of a label code: 'period_3', 'chaotic', 'undecided', 'unsettled', 'failed'.
    pure function label_text(code) result(t)

@@ -23,7 +23,8 @@ module gapbeam_settings
    character(len=*), parameter :: step_control_words = "'auto', 'error', 'fixed', 'half_step', " &
       // "'embedded'"
    character(len=*), parameter :: linear_solver_words = "'auto', 'dense', 'banded'"
-   character(len=*), parameter :: initial_state_words = "'rest', 'given'"
+   character(len=*), parameter :: initial_state_words = "'rest', 'given', 'rotation', " &
+      // "'translation', 'file'"
    character(len=*), parameter :: analysis_words = "'modes', 'calibrate', 'transient', " &
       // "'sweep', 'work_precision', 'stability', 'model_size', 'continuation'"
    character(len=*), parameter :: calibration_words = &
@@ -109,13 +110,26 @@ module gapbeam_settings
       integer  :: shape_points = 8              !! points per element of the deflected shape [-]
    end type output_settings_t
 
-   !> Initial state relative to the base: at rest, or given values at listed dofs.
+   !> Initial state relative to the base: at rest, given values at listed dofs, a rigid-body
+   !> field (a rotation about the root, a translation; per plane), or the final state of an
+   !> earlier run's file (read with the deck: file_u, file_v, file_time).
    type :: initial_state_t
-      character(len=16) :: kind = 'rest'            !! 'rest' or 'given'
+      character(len=16) :: kind = 'rest'            !! see initial_state_words
       integer, allocatable :: node(:)               !! nodes of the given values
       integer, allocatable :: dof(:)                !! dof codes of the given values
       real(dp), allocatable :: displacement(:)      !! [m or rad]
       real(dp), allocatable :: velocity(:)          !! [m/s or rad/s]
+      real(dp) :: angular_velocity = 0.0_dp         !! 'rotation': rate in the w plane [rad/s]
+      real(dp) :: angular_velocity_v = 0.0_dp       !! 'rotation': rate in the v plane [rad/s]
+      real(dp) :: angle = 0.0_dp                    !! 'rotation': angle in the w plane [rad]
+      real(dp) :: angle_v = 0.0_dp                  !! 'rotation': angle in the v plane [rad]
+      real(dp) :: translation_velocity = 0.0_dp     !! 'translation': w velocity [m/s]
+      real(dp) :: translation_velocity_v = 0.0_dp   !! 'translation': v velocity [m/s]
+      character(len=256) :: initial_file = ''       !! 'file': an earlier transient run's .h5
+      ! read from initial_file by the deck reader (not deck variables)
+      real(dp), allocatable :: file_u(:)            !! its /final/u [m, rad]
+      real(dp), allocatable :: file_v(:)            !! its /final/v [m/s, rad/s]
+      real(dp) :: file_time = 0.0_dp                !! its /final/time [s]
    end type initial_state_t
 
    !> One entry of &initial as the deck gives it (the defaults of an entry).

@@ -225,6 +225,10 @@ contains
          reason = "method 'auto': the deck asks for stepping options (step_control = '" &
             // trim(cfg%step_control) // "', stop_solution = '" // trim(cfg%stop_solution) &
             // "'), so " // trim(t(i_default)%title)
+      else if (model%mechanism) then
+         reason = "method 'auto': the beam is a mechanism (rigid modes that only its stops " &
+            // 'hold), which the exact integrator cannot integrate yet, so ' &
+            // trim(t(i_default)%title) // ' with error control at the tolerance'
       else if (len(needs_text(nd)) > 0 .and. .not. can_run(i_exact)) then
          reason = "method 'auto': it has " // needs_text(nd) // ', so ' &
             // trim(t(i_default)%title) // ' with error control at the tolerance'
@@ -253,6 +257,8 @@ contains
          can_run = .false.
          if (j > 0) can_run = len(method_refusal(t(j), nd, t(j)%auto_control, 'condensed', &
                                                  t)) == 0
+         ! a mechanism: not the exact integrator (refusal)
+         if (j > 0 .and. model%mechanism) can_run = can_run .and. .not. t(j)%exact
       end function can_run
 
       !> The title of the first law that is not piecewise linear.
@@ -286,6 +292,10 @@ contains
       why = ''
       if (len_trim(c%name) == 0) return
       why = method_refusal(c, model_needs(model), eff%step_control, eff%stop_solution, table)
+      if (len(why) == 0 .and. c%exact .and. model%mechanism) why = "method '" &
+         // trim(c%name) // "' cannot integrate this model: it is a mechanism (a rigid mode " &
+         // 'that only its stops hold, f1 = 0 with the stops open), whose closed ' &
+         // "configurations the exact integrator cannot solve yet: use method = 'newmark'"
    end function refusal
 
    !> What a model has beyond a planar beam with flat frictionless stops, in words ('it

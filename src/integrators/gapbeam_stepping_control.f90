@@ -47,6 +47,9 @@ contains
       n_out = 1 + size(self%out_dof)       ! the root strain first
       allocate(self%out_lo(2 * n_out), self%out_hi(2 * n_out), self%out_floor(2 * n_out))
       kf = model%sys%k
+      ! a mechanism (rigid modes): no quasi-static response; the floors from the response of
+      ! K + Omega^2 M instead (quasi-static in the stiff dofs, the inertia's in the rigid modes)
+      if (model%mechanism) kf = model%sys%k + model%omega**2 * model%sys%m
       uqs = model%half_amplitude * model%omega**2 * model%q
       call dpotrf('U', model%n, kf, model%n, info)
       if (info /= 0) then
@@ -59,6 +62,7 @@ contains
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
       v_turb = huge(1.0_dp)
+      if (model%mechanism) call mechanism_floors(self, model, n_out)
       if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out, v_turb)
       if (model%n_rings > 0) call wear_floors(self, model, n_out, v_turb)
       if (self%caps%estimator == 'embedded') then
@@ -67,6 +71,24 @@ contains
          self%out_floor(n_out + 2:) = max(self%out_floor(n_out + 2:), cfg%rk_atol / cfg%tolerance)
       end if
    end subroutine init_control
+
+   !> The floors of a mechanism, whose free flight has no strain at all and, without forcing,
+   !> no response scale (the ranges start at 0 while the dofs move): a displacement of 1e-3 x
+   !> the widest gap (at least 1e-9 x the span) and the strain such displacements of the
+   !> strain row's nodes give are no errors to control (the strain of a rigid motion is round-off,
+   !> eps ||K|| ||u|| ringing in the stiff modes, not a motion to resolve).
+   subroutine mechanism_floors(self, model, n_out)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model (a mechanism)
+      integer, intent(in) :: n_out                          !! displacement outputs
+      real(dp) :: fu
+      fu = 1.0e-9_dp * model%sys%element_length * real(model%sys%n_node - 1, dp)
+      if (model%n_contacts > 0) fu = max(fu, 1.0e-3_dp * maxval(abs(model%c_gap)))
+      self%out_floor(1) = max(self%out_floor(1), sum(abs(self%sw)) * fu)
+      self%out_floor(2:n_out) = max(self%out_floor(2:n_out), fu)
+      self%out_floor(n_out + 1:) = max(self%out_floor(n_out + 1:), &
+                                       model%omega * self%out_floor(1:n_out))
+   end subroutine mechanism_floors
 
    !> Carry `state` to t_target with error control: steps from the ladder, each accepted when
    !> the estimate of its local error in every watched output is within tolerance * (the
@@ -687,8 +709,9 @@ contains
          what = 'the local error of the root strain rate is ' // str(ratio) // ' times the ' &
                 // 'tolerance'
       else
-         what = 'the local error at ' // dof_label(self%model, self%out_dof(mod(worst - 1, &
-                1 + size(self%out_dof)))) // ' is ' // str(ratio) // ' times the tolerance'
+         ! outputs: the root strain, the dofs, then their rates in the same order
+         what = 'the local error at ' // dof_label(self%model, self%out_dof(mod(worst - 2, &
+                1 + size(self%out_dof)) + 1)) // ' is ' // str(ratio) // ' times the tolerance'
       end if
       call fatal_error(err, "gapbeam_stepping: method '" // self%method // "': at t = " &
          // str(t0) // ' s ' // what // ' with the smallest step dt = ' // str(h) // ' s; ' &

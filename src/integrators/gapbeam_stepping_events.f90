@@ -270,10 +270,15 @@ contains
       real(dp), intent(in) :: u0, v0, u1, v1 !! the contact dof at the ends
       logical, intent(in) :: damped          !! the force can vanish before the penetration
       real(dp) :: d, dd, h00, h10, h01, h11, g00, g10, g01, g11
-      call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
+      ! hermite_weights' position weights written out: this runs several times per step, and a
+      ! procedure of another module is not inlined (a global symbol under -fPIC): the call cost
+      ! 2 % of the time of Newmark under error control (scripts/bench.sh, case f)
+      h00 = (1 + 2 * x) * (1 - x)**2;  h10 = x * (1 - x)**2
+      h01 = x**2 * (3 - 2 * x);  h11 = x**2 * (x - 1)
       d = model%c_sign(c) * (h00 * u0 + h10 * h * v0 + h01 * u1 + h11 * h * v1) - model%c_gap(c)
       active = d > 0.0_dp
       if (active .and. damped) then
+         call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
          dd = model%c_sign(c) * (g00 * u0 + g10 * h * v0 + g01 * u1 + g11 * h * v1) / h
          active = contact_force(model, c, d, dd) > 0.0_dp
       end if

@@ -33,10 +33,15 @@ module gapbeam_checkpoint
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, crc32
 
    character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
-   character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! no checksums: refused
-   character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'   ! no evidence: refused
-   character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'   ! no wear: refused
-   character(len=*), parameter :: magic_4 = 'GAPBEAM-CHECKPOINT-4'   ! deck not in the checksums
+   character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! older formats: refused
+   character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'
+   character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'
+   character(len=*), parameter :: magic_4 = 'GAPBEAM-CHECKPOINT-4'
+   !> What each older format lacks, for the message that refuses it.
+   character(len=*), parameter :: older(4) = [character(len=60) :: 'without checksums', &
+      'without the evidence and certificates of the labels', &
+      'without the wear outputs of the supports', &
+      'whose record checksums do not cover the deck']
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
    integer(int64), parameter :: record_overhead = 24_int64      ! bytes of a record besides its reals
@@ -71,7 +76,7 @@ contains
       character(len=len(magic)) :: head
       character(len=:), allocatable :: sig
       integer(int64) :: sig_len, hash, fsize, header_end
-      integer :: ios
+      integer :: ios, k
       character(len=256) :: msg
       ck%path = path
       ck%hash = crc32(text_bytes(signature))
@@ -95,24 +100,10 @@ contains
       inquire(unit=ck%unit, size=fsize)
       head = ''
       read(ck%unit, pos=1, iostat=ios) head, hash, sig_len
-      if (head == magic_1) then
-         call refuse(ck, 'was written by an older gapbeam, without checksums: remove it (its ' &
-            // 'points are then computed again)', err)
-         return
-      end if
-      if (head == magic_2) then
-         call refuse(ck, 'was written by an older gapbeam, without the evidence and ' &
-            // 'certificates of the labels: remove it (its points are then computed again)', err)
-         return
-      end if
-      if (head == magic_3) then
-         call refuse(ck, 'was written by an older gapbeam, without the wear outputs of the ' &
-            // 'supports: remove it (its points are then computed again)', err)
-         return
-      end if
-      if (head == magic_4) then
-         call refuse(ck, 'was written by an older gapbeam, whose record checksums do not ' &
-            // 'cover the deck: remove it (its points are then computed again)', err)
+      k = findloc([magic_1, magic_2, magic_3, magic_4], head, dim=1)
+      if (k > 0) then
+         call refuse(ck, 'was written by an older gapbeam, ' // trim(older(k)) // ': remove ' &
+            // 'it (its points are then computed again)', err)
          return
       end if
       if (ios /= 0 .or. head /= magic .or. sig_len < 0 .or. sig_len > fsize) then
@@ -248,20 +239,20 @@ contains
             clean = .false.
             q = next_whole_record(b, pos + 1)
             if (q == 0) then
-               call add_line(report, ck%path // ': the last ' // str_int64(fsize - pos + 1) &
-                  // ' bytes (from byte ' // str_int64(pos) // ') are not a whole record (a ' &
+               call add_line(report, ck%path // ': the last ' // str(fsize - pos + 1) &
+                  // ' bytes (from byte ' // str(pos) // ') are not a whole record (a ' &
                   // 'run stopped while writing?): dropped')
                exit
             end if
-            call add_line(report, ck%path // ': bytes ' // str_int64(pos) // ' to ' &
-               // str_int64(q - 1) // ' are not a whole record (a damaged mark or length): ' &
+            call add_line(report, ck%path // ': bytes ' // str(pos) // ' to ' &
+               // str(q - 1) // ' are not a whole record (a damaged mark or length): ' &
                // 'skipped, the records after them are read; a point recorded there is ' &
                // 'computed again')
             pos = q
             cycle
          end if
          k = k + 1
-         at = ck%path // ': record ' // str(k) // ' (byte ' // str_int64(pos) // ')'
+         at = ck%path // ': record ' // str(k) // ' (byte ' // str(pos) // ')'
          if (sum_stored /= crc32(b(pos + 4:nxt - 13), ck%hash)) then
             clean = .false.
             call add_line(report, at // ' fails its checksum (a damaged record, or one copied ' &
@@ -395,7 +386,7 @@ contains
       if (ios == 0) close(unit, iostat=ios, iomsg=msg)
       if (ios == 0 .and. file_size(part) /= total) then
          ios = 1
-         msg = 'only ' // str_int64(file_size(part)) // ' of ' // str_int64(total) // ' bytes ' &
+         msg = 'only ' // str(file_size(part)) // ' of ' // str(total) // ' bytes ' &
             // 'stored (a full disk?)'
       end if
       if (ios == 0) then
@@ -473,8 +464,8 @@ contains
       ! gfortran reports no error when the disk is full: the size on disk tells
       if (file_size(ck%path) /= ck%next_pos - 1) then
          call fatal_error(err, 'gapbeam_checkpoint: cannot write to ' // ck%path // ' (point ' &
-            // str(p) // '): only ' // str_int64(file_size(ck%path)) // ' of ' &
-            // str_int64(ck%next_pos - 1) // ' bytes are stored (a full disk?); the ' &
+            // str(p) // '): only ' // str(file_size(ck%path)) // ' of ' &
+            // str(ck%next_pos - 1) // ' bytes are stored (a full disk?); the ' &
             // 'points recorded before are kept')
       end if
    end subroutine checkpoint_append
@@ -534,15 +525,6 @@ contains
       end do
       crc = ieor(crc, mask)
    end function crc32
-
-   !> A 64-bit integer as text.
-   pure function str_int64(i) result(s)
-      integer(int64), intent(in) :: i                  !! value
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write(buf, '(i0)') i
-      s = trim(buf)
-   end function str_int64
 
    !> A point's results as one real array (for checkpoints); integers and characters are
    !> stored exactly (a text as its length, then one character code per real).

@@ -27,7 +27,7 @@ module gapbeam_continuation_output
    use gapbeam_output_set, only: output_set_t
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_file_info, only: write_parameter_set, write_model
+   use gapbeam_file_info, only: write_parameter_set, write_model, udunits
    use gapbeam_continuation_types, only: continuation_result_t
    implicit none
    private
@@ -89,8 +89,8 @@ contains
       character(len=256), allocatable :: ended(:)
       character(len=16), allocatable :: kinds(:)
       integer :: k, nb, nc
-      u = unit_or_dash(res%parameter_units)
-      u2 = unit_or_dash(res%parameter2_units)
+      u = udunits(res%parameter_units)
+      u2 = udunits(res%parameter2_units)
       call h5%put(c // 'title', title)
       call h5%put(c // 'parameter_name', res%parameter_name)
       call h5%put(c // 'parameter2_name', res%parameter2_name)
@@ -151,14 +151,6 @@ contains
       call h5%put(c // 'map_evaluations', res%map_evaluations)
       call h5%put(c // 'periods_integrated', res%periods_integrated)
    end subroutine write_h5
-
-   !> A deck variable's unit as UDUNITS-2 ('-' or none is '1', a pure number).
-   pure function unit_or_dash(u) result(s)
-      character(len=*), intent(in) :: u
-      character(len=:), allocatable :: s
-      s = trim(u)
-      if (len(s) == 0 .or. s == '-') s = '1'
-   end function unit_or_dash
 
    pure function pad3(k) result(s)
       integer, intent(in) :: k

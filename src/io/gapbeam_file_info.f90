@@ -26,7 +26,7 @@ module gapbeam_file_info
    implicit none
    private
    public :: write_file_info, write_parameter_set, write_structure, write_model, creation_time, &
-      crc32_hex
+      crc32_hex, udunits
 
    !> The axis-order rule, as stored in the root attribute `axis_order`.
    character(len=*), parameter :: axis_order_text = 'C order (h5py, numpy, h5dump, ParaView):' &
@@ -167,4 +167,12 @@ contains
          if (h(i:i) >= 'A' .and. h(i:i) <= 'F') h(i:i) = achar(iachar(h(i:i)) + 32)
       end do
    end function crc32_hex
+
+   !> A deck variable's unit as UDUNITS-2 ('-' or none is '1', a pure number).
+   pure function udunits(u) result(t)
+      character(len=*), intent(in) :: u                  !! unit ('-', 'm', 'N m/rad', ...)
+      character(len=:), allocatable :: t
+      t = trim(u)
+      if (t == '-' .or. len(t) == 0) t = '1'
+   end function udunits
 end module gapbeam_file_info

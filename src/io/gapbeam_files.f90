@@ -13,24 +13,23 @@
 !> character variables can be passed directly. Tables are meant for gnuplot: '#' lines are
 !> comments, then one row per line with the columns separated by blanks.
 !>
-!> - `process_id`, `host_name`, `real_path`, `directory_exists`: C `getpid`, `gethostname`,
-!>   `realpath` and `access`, for lock files, temporary names unique to a process and the
-!>   comparison of paths.
+!> - `process_id`, `real_path`, `directory_exists`: C `getpid`, `realpath` and `access`, for
+!>   lock files, temporary names unique to a process and the comparison of paths.
 !>
 !> The `errno` of the calling thread is read through glibc's (and musl's) `__errno_location`.
 !> C `strerror` may share its buffer between threads: call the procedures that report a C
 !> failure from one thread at a time (outside OpenMP parallel regions), like all file output.
 module gapbeam_files
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_f_pointer, &
-      c_associated, c_size_t, c_long, c_funptr, c_intptr_t
+      c_associated, c_long
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    implicit none
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
-   public :: process_id, host_name, real_path, file_size, ignore_file_size_signal, errno_text
+   public :: process_id, real_path, file_size, errno_text
    public :: output_prefix_problem, output_name_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
@@ -91,14 +90,6 @@ module gapbeam_files
          integer(c_int) :: pid
       end function c_getpid
 
-      !> POSIX `gethostname` from <unistd.h>: 0 on success.
-      function c_gethostname(name, length) bind(c, name='gethostname') result(status)
-         import :: c_char, c_int, c_size_t
-         character(kind=c_char), intent(out) :: name(*)       !! buffer
-         integer(c_size_t), value, intent(in) :: length       !! its size
-         integer(c_int) :: status
-      end function c_gethostname
-
       !> POSIX `realpath` from <stdlib.h>: the canonical absolute path into `resolved`
       !> (PATH_MAX bytes), or a null pointer with `errno` set.
       function c_realpath(path, resolved) bind(c, name='realpath') result(p)
@@ -139,14 +130,6 @@ module gapbeam_files
          integer(c_int), value, intent(in) :: name           !! _PC_NAME_MAX = 3
          integer(c_long) :: value
       end function c_pathconf
-
-      !> C `signal` from <signal.h>: the previous handler.
-      function c_signal(signum, handler) bind(c, name='signal') result(previous)
-         import :: c_int, c_funptr
-         integer(c_int), value, intent(in) :: signum         !! signal number
-         type(c_funptr), value, intent(in) :: handler        !! new handler (SIG_IGN: 1)
-         type(c_funptr) :: previous
-      end function c_signal
 
       !> Address of the calling thread's `errno` (glibc and musl; macOS names it `__error`).
       function c_errno_location() bind(c, name='__errno_location') result(location)
@@ -348,40 +331,10 @@ contains
       status = c_close(fd)
    end function file_size
 
-   !> Ignore SIGXFSZ, so that a write beyond the file size limit (`ulimit -f`) fails with
-   !> EFBIG, which the writers report like a full disk, instead of killing the program (the
-   !> Fortran runtime would print a backtrace). Linux signal number 25.
-   subroutine ignore_file_size_signal()
-      integer(c_int), parameter :: sigxfsz = 25
-      integer(c_intptr_t), parameter :: sig_ign = 1
-      type(c_funptr) :: previous
-      previous = c_signal(sigxfsz, transfer(sig_ign, previous))
-   end subroutine ignore_file_size_signal
-
    !> The process id of this program.
    integer function process_id()
       process_id = int(c_getpid())
    end function process_id
-
-   !> The name of this host (C `gethostname`), 'unknown-host' if it cannot be had.
-   function host_name() result(name)
-      character(len=:), allocatable :: name
-      character(kind=c_char) :: buf(256)
-      integer :: n
-      buf = c_null_char
-      if (c_gethostname(buf, int(size(buf) - 1, c_size_t)) /= 0) then
-         name = 'unknown-host'
-         return
-      end if
-      n = 0
-      do while (n < size(buf))
-         if (buf(n + 1) == c_null_char) exit
-         n = n + 1
-      end do
-      allocate(character(len=n) :: name)
-      name = transfer(buf(1:n), name)
-      if (n == 0) name = 'unknown-host'
-   end function host_name
 
    !> The canonical absolute path of an existing file or directory (C `realpath`: links,
    !> '.' and '..' resolved), or '' when it does not exist or cannot be resolved.
@@ -568,7 +521,7 @@ contains
       if (stored /= expected) then
          call remove_file(p)
          call fatal_error(err, here(proc) // 'file ' // q(p) // ' is incomplete: ' &
-            // str_int64(stored) // ' of ' // str_int64(expected) // ' bytes stored (a full ' &
+            // str(stored) // ' of ' // str(expected) // ' bytes stored (a full ' &
             // 'disk, or the file size limit?); it was deleted')
       end if
    end subroutine close_file
@@ -642,27 +595,10 @@ contains
       end do
    end function one_line
 
-   !> A 64-bit integer as text.
-   pure function str_int64(i) result(s)
-      integer(int64), intent(in) :: i                    !! value
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write(buf, '(i0)') i
-      s = trim(buf)
-   end function str_int64
-
    !> Message prefix 'gapbeam_files:<proc>: '.
    pure function here(proc) result(s)
       character(len=*), intent(in) :: proc               !! procedure name
       character(len=:), allocatable :: s
       s = module_name // ':' // proc // ': '
    end function here
-
-   !> Text in single quotes.
-   pure function q(s) result(quoted)
-      character(len=*), intent(in) :: s                  !! text
-      character(len=:), allocatable :: quoted
-      quoted = "'" // s // "'"
-   end function q
-
 end module gapbeam_files

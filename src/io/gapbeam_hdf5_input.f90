@@ -9,8 +9,8 @@ module gapbeam_hdf5_input
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr, &
       c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_hdf5_output, only: library_open, file_access_list, path_exists, at, q
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
+   use gapbeam_hdf5_output, only: library_open, file_access_list, path_exists, at
    use hdf5, only: hid_t, hsize_t, size_t, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
       h5pclose_f, h5oopen_f, h5oclose_f, h5sclose_f, h5sget_simple_extent_ndims_f, &
       h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
@@ -52,9 +52,10 @@ module gapbeam_hdf5_input
    contains
       procedure :: open => reader_open                 !! open a file read-only
       procedure :: exists => reader_exists             !! whether a dataset or group exists
-      procedure, private :: read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
-      !> A real rank 1 or 2, an integer scalar, rank 1 or 2, or a string array (allocated).
-      generic :: read => read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
+      procedure, private :: read_r0, read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
+      !> A real scalar, rank 1 or 2, an integer scalar, rank 1 or 2, or a string array
+      !> (allocated).
+      generic :: read => read_r0, read_r1, read_r2, read_i0, read_i1, read_i2, read_s1
       procedure :: read_text => reader_read_text       !! scalar string dataset
       procedure :: read_units => reader_read_units     !! the `units` attribute of a dataset
       procedure :: read_attr => reader_read_attr       !! a string attribute of an object
@@ -151,6 +152,17 @@ contains
       found = .false.
       if (self%is_open) found = path_exists(self%file_id, obj_path)
    end function reader_exists
+
+   !> Real scalar.
+   subroutine read_r0(self, path, value, err)
+      class(h5_reader_t), intent(inout) :: self          !! reader
+      character(len=*), intent(in) :: path               !! dataset
+      real(dp), intent(out), target :: value             !! stored value
+      type(error_t), allocatable, intent(out), optional :: err   !! this read's failure
+      integer(hsize_t) :: dims(0)
+      value = 0.0_dp
+      call read_numeric(self, path, H5T_FLOAT_F, dims, err, c_loc(value))
+   end subroutine read_r0
 
    !> Real rank-1 array.
    subroutine read_r1(self, path, value, err)

@@ -29,7 +29,7 @@
 module gapbeam_hdf5_output
    use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_loc, c_null_ptr
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_files, only: rename_file, remove_file
    use gapbeam_output_catalogue, only: dataset_t, describe, dims_attribute, dims_rank, &
       long_name_text
@@ -46,7 +46,7 @@ module gapbeam_hdf5_output
    private
    public :: h5_writer_t
    ! shared with gapbeam_hdf5_input, the reader
-   public :: library_open, file_access_list, path_exists, at, q
+   public :: library_open, file_access_list, path_exists, at
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an identifier not (or no longer) open
@@ -69,12 +69,10 @@ module gapbeam_hdf5_output
       type(error_t), allocatable :: err                !! the first failure
    contains
       procedure :: create => writer_create             !! create `path.part` for an analysis
-      procedure, private :: put_r0, put_r1, put_r2, put_r3, put_i0, put_i1, put_i2
-      procedure, private :: put_text, put_strings
-      !> A dataset described by the catalogue: real scalar or rank 1-3, integer scalar or rank
-      !> 1-2, a text, a string array.
-      generic :: put => put_r0, put_r1, put_r2, put_r3, put_i0, put_i1, put_i2, put_text, &
-         put_strings
+      procedure, private :: put_real, put_integer, put_text, put_strings
+      !> A dataset described by the catalogue: reals or integers of any rank, a text, a string
+      !> array.
+      generic :: put => put_real, put_integer, put_text, put_strings
       procedure :: attr => writer_attr                 !! string attribute of an object
       procedure :: copy_from => writer_copy_from       !! a group copied from another file
       procedure :: exists => writer_exists             !! whether a dataset or group exists
@@ -122,78 +120,70 @@ contains
          // 'writable?)')
    end subroutine writer_create
 
-   !> Real scalar.
-   subroutine put_r0(self, path, value, units, fill)
+   !> Reals of rank 0 to 3 (an array may have size 0), stored with the Fortran shape; the
+   !> catalogue's entry says which rank the dataset has.
+   subroutine put_real(self, path, value, units, fill)
       class(h5_writer_t), intent(inout) :: self          !! writer
       character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value                      !! value
+      real(dp), intent(in) :: value(..)                  !! value(s)
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, [integer(hsize_t) ::], [value], units, fill)
-   end subroutine put_r0
+      real(dp), allocatable, target :: flat(:)
+      integer(hsize_t), allocatable :: dims(:)
+      type(c_ptr) :: buf
+      call flat_shape(self, path, shape(value, hsize_t), rank(value), dims)
+      allocate(flat(product(dims)))
+      if (size(flat) > 0) then
+         select rank (value)
+         rank (0);  flat = [value]
+         rank (1);  flat = value
+         rank (2);  flat = reshape(value, [size(flat)])
+         rank (3);  flat = reshape(value, [size(flat)])
+         end select
+      end if
+      buf = c_null_ptr
+      if (size(flat) > 0) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_DOUBLE, dims, buf, units, fill)
+   end subroutine put_real
 
-   !> Real rank-1 array (size 0 allowed).
-   subroutine put_r1(self, path, value, units, fill)
+   !> Integers of rank 0 to 3, as put_real.
+   subroutine put_integer(self, path, value, units, fill)
       class(h5_writer_t), intent(inout) :: self          !! writer
       character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:)                   !! values
+      integer, intent(in) :: value(..)                   !! value(s)
       character(len=*), intent(in), optional :: units    !! units where the deck decides them
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), [value], units, fill)
-   end subroutine put_r1
+      integer, allocatable, target :: flat(:)
+      integer(hsize_t), allocatable :: dims(:)
+      type(c_ptr) :: buf
+      call flat_shape(self, path, shape(value, hsize_t), rank(value), dims)
+      allocate(flat(product(dims)))
+      if (size(flat) > 0) then
+         select rank (value)
+         rank (0);  flat = [value]
+         rank (1);  flat = value
+         rank (2);  flat = reshape(value, [size(flat)])
+         rank (3);  flat = reshape(value, [size(flat)])
+         end select
+      end if
+      buf = c_null_ptr
+      if (size(flat) > 0) buf = c_loc(flat)
+      call put_data(self, path, H5T_NATIVE_INTEGER, dims, buf, units, fill)
+   end subroutine put_integer
 
-   !> Real rank-2 array, stored with the Fortran shape.
-   subroutine put_r2(self, path, value, units, fill)
+   !> The dimensions of a value of rank 0 to 3 (a higher rank is refused): gfortran (12) gives
+   !> an empty array expression passed as assumed rank (`real(z)` of an empty z) the extent -1,
+   !> taken as 0 here.
+   subroutine flat_shape(self, path, extents, r, dims)
       class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:, :)                !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), reshape(value, [size(value)]), units, &
-                     fill)
-   end subroutine put_r2
-
-   !> Real rank-3 array, stored with the Fortran shape.
-   subroutine put_r3(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      real(dp), intent(in) :: value(:, :, :)             !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_reals(self, path, shape(value, hsize_t), reshape(value, [size(value)]), units, &
-                     fill)
-   end subroutine put_r3
-
-   !> Integer scalar.
-   subroutine put_i0(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value                       !! value
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, [integer(hsize_t) ::], [value], units, fill)
-   end subroutine put_i0
-
-   !> Integer rank-1 array (size 0 allowed).
-   subroutine put_i1(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value(:)                    !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, shape(value, hsize_t), [value], units, fill)
-   end subroutine put_i1
-
-   !> Integer rank-2 array, stored with the Fortran shape.
-   subroutine put_i2(self, path, value, units, fill)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      character(len=*), intent(in) :: path               !! dataset of the catalogue
-      integer, intent(in) :: value(:, :)                 !! values
-      character(len=*), intent(in), optional :: units    !! units where the deck decides them
-      character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
-      call put_integers(self, path, shape(value, hsize_t), reshape(value, [size(value)]), &
-                        units, fill)
-   end subroutine put_i2
+      character(len=*), intent(in) :: path               !! dataset
+      integer(hsize_t), intent(in) :: extents(:)         !! shape() of the value
+      integer, intent(in) :: r                           !! its rank
+      integer(hsize_t), allocatable, intent(out) :: dims(:)   !! dimensions to store
+      dims = max(0_hsize_t, extents)
+      call note(self, r > 3, q(path) // ': a value of rank ' // str(r) // ' (at most 3)')
+      if (r > 3) dims = [integer(hsize_t) :: 0]
+   end subroutine flat_shape
 
    !> A text, whole (newlines kept), as one scalar string.
    subroutine put_text(self, path, text, fill)
@@ -212,32 +202,6 @@ contains
       character(len=*), intent(in), optional :: fill     !! the `{...}` part of the long name
       call put_chars(self, path, value, .false., fill)
    end subroutine put_strings
-
-   !> Reals with shape `dims` (column-major) as a new dataset.
-   subroutine put_reals(self, path, dims, flat, units, fill)
-      class(h5_writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer(hsize_t), intent(in) :: dims(:)
-      real(dp), intent(in), target :: flat(:)
-      character(len=*), intent(in), optional :: units, fill
-      type(c_ptr) :: buf
-      buf = c_null_ptr
-      if (size(flat) > 0) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_DOUBLE, dims, buf, units, fill)
-   end subroutine put_reals
-
-   !> Integers with shape `dims` (column-major) as a new dataset.
-   subroutine put_integers(self, path, dims, flat, units, fill)
-      class(h5_writer_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      integer(hsize_t), intent(in) :: dims(:)
-      integer, intent(in), target :: flat(:)
-      character(len=*), intent(in), optional :: units, fill
-      type(c_ptr) :: buf
-      buf = c_null_ptr
-      if (size(flat) > 0) buf = c_loc(flat)
-      call put_data(self, path, H5T_NATIVE_INTEGER, dims, buf, units, fill)
-   end subroutine put_integers
 
    !> Strings as fixed-length, NUL-padded UTF-8: one scalar holding `value(1)` whole
    !> (`scalar`), or a rank-1 array of `len(value)` bytes each.
@@ -619,13 +583,6 @@ contains
       if (hdferr == 0) call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
       if (hdferr /= 0) call h5tclose_f(type_id, status)
    end subroutine string_type
-
-   !> Text in single quotes.
-   pure function q(s) result(quoted)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: quoted
-      quoted = "'" // s // "'"
-   end function q
 
    !> `message` without its leading `prefix`.
    pure function without_prefix(message, prefix) result(s)

@@ -20,6 +20,7 @@ module gapbeam_input
       present_group, given
    use gapbeam_input_axes, only: make_sweep_axes, check_continuation, check_sizes
    use gapbeam_input_flow, only: check_flow
+   use gapbeam_input_initial, only: check_initial, check_mechanism
    use gapbeam_deck_apply, only: apply_visitor_t, source_where
    use gapbeam_deck_check, only: check_deck_values, deck_names_t, deck_names, group_variables
    use gapbeam_deck_table, only: walk_deck
@@ -86,7 +87,9 @@ contains
       call check_deck_values(deck, err);  if (failed(err, path)) return
       call check_structure(srcs, deck, err);  if (failed(err, path)) return
       call check_stops(deck%structure, deck%stops, err);  if (failed(err, path)) return
+      call check_mechanism(deck, err);  if (failed(err, path)) return
       call check_loads(deck, err);  if (failed(err, path)) return
+      call check_initial(deck, err);  if (failed(err, path)) return
       call check_flow(deck, err);  if (failed(err, path)) return
       call check_settings(deck, err);  if (failed(err, path)) return
       call make_sweep_axes(srcs, deck, err);  if (failed(err, path)) return
@@ -205,13 +208,6 @@ contains
             call require_node('springs', i, st%springs(i)%node, st%springs(i)%dof, st, err)
          end do
          if (allocated(err)) return
-         if (st%root%condition == 'pinned' .and. st%tip%condition == 'free' .and. &
-             size(st%springs) == 0) then
-            call fatal_error(err, "group &root: condition = 'pinned' with a free tip and no " &
-               // '&springs is a mechanism (rigid rotation about the root): support the tip ' &
-               // "(&tip condition = 'pinned', ...) or add springs")
-            return
-         end if
          call check_root_spring(st, err)
          if (allocated(err) .or. .not. present_group(srcs, 'calibrate')) return
          select case (deck%calibrate%parameter)
@@ -607,18 +603,6 @@ contains
          if (len(why) > 0) call fatal_error(err, 'group &stops: ' // why)
       end do
       if (allocated(err)) return
-      if (deck%diagnostics%lyapunov_periods > 0 .and. any_ring(deck%stops) .and. &
-          (deck%job%analysis == 'transient' .or. deck%job%analysis == 'sweep')) then
-         ! the two trajectories restart from (u, v) every period: a stick anchor is not part
-         ! of it, and the fixed steps they take cannot end at every stick-slip switch
-         call fatal_error(err, 'group &diagnostics: lyapunov_periods = ' &
-            // str(deck%diagnostics%lyapunov_periods) // ': the Lyapunov exponent is not ' &
-            // 'available with ring supports (circular clearance or friction: their stick ' &
-            // 'state is not part of the state (u, v) the exponent perturbs); set ' &
-            // 'lyapunov_periods = 0, the default with ring supports (the label then comes ' &
-            // 'from the period detection alone)')
-         return
-      end if
       if (deck%damping%model == 'modal' .and. deck%solver%linear_solver == 'banded') then
          call fatal_error(err, "group &solver: linear_solver = 'banded': modal damping " &
             // "(&damping model = 'modal') makes the damping matrix dense; use 'auto' or " &

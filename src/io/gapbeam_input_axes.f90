@@ -82,7 +82,7 @@ contains
          if (int(size(x), int64) * size(y) > max_points) then
             call fatal_error(err, 'group &sweep: ' // str(size(x)) // ' values of x (' &
                // axis_source(var(1), 'x') // ') x ' // str(size(y)) // ' values of y (' &
-               // axis_source(var(2), 'y') // ') = ' // str_int64(int(size(x), int64) &
+               // axis_source(var(2), 'y') // ') = ' // str(int(size(x), int64) &
                * size(y)) // ' points: at most ' // str(max_points) // ' points in one ' &
                // 'sweep (split the map into several decks)')
             return
@@ -383,9 +383,9 @@ contains
                // ' with &diagnostics transient_max_periods = ' // str(d%transient_max_periods) &
                // ' and lyapunov_periods = ' // str(d%lyapunov_periods) // ' (max ' &
                // str(d%lyapunov_max_periods) // '): a run may integrate up to ' &
-               // str_int64(total) // ' forcing periods (2 x the transient budget ' &
-               // str_int64(budget) // ' + 17 records + 9 exponents of ' // str_int64(lyap) &
-               // '): at most ' // str_int64(max_run_periods))
+               // str(total) // ' forcing periods (2 x the transient budget ' &
+               // str(budget) // ' + 17 records + 9 exponents of ' // str(lyap) &
+               // '): at most ' // str(max_run_periods))
             return
          end if
          samples = int(min(o%history_periods, s%record_periods), int64) * o%samples_per_period
@@ -393,8 +393,8 @@ contains
             call fatal_error(err, 'group &output: history_periods = ' &
                // str(o%history_periods) // ' (at most record_periods = ' &
                // str(s%record_periods) // ') x samples_per_period = ' &
-               // str(o%samples_per_period) // ' = ' // str_int64(samples) &
-               // ' history samples: at most ' // str_int64(max_values))
+               // str(o%samples_per_period) // ' = ' // str(samples) &
+               // ' history samples: at most ' // str(max_values))
             return
          end if
          if (o%state_history .and. deck%job%analysis == 'transient') then
@@ -409,10 +409,10 @@ contains
                         + int(deck%structure%beam%n_elem, int64) * o%shape_points + 1
             if (samples * per_point > max_values) then
                call fatal_error(err, 'group &output: state_history = .true.: ' &
-                  // str_int64(samples) // ' history samples x ' // str_int64(per_point) &
+                  // str(samples) // ' history samples x ' // str(per_point) &
                   // ' values each (2 dofs per node and the shape at n_elem x shape_points ' &
-                  // '+ 1 points) = ' // str_int64(samples * per_point) // ': at most ' &
-                  // str_int64(max_values) // '; keep fewer history_periods, ' &
+                  // '+ 1 points) = ' // str(samples * per_point) // ': at most ' &
+                  // str(max_values) // '; keep fewer history_periods, ' &
                   // 'samples_per_period or shape_points')
                return
             end if
@@ -426,22 +426,13 @@ contains
          points = int(size(deck%sweep%x), int64) * size(deck%sweep%y) &
                   * max(1, starts_given(d))
          if (points * per_point > max_values) then
-            call fatal_error(err, 'group &sweep: ' // str_int64(points) // ' runs (points x ' &
-               // 'starts) x ' // str_int64(per_point) // ' values kept per run (2 x &solver ' &
+            call fatal_error(err, 'group &sweep: ' // str(points) // ' runs (points x ' &
+               // 'starts) x ' // str(per_point) // ' values kept per run (2 x &solver ' &
                // 'record_periods + &diagnostics lyapunov_max_periods + the final state) = ' &
-               // str_int64(points * per_point) // ': at most ' // str_int64(max_values) &
+               // str(points * per_point) // ': at most ' // str(max_values) &
                // ' values; sweep fewer points (n_frequency, n_amplitude, n_x, n_y), use ' &
                // 'fewer starts or record fewer periods')
          end if
       end associate
    end subroutine check_sizes
-
-   !> A 64-bit integer as text.
-   pure function str_int64(i) result(s)
-      integer(int64), intent(in) :: i                  !! value
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write(buf, '(i0)') i
-      s = trim(buf)
-   end function str_int64
 end module gapbeam_input_axes

@@ -32,7 +32,7 @@
 !> call set%finish(err)                              ! all in place, or nothing changed
 !> ```
 module gapbeam_output_set
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_kinds, only: dp
    use gapbeam_files, only: rename_file, remove_file, file_exists, directory_exists, &
       make_parent_directory, process_id, write_table, write_text_file, output_prefix_problem
@@ -335,11 +335,4 @@ contains
       character(len=:), allocatable :: name
       name = self%final(k)%s // self%tag // '.old'
    end function old_name
-
-   !> Text in single quotes.
-   pure function q(s) result(quoted)
-      character(len=*), intent(in) :: s                  !! text
-      character(len=:), allocatable :: quoted
-      quoted = "'" // s // "'"
-   end function q
 end module gapbeam_output_set

@@ -24,6 +24,8 @@ module gapbeam_report
    use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_psd_output, only: write_response_psd
    use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, real_fields, &
+      text_field
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, on_trajectory_clock
@@ -400,40 +402,29 @@ contains
       type(h5_writer_t), intent(inout) :: h5            !! writer with an open file
       type(point_result_t), intent(in) :: diag          !! diagnosed run
       character(len=*), parameter :: g = '/diagnostics/'
-      call h5%put(g // 'period', diag%period)
-      call h5%put(g // 'label', diag%label)
+      integer :: iv(size(int_names)), k
+      real(dp) :: rv(size(real_names))
+      iv = int_fields(diag);  rv = real_fields(diag)
+      do k = 1, size(int_names)   ! n_attractors with the starts, below
+         if (all(int_names(k) /= [character(len=12) :: 'status', 'n_attractors'])) &
+            call h5%put(g // trim(int_names(k)), iv(k))
+      end do
+      do k = 1, size(real_names)   ! a sweep point's cost and model are its file's own
+         if (all(real_names(k) /= [character(len=10) :: 'seconds', 'steps', 'f1_open_hz'])) &
+            call h5%put(g // trim(real_names(k)), rv(k))
+      end do
+      do k = 1, size(text_names) - 1   ! all but the failure message
+         if (text_names(k) == 'certificate_reason' .and. &
+             .not. allocated(diag%certificate_reason)) then
+            call h5%put(g // trim(text_names(k)), 'certification is off (&diagnostics ' &
+               // 'certify = .false.)')
+         else
+            call h5%put(g // trim(text_names(k)), text_field(diag, k))
+         end if
+      end do
       call h5%put(g // 'label_text', label_text(diag%label))
-      call h5%put(g // 'lyapunov', diag%lyapunov)
-      call h5%put(g // 'lyapunov_error', diag%lyapunov_error)
       call h5%put(g // 'lyapunov_running', diag%lyapunov_running)
-      call h5%put(g // 'lyapunov_periods', diag%lyapunov_periods)
-      call h5%put(g // 'lyapunov_converged', diag%lyapunov_converged)
-      call h5%put(g // 'period_max_tested', diag%period_max_tested)
-      call h5%put(g // 'period_tolerance', diag%period_tolerance)
-      call h5%put(g // 'closest_period', diag%closest_period)
-      call h5%put(g // 'repeat_distance', diag%repeat_distance)
-      call h5%put(g // 'transient_periods', diag%transient_periods)
-      call h5%put(g // 'settle_windows', diag%settle_windows)
-      call h5%put(g // 'window_difference', diag%window_difference)
-      call h5%put(g // 'settled', diag%settled)
-      call h5%put(g // 'strain_range', diag%strain_range)
-      call h5%put(g // 'strain_rate_range', diag%strain_rate_range)
-      call h5%put(g // 'seconds_label', diag%seconds_label)
-      call h5%put(g // 'seconds_certify', diag%seconds_certify)
-      call h5%put(g // 'certificate', diag%certificate)
       call h5%put(g // 'certificate_text', certificate_text(diag%certificate))
-      call h5%put(g // 'certificate_reason', text_or(diag%certificate_reason, &
-         'certification is off (&diagnostics certify = .false.)'))
-      call h5%put(g // 'method', text_or(diag%method, ''))
-      call h5%put(g // 'accuracy_method', text_or(diag%accuracy_method, ''))
-      call h5%put(g // 'accuracy_label', diag%accuracy_label)
-      call h5%put(g // 'accuracy_lyapunov', diag%accuracy_lyapunov)
-      call h5%put(g // 'accuracy_lyapunov_error', diag%accuracy_lyapunov_error)
-      call h5%put(g // 'accuracy_distance', diag%accuracy_distance)
-      call h5%put(g // 'perturbed_label', diag%perturbed_label)
-      call h5%put(g // 'perturbed_lyapunov', diag%perturbed_lyapunov)
-      call h5%put(g // 'perturbed_lyapunov_error', diag%perturbed_lyapunov_error)
-      call h5%put(g // 'perturbed_distance', diag%perturbed_distance)
       if (.not. allocated(diag%start_label)) return
       if (size(diag%start_label) == 0) return
       call h5%put(g // 'starts/label', diag%start_label)
@@ -443,6 +434,8 @@ contains
       call h5%put(g // 'attractors/label', diag%attractor_label)
       call h5%put(g // 'attractors/fraction', diag%attractor_fraction)
       call h5%put(g // 'attractors/lyapunov', diag%attractor_lyapunov)
+      call h5%put(g // 'starts/transient_periods', diag%start_transient)
+      call h5%put(g // 'attractors/mean_transient_periods', diag%attractor_transient)
    end subroutine write_diagnostics
 
    !> PREFIX.history.dat and PREFIX.poincare.dat.
@@ -563,16 +556,4 @@ contains
       b = trim(path)
       b = b(index(b, '/', back=.true.) + 1:)
    end function base_name
-
-   !> `t`, or `default` when t is not allocated.
-   pure function text_or(t, default) result(s)
-      character(len=:), allocatable, intent(in) :: t    !! text
-      character(len=*), intent(in) :: default           !! when absent
-      character(len=:), allocatable :: s
-      if (allocated(t)) then
-         s = t
-      else
-         s = default
-      end if
-   end function text_or
 end module gapbeam_report

@@ -23,10 +23,14 @@ module gapbeam_sweep_output
    use gapbeam_hdf5_input, only: h5_reader_t
    use gapbeam_files, only: real_path, file_exists
    use gapbeam_output_set, only: output_set_t
-   use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed
+   use gapbeam_results, only: point_result_t, label_text, certificate_text, label_failed, &
+      dispute_kind
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
-   use gapbeam_file_info, only: write_parameter_set, write_model
+   use gapbeam_file_info, only: write_parameter_set, write_model, udunits
+   use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, &
+      set_int_fields, real_fields, set_real_fields, text_field, set_text_field, stop_names, &
+      stop_field, set_stop_field
    use gapbeam_sweep_statistics, only: write_sweep_statistics, read_sweep_statistics
    use gapbeam_warning_text, only: untouched_sweep_warnings, is_untouched_warning, &
       warning_length
@@ -74,21 +78,6 @@ module gapbeam_sweep_output
       real(dp), allocatable :: v(:, :)             !! values
    end type stat_t
 
-   !> Integer fields per point (see point_result_t), /sweep/<name>.
-   character(len=*), parameter :: int_names(14) = [character(len=20) :: 'period', 'label', &
-      'status', 'certificate', 'lyapunov_periods', 'lyapunov_converged', 'period_max_tested', &
-      'closest_period', 'transient_periods', 'settle_windows', 'settled', 'accuracy_label', &
-      'perturbed_label', 'n_attractors']
-   !> Real fields per point, /sweep/<name>.
-   character(len=*), parameter :: real_names(18) = [character(len=24) :: 'lyapunov', &
-      'lyapunov_error', 'seconds', 'steps', 'f1_open_hz', 'period_tolerance', &
-      'repeat_distance', 'window_difference', 'strain_range', 'strain_rate_range', &
-      'seconds_label', 'seconds_certify', 'accuracy_lyapunov', 'accuracy_lyapunov_error', &
-      'accuracy_distance', 'perturbed_lyapunov', 'perturbed_lyapunov_error', &
-      'perturbed_distance']
-   !> Texts per point, /sweep/<name>.
-   character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
-      'certificate_reason', 'accuracy_method', 'message']
 contains
 
    !> Write points `sf%points` of `results` to PREFIX.h5 (and the text tables when asked), as
@@ -204,123 +193,22 @@ contains
       y(1:m) = x(1:m)
    end function padded
 
-   !> One impact statistic of every point of the file, Fortran (stops, points): in C order
-   !> (h5py) one row per point.
-   function impact_stat(results, points, which, ns) result(v)
+   !> Per-stop array k (stop_names) of every point of the file, Fortran (stops, points): in C
+   !> order (h5py) one row per point; past a point's own, 0 impacts and NaN otherwise.
+   function stop_table(results, points, k, ns) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
-      integer, intent(in) :: which                       !! 1 peak, 2 rms, 3 contact fraction,
-                                                         !! 4 impulse per period, 5 work rate,
-                                                         !! 6 normal work rate, 7 sliding
-                                                         !! distance, 8 friction work rate,
-                                                         !! 9 wear volume rate
+      integer, intent(in) :: k                           !! the array
       integer, intent(in) :: ns                          !! stops
       real(dp) :: v(ns, size(points))
-      integer :: j, p
+      real(dp), allocatable :: x(:)
+      integer :: j
       do j = 1, size(points)
-         p = points(j)
-         select case (which)
-         case (1);  v(:, j) = padded(results(p)%peak_force, ns)
-         case (2);  v(:, j) = padded(results(p)%rms_force, ns)
-         case (3);  v(:, j) = padded(results(p)%contact_fraction, ns)
-         case (4);  v(:, j) = padded(results(p)%impulse_per_period, ns)
-         case (6);  v(:, j) = padded(results(p)%normal_work_rate, ns)
-         case (7);  v(:, j) = padded(results(p)%sliding_distance, ns)
-         case (8);  v(:, j) = padded(results(p)%friction_work_rate, ns)
-         case (9);  v(:, j) = padded(results(p)%wear_volume_rate, ns)
-         case default;  v(:, j) = padded(results(p)%work_rate, ns)
-         end select
+         x = stop_field(results(points(j)), k)
+         v(:, j) = padded(x, ns)
+         if (k == 1) where (v(:, j) /= v(:, j)) v(:, j) = 0.0_dp
       end do
-   end function impact_stat
-
-   !> Impact counts of every point of the file, Fortran (stops, points); 0 where a point has
-   !> none.
-   function impact_counts(results, points, ns) result(v)
-      type(point_result_t), intent(in) :: results(:)     !! all points
-      integer, intent(in) :: points(:)                   !! the points of the file
-      integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(ns, size(points))
-      integer :: j, p, m
-      v = 0.0_dp
-      do j = 1, size(points)
-         p = points(j)
-         if (.not. allocated(results(p)%n_impacts)) cycle
-         m = min(ns, size(results(p)%n_impacts))
-         v(1:m, j) = real(results(p)%n_impacts(1:m), dp)
-      end do
-   end function impact_counts
-
-   !> The integer fields of a point, in the order of int_names.
-   pure function int_fields(pr) result(v)
-      type(point_result_t), intent(in) :: pr   !! point
-      integer :: v(size(int_names))
-      v = [pr%period, pr%label, pr%status, pr%certificate, pr%lyapunov_periods, &
-           pr%lyapunov_converged, pr%period_max_tested, pr%closest_period, &
-           pr%transient_periods, pr%settle_windows, pr%settled, pr%accuracy_label, &
-           pr%perturbed_label, pr%n_attractors]
-   end function int_fields
-
-   !> Set the integer fields of a point (int_names order).
-   pure subroutine set_int_fields(pr, v)
-      type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: v(:)                 !! values
-      pr%period = v(1);  pr%label = v(2);  pr%status = v(3);  pr%certificate = v(4)
-      pr%lyapunov_periods = v(5);  pr%lyapunov_converged = v(6)
-      pr%period_max_tested = v(7);  pr%closest_period = v(8);  pr%transient_periods = v(9)
-      pr%settle_windows = v(10);  pr%settled = v(11);  pr%accuracy_label = v(12)
-      pr%perturbed_label = v(13);  pr%n_attractors = v(14)
-   end subroutine set_int_fields
-
-   !> The real fields of a point, in the order of real_names.
-   pure function real_fields(pr) result(v)
-      type(point_result_t), intent(in) :: pr   !! point
-      real(dp) :: v(size(real_names))
-      v = [pr%lyapunov, pr%lyapunov_error, pr%seconds, real(pr%steps, dp), pr%f1_open_hz, &
-           pr%period_tolerance, pr%repeat_distance, pr%window_difference, pr%strain_range, &
-           pr%strain_rate_range, pr%seconds_label, pr%seconds_certify, pr%accuracy_lyapunov, &
-           pr%accuracy_lyapunov_error, pr%accuracy_distance, pr%perturbed_lyapunov, &
-           pr%perturbed_lyapunov_error, pr%perturbed_distance]
-   end function real_fields
-
-   !> Set the real fields of a point (real_names order).
-   pure subroutine set_real_fields(pr, v)
-      type(point_result_t), intent(inout) :: pr   !! point
-      real(dp), intent(in) :: v(:)                !! values
-      pr%lyapunov = v(1);  pr%lyapunov_error = v(2);  pr%seconds = v(3)
-      pr%steps = nint(v(4), int64);  pr%f1_open_hz = v(5);  pr%period_tolerance = v(6)
-      pr%repeat_distance = v(7);  pr%window_difference = v(8);  pr%strain_range = v(9)
-      pr%strain_rate_range = v(10);  pr%seconds_label = v(11);  pr%seconds_certify = v(12)
-      pr%accuracy_lyapunov = v(13);  pr%accuracy_lyapunov_error = v(14)
-      pr%accuracy_distance = v(15);  pr%perturbed_lyapunov = v(16)
-      pr%perturbed_lyapunov_error = v(17);  pr%perturbed_distance = v(18)
-   end subroutine set_real_fields
-
-   !> Text field j (text_names) of a point ('' when unset).
-   pure function text_field(pr, j) result(t)
-      type(point_result_t), intent(in) :: pr   !! point
-      integer, intent(in) :: j                 !! field
-      character(len=:), allocatable :: t
-      t = ''
-      select case (j)
-      case (1);  if (allocated(pr%method)) t = pr%method
-      case (2);  if (allocated(pr%certificate_reason)) t = pr%certificate_reason
-      case (3);  if (allocated(pr%accuracy_method)) t = pr%accuracy_method
-      case default;  if (allocated(pr%message)) t = pr%message
-      end select
-   end function text_field
-
-   !> Set text field j of a point.
-   pure subroutine set_text_field(pr, j, t)
-      type(point_result_t), intent(inout) :: pr   !! point
-      integer, intent(in) :: j                    !! field
-      character(len=*), intent(in) :: t           !! text
-      select case (j)
-      case (1);  pr%method = t
-      case (2);  pr%certificate_reason = t
-      case (3);  pr%accuracy_method = t
-      case default;  pr%message = t
-      end select
-   end subroutine set_text_field
+   end function stop_table
 
    !> Forcing frequency and amplitude of point p of a file's sweep, and its axis values.
    pure subroutine point_axes(sf, p, x, y, f, a)
@@ -393,10 +281,6 @@ contains
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       type(h5_writer_t) :: h5
-      character(len=*), parameter :: stat_names(9) = [character(len=26) :: &
-         'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
-         'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
-         'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
       real(dp), allocatable :: f(:), a(:), x(:), y(:), rv(:, :)
       integer, allocatable :: iv(:, :)
       character(len=16), allocatable :: labels(:), certs(:)
@@ -427,14 +311,14 @@ contains
       call h5%put('/sweep/grid_amplitude_pp', sf%grid_amplitude_pp)
       call h5%put('/sweep/x_variable', sf%x_variable)
       call h5%put('/sweep/y_variable', sf%y_variable)
-      call h5%put('/sweep/grid_x', sf%grid_x, units=unit_string(sf%x_units), fill=sf%x_variable)
-      call h5%put('/sweep/grid_y', sf%grid_y, units=unit_string(sf%y_units), fill=sf%y_variable)
+      call h5%put('/sweep/grid_x', sf%grid_x, units=udunits(sf%x_units), fill=sf%x_variable)
+      call h5%put('/sweep/grid_y', sf%grid_y, units=udunits(sf%y_units), fill=sf%y_variable)
       call h5%put('/sweep/shard_index', sf%shard_index)
       call h5%put('/sweep/shard_count', sf%shard_count)
       call h5%put('/sweep/n_points_total', size(sf%grid_x) * size(sf%grid_y))
       call h5%put('/sweep/point_index', sf%points)
-      call h5%put('/sweep/x', x, units=unit_string(sf%x_units))
-      call h5%put('/sweep/y', y, units=unit_string(sf%y_units))
+      call h5%put('/sweep/x', x, units=udunits(sf%x_units))
+      call h5%put('/sweep/y', y, units=udunits(sf%y_units))
       call h5%put('/sweep/frequency_hz', f)
       call h5%put('/sweep/amplitude_pp', a)
       allocate(iv(size(int_names), m), rv(size(real_names), m))
@@ -453,9 +337,8 @@ contains
       do k = 1, size(text_names)
          call h5%put('/sweep/' // trim(text_names(k)), texts(results, sf%points, k))
       end do
-      call h5%put('/sweep/impacts/count', impact_counts(results, sf%points, ns))
-      do k = 1, size(stat_names)
-         call h5%put('/sweep/' // trim(stat_names(k)), impact_stat(results, sf%points, k, ns))
+      do k = 1, size(stop_names)
+         call h5%put('/sweep/' // trim(stop_names(k)), stop_table(results, sf%points, k, ns))
       end do
       call write_sweep_statistics(h5, results, sf%points, ns)
       call h5%put('/sweep/poincare/strain', per_point(results, sf%points, 1, nr))
@@ -488,8 +371,8 @@ contains
       type(h5_writer_t), intent(inout) :: h5             !! writer
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points
-      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :)
-      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :)
+      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :), a_tr(:, :)
+      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :), s_tr(:, :)
       call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
                         a_label, a_frac, a_lyap)
       call h5%put('/sweep/starts/kind', sf%start_kind)
@@ -499,7 +382,35 @@ contains
       call h5%put('/sweep/attractors/label', a_label)
       call h5%put('/sweep/attractors/fraction', a_frac)
       call h5%put('/sweep/attractors/lyapunov', a_lyap)
+      call transient_tables(results, sf%points, size(sf%start_kind), s_tr, a_tr)
+      call h5%put('/sweep/starts/transient_periods', s_tr)
+      call h5%put('/sweep/attractors/mean_transient_periods', a_tr)
    end subroutine write_starts
+
+   !> The starts' transient periods (0 past the end) and the attractors' means (NaN past the
+   !> end), (n_starts, points).
+   subroutine transient_tables(results, points, ns, s_tr, a_tr)
+      type(point_result_t), intent(in) :: results(:)     !! all points
+      integer, intent(in) :: points(:)                   !! the points of the file
+      integer, intent(in) :: ns                          !! starts per point
+      integer, allocatable, intent(out) :: s_tr(:, :)    !! per start
+      real(dp), allocatable, intent(out) :: a_tr(:, :)   !! per attractor
+      integer :: j, n
+      allocate(s_tr(ns, size(points)), source=0)
+      allocate(a_tr(ns, size(points)), source=ieee_value(0.0_dp, ieee_quiet_nan))
+      do j = 1, size(points)
+         associate (r => results(points(j)))
+            if (allocated(r%start_transient)) then
+               n = min(ns, size(r%start_transient))
+               s_tr(1:n, j) = r%start_transient(1:n)
+            end if
+            if (allocated(r%attractor_transient)) then
+               n = min(ns, size(r%attractor_transient))
+               a_tr(1:n, j) = r%attractor_transient(1:n)
+            end if
+         end associate
+      end do
+   end subroutine transient_tables
 
    !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
    !> with its axis values and the point's label and certificate), under the set's temporary
@@ -509,7 +420,7 @@ contains
       type(output_set_t), intent(inout) :: set           !! the set
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
-      integer, parameter :: nc = 21
+      integer, parameter :: nc = 22
       integer :: m, ns, nr, nl, j, p
       real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
       character(len=24) :: names(nc), units(nc), xn, yn, xu, yu
@@ -531,7 +442,7 @@ contains
          cols(j, 3) = results(p)%period;  cols(j, 4) = results(p)%label
          cols(j, 5) = results(p)%lyapunov;  cols(j, 6) = results(p)%lyapunov_error
          if (ns > 0) then
-            counts = impact_counts(results, [p], ns)
+            counts = stop_table(results, [p], 1, ns)
             cols(j, 7) = counts(1, 1)
             row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
             row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
@@ -544,6 +455,9 @@ contains
          cols(j, 11) = results(p)%status;  cols(j, 12) = results(p)%certificate
          cols(j, 13) = results(p)%n_attractors;  cols(j, 14) = results(p)%lyapunov_periods
          cols(j, 15) = results(p)%transient_periods
+         cols(j, 22) = 0
+         if (allocated(results(p)%certificate_reason)) cols(j, 22) = dispute_kind( &
+            results(p)%certificate, results(p)%certificate_reason)
       end do
       cols(:, 16) = f;  cols(:, 17) = a
       names = [character(len=24) :: xn, yn, &
@@ -551,15 +465,16 @@ contains
          'rms_force_stop1', 'work_rate_stop1', 'status', 'certificate', 'n_attractors', &
          'lyapunov_periods', 'transient_periods', 'frequency_hz', 'amplitude_pp', &
          'normal_work_rate_total', 'wear_volume_rate_total', 'contact_fraction_max', &
-         'impacts_total']
+         'impacts_total', 'dispute']
       units = [character(len=24) :: xu, yu, 'periods', 'p|0|-1|-2|-3', '1/s', &
          '1/s', '-', 'N', 'N', 'W', '0|1', '0|1|2', '-', 'periods', 'periods', 'Hz', 'm', 'W', &
-         'm3/s', '-', '-']
+         'm3/s', '-', '-', '0|1|2|3']
       ! the grid's extent in the title line, so that a shard's chart places its tiles on the
       ! whole grid (scripts/chaos_map.gp, lyapunov.gp)
       call set%table('.sweep.dat', sf%title // ': sweep points (label: p = period,' &
          // ' 0 undecided, -1 chaotic, -2 unsettled, -3 failed; certificate: 1 certified,' &
-         // ' 2 disputed, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
+         // ' 2 disputed, 0 none; dispute: 1 contradiction, 2 chaotic transient, 3 a check' &
+         // ' disagrees, 0 none); grid: ' // str(size(sf%grid_x)) // ' ' // trim(xn) &
          // ' from ' // num(minval(sf%grid_x)) // ' to ' // num(maxval(sf%grid_x)) // ' ' &
          // one_word(xu) // ', ' // str(size(sf%grid_y)) // ' ' // trim(yn) // ' from ' &
          // num(minval(sf%grid_y)) // ' to ' // num(maxval(sf%grid_y)) // ' ' // one_word(yu), &
@@ -578,14 +493,6 @@ contains
          [character(len=24) :: xn, yn, 'strain', 'strain_rate', 'label', 'certificate'], &
          [character(len=24) :: xu, yu, '-', '1/s', 'p|0|-1|-2|-3', '0|1|2'], cols)
    end subroutine sweep_tables
-
-   !> A deck variable's unit as UDUNITS-2 ('-' is '1', a pure number).
-   pure function unit_string(u) result(t)
-      character(len=*), intent(in) :: u                  !! unit ('-', 'm', 'N m/rad', ...)
-      character(len=:), allocatable :: t
-      t = trim(u)
-      if (t == '-' .or. len(t) == 0) t = '1'
-   end function unit_string
 
    !> Column name of an axis: 'frequency' and 'amplitude_pp' for the forcing (as before),
    !> else the variable's name ('gap', 'k_theta', with its entry: 'gap_2'); an axis of several
@@ -645,17 +552,14 @@ contains
       type(point_result_t), allocatable, intent(inout) :: results(:) !! points land here
       type(error_t), allocatable, intent(out) :: err               !! I/O failure
       character(len=*), parameter :: here = 'gapbeam_sweep_output:read_sweep: '
-      character(len=*), parameter :: stat_names(10) = [character(len=26) :: 'impacts/count', &
-         'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
-         'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
-         'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
       type(h5_reader_t) :: h5
-      type(stat_t) :: st(size(stat_names))
+      type(stat_t) :: st(size(stop_names))
       type(text_list_t) :: tv(size(text_names))
       integer :: total, j, n, k
-      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:)
+      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:), &
+         s_tr(:, :)
       real(dp), allocatable :: rv(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), &
-         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:)
+         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:), a_tr(:, :)
       character(len=:), allocatable :: kinds(:), axis_order
       type(point_result_t), allocatable :: drawn(:)
       logical :: aligned, ok
@@ -702,9 +606,9 @@ contains
          call h5%read('/sweep/' // trim(text_names(k)), tv(k)%v)
          aligned = aligned .and. size(tv(k)%v) == n
       end do
-      do k = 1, size(stat_names)   ! the wear outputs are zero in files written before them
+      do k = 1, size(stop_names)   ! the wear outputs are zero in files written before them
          if (k < 7 .or. h5%exists('/sweep/wear/normal_work_rate')) then
-            call h5%read('/sweep/' // trim(stat_names(k)), st(k)%v)
+            call h5%read('/sweep/' // trim(stop_names(k)), st(k)%v)
          else
             allocate(st(k)%v, mold=st(1)%v)
             st(k)%v = 0.0_dp
@@ -721,6 +625,14 @@ contains
       call h5%read('/sweep/attractors/label', a_label)
       call h5%read('/sweep/attractors/fraction', a_frac)
       call h5%read('/sweep/attractors/lyapunov', a_lyap)
+      ! the starts' transients (absent in files written before them: zero, NaN)
+      if (h5%exists('/sweep/starts/transient_periods')) then
+         call h5%read('/sweep/starts/transient_periods', s_tr)
+         call h5%read('/sweep/attractors/mean_transient_periods', a_tr)
+      else
+         allocate(s_tr, mold=s_label);  s_tr = 0
+         allocate(a_tr, mold=a_lyap);  a_tr = ieee_value(0.0_dp, ieee_quiet_nan)
+      end if
       sf%has_model = h5%exists('/model')
       allocate(drawn(n))
       call read_sweep_statistics(h5, drawn, [(j, j = 1, n)], ok)
@@ -748,18 +660,16 @@ contains
                call set_text_field(r, k, trim(tv(k)%v(j)))
             end do
             r%x = xv(j);  r%y = yv(j)
-            r%n_impacts = nint(st(1)%v(:, j))
-            r%peak_force = st(2)%v(:, j);  r%rms_force = st(3)%v(:, j)
-            r%contact_fraction = st(4)%v(:, j);  r%impulse_per_period = st(5)%v(:, j)
-            r%work_rate = st(6)%v(:, j);  r%normal_work_rate = st(7)%v(:, j)
-            r%sliding_distance = st(8)%v(:, j);  r%friction_work_rate = st(9)%v(:, j)
-            r%wear_volume_rate = st(10)%v(:, j)
+            do k = 1, size(stop_names)
+               call set_stop_field(r, k, st(k)%v(:, j))
+            end do
             r%p_strain = ps(:, j);  r%p_strain_rate = pr(:, j)
             ! the running estimate without the padding past the point's own periods
             r%lyapunov_running = lr(1:min(size(lr, 1), max(0, r%lyapunov_periods)), j)
             r%start_label = s_label(:, j);  r%start_attractor = s_attr(:, j)
-            r%start_lyapunov = s_lyap(:, j)
+            r%start_lyapunov = s_lyap(:, j);  r%start_transient = s_tr(:, j)
             k = r%n_attractors
+            r%attractor_transient = a_tr(1:k, j)
             r%attractor_label = a_label(1:k, j)
             r%attractor_fraction = a_frac(1:k, j)
             r%attractor_lyapunov = a_lyap(1:k, j)

@@ -8,7 +8,8 @@
 module gapbeam_calibration
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_description, only: structure_t, spring_t, beam_ei, dof_w, dof_name
+   use gapbeam_description, only: structure_t, spring_t, stop_t, beam_ei, dof_w, dof_name, &
+      rigid_planes
    use gapbeam_model, only: system_t
    use gapbeam_assembly, only: assemble
    use gapbeam_eigen, only: lowest_frequency
@@ -29,8 +30,10 @@ contains
       logical, intent(in), optional :: certify        !! Sturm check of f1 (default: yes)
       real(dp), intent(out), optional :: accuracy     !! relative accuracy of f1^2
       type(system_t) :: sys
+      logical :: rigid(2), held(2)
       call assemble(st, sys, dense=.false.)
-      call lowest_frequency(sys, f1, err, certify, accuracy)
+      call rigid_planes(st, [stop_t ::], rigid, held)    ! a mechanism: f1 = 0
+      call lowest_frequency(sys, f1, err, certify, accuracy, mechanism=any(rigid))
    end subroutine first_frequency
 
    !> Value of a spring from (node, dof) to ground that makes f1 = target_hz.

@@ -28,6 +28,8 @@ module gapbeam_eigen
 
    !> smallest relative margin of the Sturm counts around omega_1^2
    real(dp), parameter :: sturm_margin = 1.0e-6_dp
+   !> omega^2 below this fraction of the shift of a mechanism (mechanism_shift) is a rigid mode
+   real(dp), parameter :: rigid_tolerance = 1.0e-8_dp
 
 contains
 
@@ -122,18 +124,36 @@ contains
    end subroutine generalized
 
    !> All finite omega^2 of `sys`, ascending, from the band storage (no shapes).
-   subroutine band_frequencies(sys, omega2, err)
+   subroutine band_frequencies(sys, omega2, err, mechanism)
       type(system_t), intent(in) :: sys                 !! assembled structure (band storage)
       real(dp), allocatable, intent(out) :: omega2(:)   !! [rad^2/s^2], ascending
       type(error_t), allocatable, intent(out) :: err    !! K not positive definite
+      !> the structure has rigid modes (K singular; round-off may hide it from a Cholesky):
+      !> solve the shifted problem (their omega^2 exactly 0)
+      logical, intent(in), optional :: mechanism
       real(dp), allocatable :: ab(:, :), bb(:, :), w(:), work(:)
-      real(dp) :: z(1, 1)
+      real(dp) :: z(1, 1), sigma
       integer :: n, kd, info, nm, j
       n = sys%n_dof;  kd = sys%kd
       allocate(ab, source=sys%m_band)
       allocate(bb, source=sys%k_band)
       allocate(w(n), work(3 * n))
-      call dsbgv('N', 'U', n, kd, kd, ab, kd + 1, bb, kd + 1, w, z, 1, work, info)
+      sigma = 0.0_dp
+      info = n + 1
+      if (present(mechanism)) then
+         if (.not. mechanism) call dsbgv('N', 'U', n, kd, kd, ab, kd + 1, bb, kd + 1, w, z, 1, &
+                                         work, info)
+      else
+         call dsbgv('N', 'U', n, kd, kd, ab, kd + 1, bb, kd + 1, w, z, 1, work, info)
+      end if
+      if (info > n) then
+         ! K singular: a mechanism (rigid modes, omega = 0). Shifted: M phi = mu (K + sigma M)
+         ! phi, omega^2 = 1/mu - sigma, sigma a small fraction of the largest K_ii / M_ii
+         sigma = mechanism_shift(sys)
+         ab = sys%m_band
+         bb = sys%k_band + sigma * sys%m_band
+         call dsbgv('N', 'U', n, kd, kd, ab, kd + 1, bb, kd + 1, w, z, 1, work, info)
+      end if
       if (info > n) then
          call fatal_error(err, 'gapbeam_eigen:band_frequencies: the stiffness matrix is not ' &
             // 'positive definite (dsbgv info=' // str(info) // '); check the root support ' &
@@ -151,9 +171,26 @@ contains
       end if
       allocate(omega2(nm))
       do j = 1, nm
-         omega2(j) = 1.0_dp / w(n + 1 - j)
+         omega2(j) = 1.0_dp / w(n + 1 - j) - sigma
+         ! a rigid mode: zero to the shift's round-off
+         if (sigma > 0.0_dp .and. omega2(j) <= rigid_tolerance * sigma) omega2(j) = 0.0_dp
       end do
    end subroutine band_frequencies
+
+   !> The shift of a mechanism's eigenproblem: 1e-4 x the largest K_ii / M_ii of the dofs with
+   !> mass (about the lowest elastic omega^2 of a beam, so that the shifted problem keeps
+   !> the accuracy of its lowest modes) [rad^2/s^2].
+   pure real(dp) function mechanism_shift(sys) result(sigma)
+      type(system_t), intent(in) :: sys                 !! assembled structure (band storage)
+      real(dp) :: m_ii
+      integer :: i
+      sigma = 0.0_dp
+      do i = 1, sys%n_dof
+         m_ii = sys%m_band(sys%kd + 1, i)
+         if (m_ii > 0.0_dp) sigma = max(sigma, sys%k_band(sys%kd + 1, i) / m_ii)
+      end do
+      sigma = 1.0e-4_dp * sigma
+   end function mechanism_shift
 
    !> First natural frequency [Hz], certified.
    !>
@@ -165,20 +202,36 @@ contains
    !> inertia), so this is the lowest eigenvalue and accurate to r, where r is 1e-6 or the
    !> round-off the discrete problem itself allows when that is larger,
    !> 10 eps ||K||_1 |phi_1|^2 / omega_1^2 with phi_1' M phi_1 = 1.
-   subroutine lowest_frequency(sys, f1, err, certify, accuracy)
+   subroutine lowest_frequency(sys, f1, err, certify, accuracy, mechanism)
       type(system_t), intent(in) :: sys               !! assembled structure
       real(dp), intent(out) :: f1                     !! first natural frequency [Hz]
       type(error_t), allocatable, intent(out) :: err  !! eigen failure or failed certificate
       logical, intent(in), optional :: certify        !! Sturm check (default: yes)
       real(dp), intent(out), optional :: accuracy     !! round-off bound of omega_1^2 (relative)
+      logical, intent(in), optional :: mechanism      !! rigid modes: f1 = 0 exactly
       real(dp), allocatable :: omega2(:), fac(:, :), x(:), y(:), z(:)
       real(dp) :: r, mu, mu_old, w1, phi2, knorm
       integer :: below, upto, it, info, n, kd, i, j, calm
       f1 = 0.0_dp
+      if (present(mechanism)) then
+         if (mechanism) then
+            if (present(accuracy)) accuracy = 0.0_dp
+            return
+         end if
+      end if
       n = sys%n_dof;  kd = sys%kd
       fac = sys%k_band
       call dpbtrf('U', n, kd, fac, kd + 1, info)
       if (info /= 0) then
+         ! a mechanism: its rigid modes are at omega = 0 (band_frequencies with a shift)
+         call band_frequencies(sys, omega2, err)
+         if (.not. allocated(err)) then
+            if (omega2(1) == 0.0_dp) then
+               if (present(accuracy)) accuracy = 0.0_dp
+               return
+            end if
+         end if
+         if (allocated(err)) deallocate(err)
          call fatal_error(err, 'gapbeam_eigen:lowest_frequency: the stiffness matrix is not ' &
             // 'positive definite (dpbtrf info=' // str(info) // '); check the root support ' &
             // 'and the springs')

@@ -6,10 +6,11 @@ module gapbeam_model_builder
    use gapbeam_error, only: error_t, str, fatal_error
    use gapbeam_laws, only: builtin_laws, law_index
    use gapbeam_description, only: structure_t, stop_t, damping_t, forcing_t, &
-      forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t
+      forcing_omega, stop_is_ring, dof_w, dof_v, dof_theta, dof_theta_v, spring_t, &
+      rigid_planes
    use gapbeam_settings, only: initial_state_t
    use gapbeam_deck, only: deck_t
-   use gapbeam_model, only: model_t, global_dof
+   use gapbeam_model, only: model_t, system_t, global_dof
    use gapbeam_assembly, only: assemble
    use gapbeam_eigen, only: band_frequencies
    use gapbeam_calibration, only: calibrate_spring, first_frequency
@@ -169,13 +170,16 @@ contains
       type(error_t), allocatable, intent(out) :: err  !! calibration or eigen failure
       real(dp), allocatable :: omega2(:)
       real(dp) :: f1_open
+      logical :: rigid(2), held(2)
 
       call resolve_stop_stiffness(st, stops, model%stop_stiffness, f1_open, err)
       if (allocated(err)) return
       model%f1_open_hz = f1_open
       call assemble(st, model%sys)
       model%n = model%sys%n_dof
-      call band_frequencies(model%sys, omega2, err)
+      call rigid_planes(st, stops, rigid, held)       ! held: the deck reader checked it
+      model%mechanism = any(rigid)
+      call band_frequencies(model%sys, omega2, err, mechanism=model%mechanism)
       if (allocated(err)) return
       model%omega_max = sqrt(maxval(omega2))
       model%beta = damping%mass_coefficient
@@ -367,20 +371,61 @@ contains
       model%r_stop(k) = i
    end subroutine set_ring
 
-   !> Initial displacement and velocity relative to the base: zero ('rest') or the given
-   !> values at the listed node dofs.
+   !> Initial displacement and velocity relative to the base, in the full model's dofs: zero
+   !> ('rest'), the given values at the listed node dofs ('given'), a rigid field at every
+   !> free dof ('rotation': w = angle x, theta = angle, w' = Omega x, theta' = Omega, and the
+   !> same in v; 'translation': w' = V, v' = V_v), or the file's final state ('file', read and
+   !> checked against the structure by the deck reader). A rigid field's values at the dofs
+   !> the supports fix are not dofs of the model: the supports hold them.
    pure subroutine initial_vectors(model, init, u0, v0)
-      type(model_t), intent(in) :: model             !! model
+      type(model_t), intent(in) :: model             !! the full model
       type(initial_state_t), intent(in) :: init      !! deck's &initial
       real(dp), allocatable, intent(out) :: u0(:)    !! displacement [m, rad]
       real(dp), allocatable, intent(out) :: v0(:)    !! velocity [m/s, rad/s]
       integer :: i, g
       allocate(u0(model%n), v0(model%n), source=0.0_dp)
-      if (init%kind /= 'given') return
-      do i = 1, size(init%node)
-         g = global_dof(model%sys, init%node(i), init%dof(i))
-         u0(g) = init%displacement(i)
-         v0(g) = init%velocity(i)
-      end do
+      select case (init%kind)
+      case ('given')
+         do i = 1, size(init%node)
+            g = global_dof(model%sys, init%node(i), init%dof(i))
+            u0(g) = init%displacement(i)
+            v0(g) = init%velocity(i)
+         end do
+      case ('rotation')
+         call rigid_field(model%sys, 1, init%angle, 0.0_dp, u0)
+         call rigid_field(model%sys, 1, init%angular_velocity, 0.0_dp, v0)
+         if (model%sys%planes > 1) then
+            call rigid_field(model%sys, 3, init%angle_v, 0.0_dp, u0)
+            call rigid_field(model%sys, 3, init%angular_velocity_v, 0.0_dp, v0)
+         end if
+      case ('translation')
+         call rigid_field(model%sys, 1, 0.0_dp, init%translation_velocity, v0)
+         if (model%sys%planes > 1) &
+            call rigid_field(model%sys, 3, 0.0_dp, init%translation_velocity_v, v0)
+      case ('file')
+         if (size(init%file_u) == model%n) then
+            u0 = init%file_u;  v0 = init%file_v
+         end if
+      end select
    end subroutine initial_vectors
+
+   !> The rigid field a + b x in one plane (first local dof `j0`: 1 for w, 3 for v) at every
+   !> free dof: the translation dof of node i (x = (i - 1) le) gets translation + slope x,
+   !> its rotation dof the slope. Fixed dofs are skipped.
+   pure subroutine rigid_field(sys, j0, slope, translation, x)
+      type(system_t), intent(in) :: sys              !! dof map, element length
+      integer, intent(in) :: j0                      !! 1 (w, theta) or 3 (v, theta_v)
+      real(dp), intent(in) :: slope                  !! the rotation [rad or rad/s]
+      real(dp), intent(in) :: translation            !! the translation [m or m/s]
+      real(dp), intent(inout) :: x(:)                !! field, the plane's dofs added
+      integer :: i, g
+      real(dp) :: xi
+      do i = 1, sys%n_node
+         xi = real(i - 1, dp) * sys%element_length
+         g = sys%dof_of(j0, i)
+         if (g > 0) x(g) = x(g) + translation + slope * xi
+         g = sys%dof_of(j0 + 1, i)
+         if (g > 0) x(g) = x(g) + slope
+      end do
+   end subroutine rigid_field
 end module gapbeam_model_builder

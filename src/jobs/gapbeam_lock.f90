@@ -24,7 +24,7 @@ module gapbeam_lock
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_long, c_size_t, c_null_char, c_ptr, &
       c_f_pointer
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_files, only: remove_file, process_id, host_name, errno_text
+   use gapbeam_files, only: remove_file, process_id, errno_text
    implicit none
    private
    public :: lock_t, acquire_lock, release_lock
@@ -115,6 +115,14 @@ module gapbeam_lock
          import :: c_ptr
          type(c_ptr) :: location
       end function c_errno_location
+
+      !> POSIX `gethostname` from <unistd.h>: 0 on success.
+      function c_gethostname(name, length) bind(c, name='gethostname') result(status)
+         import :: c_char, c_int, c_size_t
+         character(kind=c_char), intent(out) :: name(*)       !! buffer
+         integer(c_size_t), value, intent(in) :: length       !! its size
+         integer(c_int) :: status
+      end function c_gethostname
    end interface
 
 contains
@@ -329,4 +337,24 @@ contains
       character(len=:), allocatable :: quoted
       quoted = "'" // s // "'"
    end function q
+
+   !> The name of this host (C `gethostname`), 'unknown-host' if it cannot be had.
+   function host_name() result(name)
+      character(len=:), allocatable :: name
+      character(kind=c_char) :: buf(256)
+      integer :: n
+      buf = c_null_char
+      if (c_gethostname(buf, int(size(buf) - 1, c_size_t)) /= 0) then
+         name = 'unknown-host'
+         return
+      end if
+      n = 0
+      do while (n < size(buf))
+         if (buf(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      allocate(character(len=n) :: name)
+      name = transfer(buf(1:n), name)
+      if (n == 0) name = 'unknown-host'
+   end function host_name
 end module gapbeam_lock
