@@ -18,6 +18,7 @@ contains
       type(solver_settings_t), intent(in) :: cfg            !! settings
       type(error_t), allocatable, intent(out) :: err        !! singular stiffness
       real(dp), allocatable :: kf(:, :), uqs(:)
+      real(dp) :: v_turb
       integer :: info, c, n_out
       self%tolerance = cfg%tolerance
       ! the order the controller assumes for the method's error estimate (its registry entry)
@@ -60,9 +61,10 @@ contains
       self%out_floor(1) = abs(dot_product(self%sw, uqs(self%si)))
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
+      v_turb = huge(1.0_dp)
       if (model%mechanism) call mechanism_floors(self, model, n_out)
-      if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out)
-      if (model%n_rings > 0) call wear_floors(self, model, n_out)
+      if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out, v_turb)
+      if (model%n_rings > 0) call wear_floors(self, model, n_out, v_turb)
       if (self%caps%estimator == 'embedded') then
          ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
          self%out_floor(2:n_out) = max(self%out_floor(2:n_out), cfg%rk_atol / cfg%tolerance)
@@ -104,6 +106,7 @@ contains
       integer :: level
       call copy_state(state, self%sub(self%ix(0)))
       if (state%dt_prev == 0.0_dp) then
+         call start_floors(self, state)
          ! begin at T / steps_per_period
          level = min(self%n_levels - 1, max(0, nint(2.0_dp * log(real(self%cfg%steps_per_period, &
             dp) / 16.0_dp) / log(2.0_dp))))
@@ -358,12 +361,15 @@ contains
 
    !> Floors of the wear watch: the velocity floor of each ring's two dofs, no larger than the
    !> base's velocity amplitude when the base moves (a support that holds a flexible structure
-   !> moves it with the base, far less than its open quasi-static response); the ranges start
-   !> empty and are kept over the whole run.
-   subroutine wear_floors(self, model, n_out)
+   !> moves it with the base, far less than its open quasi-static response), or with random
+   !> forcing alone than the velocity of the harmonic response at Omega to the load's RMS (a
+   !> nearly free mass has a static response of no scale); zero floors (no forcing) are set
+   !> from the initial state (start_floors); the ranges start empty and are kept over the run.
+   subroutine wear_floors(self, model, n_out, v_turb)
       class(stepping_integrator_t), intent(inout) :: self   !! integrator
       type(model_t), intent(in) :: model                    !! model
       integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      real(dp), intent(in) :: v_turb                        !! turbulence's velocity [m/s]
       integer :: rg, j, q
       if (allocated(self%vt_lo)) deallocate(self%vt_lo, self%vt_hi, self%vt_floor, self%fn_max)
       allocate(self%vt_lo(model%n_rings), source=huge(1.0_dp))
@@ -374,8 +380,11 @@ contains
             q = findloc(self%out_dof, model%r_dof(j, rg), dim=1)
             if (q > 0) self%vt_floor(rg) = max(self%vt_floor(rg), self%out_floor(n_out + 1 + q))
          end do
-         if (model%half_amplitude > 0.0_dp) self%vt_floor(rg) = min(self%vt_floor(rg), &
-            model%half_amplitude * model%omega)
+         if (model%half_amplitude > 0.0_dp) then
+            self%vt_floor(rg) = min(self%vt_floor(rg), model%half_amplitude * model%omega)
+         else if (v_turb < huge(1.0_dp)) then
+            self%vt_floor(rg) = min(self%vt_floor(rg), v_turb)
+         end if
       end do
    end subroutine wear_floors
 
@@ -472,11 +481,12 @@ contains
    !> far less than its static response); with two planes the same floor for an
    !> output and its mirror in the other plane (an orbit can turn from one plane into the other;
    !> a plane at rest must not get a zero floor).
-   subroutine tube_floors(self, model, kf, n_out)
+   subroutine tube_floors(self, model, kf, n_out, v_turb)
       class(stepping_integrator_t), intent(inout) :: self   !! integrator
       type(model_t), intent(in) :: model                    !! model
       real(dp), intent(in) :: kf(:, :)                      !! Cholesky factor of K
       integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      real(dp), intent(inout) :: v_turb                     !! turbulence's ring velocity [m/s]
       real(dp), allocatable :: loads(:, :), zs(:, :), zd(:, :), a(:, :)
       integer, allocatable :: ipiv(:)
       real(dp) :: fl(n_out), ys, yd
@@ -544,7 +554,94 @@ contains
       self%out_floor(1:n_out) = max(self%out_floor(1:n_out), fl)
       self%out_floor(n_out + 1:) = max(self%out_floor(n_out + 1:), &
                                        2.0_dp * pi * model%turbulence%cutoff_hz * fl)
+      call mirror_zero_floors(self, model, n_out)
+      if (model%n_rings > 0) call turbulence_ring_velocity(model, &
+         rms_load(model%turbulence, n), v_turb)
    end subroutine tube_floors
+
+   !> An output that the load leaves at rest (a plane the random load does not drive) takes
+   !> the floor of its mirror in the other plane: contacts couple the planes.
+   subroutine mirror_zero_floors(self, model, n_out)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(model_t), intent(in) :: model                    !! model
+      integer, intent(in) :: n_out                          !! 1 + size(out_dof)
+      integer :: q, i, nh, qm
+      if (model%sys%planes < 2) return
+      nh = model%n / 2
+      do q = 1, size(self%out_dof)
+         i = self%out_dof(q)
+         qm = findloc(self%out_dof, merge(i + nh, i - nh, i <= nh), dim=1)
+         if (qm == 0) cycle
+         if (self%out_floor(1 + q) == 0.0_dp) self%out_floor(1 + q) = self%out_floor(1 + qm)
+         if (self%out_floor(n_out + 1 + q) == 0.0_dp) &
+            self%out_floor(n_out + 1 + q) = self%out_floor(n_out + 1 + qm)
+      end do
+   end subroutine mirror_zero_floors
+
+   !> The velocity scale of the rings under the random load alone: the largest velocity
+   !> amplitude of a ring dof in the harmonic response at Omega to the load's RMS, |(K -
+   !> Omega^2 M + i Omega C)^-1 L| Omega (huge: not computed, above 1000 dofs).
+   subroutine turbulence_ring_velocity(model, load, v_turb)
+      type(model_t), intent(in) :: model      !! model
+      real(dp), intent(in) :: load(:)         !! the load's RMS per dof
+      real(dp), intent(inout) :: v_turb       !! velocity scale [m/s]
+      real(dp), allocatable :: a(:, :), z(:, :)
+      integer, allocatable :: ipiv(:)
+      integer :: n, info, rg, j, i
+      n = model%n
+      if (n > 1000) return
+      allocate(a(2 * n, 2 * n), ipiv(2 * n), z(2 * n, 1))
+      a(1:n, 1:n) = model%sys%k - model%omega**2 * model%sys%m
+      a(n + 1:, n + 1:) = a(1:n, 1:n)
+      a(1:n, n + 1:) = -model%omega * model%c
+      a(n + 1:, 1:n) = model%omega * model%c
+      z = 0.0_dp;  z(1:n, 1) = load
+      call dgesv(2 * n, 1, a, 2 * n, ipiv, z, 2 * n, info)
+      if (info /= 0) return
+      v_turb = 0.0_dp
+      do rg = 1, model%n_rings
+         do j = 1, 2
+            i = model%r_dof(j, rg)
+            v_turb = max(v_turb, model%omega * hypot(z(i, 1), z(n + i, 1)))
+         end do
+      end do
+      if (v_turb == 0.0_dp) v_turb = huge(1.0_dp)
+   end subroutine turbulence_ring_velocity
+
+   !> Floors that no forcing gave (free vibration, self-excitation from an initial state) from
+   !> the state the run starts from: a displacement output's the largest displacement of the
+   !> watched dofs (or their largest velocity over Omega), a velocity's the largest velocity
+   !> (or Omega times the displacement floor), the root strain's and its rate's alike, and a
+   !> ring's sliding-velocity floor its dofs' velocity floor. Floors once set are kept.
+   subroutine start_floors(self, s)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      type(state_t), intent(in) :: s                        !! the start
+      real(dp) :: du, dv, su, sv, w
+      integer :: no, rg, j, q
+      no = 1 + size(self%out_dof)
+      w = self%model%omega
+      du = 0.0_dp;  dv = 0.0_dp
+      if (no > 1) then
+         du = maxval(abs(s%u(self%out_dof)));  dv = maxval(abs(s%v(self%out_dof)))
+      end if
+      su = abs(dot_product(self%sw, s%u(self%si)));  sv = abs(dot_product(self%sw, s%v(self%si)))
+      if (du == 0.0_dp) du = dv / w
+      if (dv == 0.0_dp) dv = w * du
+      if (su == 0.0_dp) su = sv / w
+      if (sv == 0.0_dp) sv = w * su
+      if (self%out_floor(1) == 0.0_dp) self%out_floor(1) = su
+      if (self%out_floor(no + 1) == 0.0_dp) self%out_floor(no + 1) = sv
+      where (self%out_floor(2:no) == 0.0_dp) self%out_floor(2:no) = du
+      where (self%out_floor(no + 2:) == 0.0_dp) self%out_floor(no + 2:) = dv
+      if (.not. allocated(self%vt_floor)) return
+      do rg = 1, self%model%n_rings
+         if (self%vt_floor(rg) > 0.0_dp) cycle
+         do j = 1, 2
+            q = findloc(self%out_dof, self%model%r_dof(j, rg), dim=1)
+            if (q > 0) self%vt_floor(rg) = max(self%vt_floor(rg), self%out_floor(no + 1 + q))
+         end do
+      end do
+   end subroutine start_floors
 
    !> The end of a step, t0 + h, summed with Kahan's compensation so that millions of steps
    !> do not accumulate the rounding of the time (eps t per step: a phase error that bounded
