@@ -62,8 +62,9 @@ contains
       self%out_floor(2:n_out) = abs(uqs(self%out_dof))
       self%out_floor(n_out + 1:) = model%omega * self%out_floor(1:n_out)
       v_turb = huge(1.0_dp)
-      if (model%mechanism) call mechanism_floors(self, model, n_out)
       if (has_tube_physics(model)) call tube_floors(self, model, kf, n_out, v_turb)
+      ! after tube_floors, which sets the displacement floors anew
+      if (model%mechanism) call mechanism_floors(self, model, n_out)
       if (model%n_rings > 0) call wear_floors(self, model, n_out, v_turb)
       if (self%caps%estimator == 'embedded') then
          ! rk_atol [m, m/s]: an absolute floor of the displacement and velocity outputs
