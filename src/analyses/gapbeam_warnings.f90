@@ -40,7 +40,7 @@ module gapbeam_warnings
    use gapbeam_description, only: dof_name, stop_t, rigid_planes
    use gapbeam_model, only: model_t
    use gapbeam_model_builder, only: build_full_model, initial_vectors
-   use gapbeam_linalg, only: dense_to_band
+   use gapbeam_linalg, only: dense_to_band, bandwidth
    use gapbeam_lapack, only: dgbtrf, dgbtrs, dpbtrf, dpbtrs
    implicit none
    private
@@ -390,18 +390,6 @@ contains
       e = 0.0_dp
       e(i) = 1.0_dp
    end function unit
-
-   !> Semi-bandwidth of a dense matrix.
-   pure integer function bandwidth(a)
-      real(dp), intent(in) :: a(:, :)
-      integer :: i, j
-      bandwidth = 0
-      do j = 1, size(a, 2)
-         do i = 1, size(a, 1)
-            if (a(i, j) /= 0.0_dp) bandwidth = max(bandwidth, abs(i - j))
-         end do
-      end do
-   end function bandwidth
 
    !> Append one line to a list.
    pure subroutine add(lines, text)

@@ -4,7 +4,7 @@ module gapbeam_linalg
    use gapbeam_kinds, only: dp
    implicit none
    private
-   public :: dense_matvec, band_matvec, band_solve, dense_to_band, band_to_dense
+   public :: dense_matvec, band_matvec, band_solve, dense_to_band, band_to_dense, bandwidth
 
 contains
 
@@ -94,4 +94,17 @@ contains
          end do
       end do
    end subroutine band_solve
+
+   !> Largest |i - j| of a non-zero entry (the semi-bandwidth of a dense matrix).
+   pure integer function bandwidth(a)
+      real(dp), intent(in) :: a(:, :)
+      integer :: i, j
+      bandwidth = 0
+      do j = 1, size(a, 2)
+         do i = 1, size(a, 1)
+            if (a(i, j) /= 0.0_dp) bandwidth = max(bandwidth, abs(i - j))
+         end do
+      end do
+   end function bandwidth
+
 end module gapbeam_linalg

@@ -48,7 +48,7 @@
 !> **Functionals** watched by the event search (one per contact dof, the root strain, the tip
 !> displacement) and the load are kept as modal rows.
 module gapbeam_exact_modes
-   use gapbeam_linalg, only: dense_to_band
+   use gapbeam_linalg, only: dense_to_band, bandwidth
    use gapbeam_kinds, only: dp, xp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_model, only: model_t, has_modal_damping
@@ -553,18 +553,6 @@ contains
          end do
       end do
    end subroutine band_mul_xp
-
-   !> Largest |i - j| of a non-zero entry.
-   pure integer function bandwidth(a)
-      real(dp), intent(in) :: a(:, :)
-      integer :: i, j
-      bandwidth = 0
-      do j = 1, size(a, 2)
-         do i = 1, size(a, 1)
-            if (a(i, j) /= 0.0_dp) bandwidth = max(bandwidth, abs(i - j))
-         end do
-      end do
-   end function bandwidth
 
    !> Roots of lambda^2 + d lambda + w2, stable for any damping ratio: p1 upper (or slow),
    !> p2 lower (or fast).
