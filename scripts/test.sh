@@ -20,7 +20,8 @@
 # CI=true), scripts/test_paraview.sh (the XDMF files in ParaView's two readers and a headless
 # scene; it installs python3-paraview and xvfb with apt-get where it can, else prints a NOTE and
 # skips), scripts/test_warnings.sh (warnings on standard error and in /run/warnings, checks made
-# before a run), and
+# before a run), scripts/test_release.sh (the release build's random numbers equal the debug
+# build's: the suite's programs run -O0 only), and
 # python/tests/test_reader.py (the Python reader in python/ against h5py on every analysis's
 # output of that `gapbeam`, every units attribute, the XDMF file, and every dataset documented in
 # docs/outputs.md; PYTHONPATH=python, nothing is pip-installed). Everything goes to the terminal.
@@ -156,7 +157,7 @@ fi
 count test_sweep_kill.sh "${log}" "${status}"
 
 for script in test_faults.sh test_fuzz.sh test_labels_cli.sh test_users.sh test_paraview.sh \
-              test_warnings.sh; do
+              test_warnings.sh test_release.sh; do
    printf '\n== scripts/%s\n' "${script}"
    log=${work}/${script%.sh}.log
    status=0
