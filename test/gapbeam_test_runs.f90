@@ -7,13 +7,16 @@ module gapbeam_test_runs
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
    use gapbeam_model_builder, only: build_model
-   use gapbeam_results, only: transient_result_t
+   use gapbeam_results, only: transient_result_t, point_result_t
    use gapbeam_transient, only: integrate
    use gapbeam_sweep, only: sweep_plan_t, make_plan
+   use gapbeam_attractor, only: diagnose
+   use gapbeam_certify, only: certify_point
    use gapbeam_testing, only: check, finish
    implicit none
    private
-   public :: run_deck, load_deck, load_or_stop, make_plan_or_stop, expect_refused
+   public :: run_deck, load_deck, load_or_stop, make_plan_or_stop, expect_refused, &
+             diagnose_or_stop
 
 contains
 
@@ -59,6 +62,29 @@ contains
          call finish(program)
       end if
    end subroutine load_or_stop
+
+   !> Diagnose the point of deck `path` with `overrides` (and certify it when asked), or a
+   !> failed check and the end of test program `program`.
+   subroutine diagnose_or_stop(program, path, overrides, certify, pr)
+      character(len=*), intent(in) :: program           !! test program name
+      character(len=*), intent(in) :: path              !! deck
+      character(len=*), intent(in) :: overrides(:)      !! namelist fragments
+      logical, intent(in) :: certify                    !! certify the label too
+      type(point_result_t), intent(out) :: pr           !! the point's label and evidence
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(transient_result_t) :: res
+      type(error_t), allocatable :: err
+      real(dp), allocatable :: u0(:), v0(:)
+      call load_or_stop(program, path, overrides, deck, model, u0, v0)
+      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
+      if (allocated(err)) then
+         call check('run ' // path, .false., err%message)
+         call finish(program)
+      end if
+      if (certify) call certify_point(model, deck%solver, deck%output, deck%diagnostics, u0, &
+                                      v0, 1, pr)
+   end subroutine diagnose_or_stop
 
    !> The sweep plan of `deck`, or a failed check and the end of test program `program`.
    subroutine make_plan_or_stop(program, deck, plan)

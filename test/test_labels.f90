@@ -12,7 +12,7 @@ program test_labels
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
    use gapbeam_model, only: model_t
-   use gapbeam_test_runs, only: load_or_stop, make_plan_or_stop
+   use gapbeam_test_runs, only: load_or_stop, make_plan_or_stop, diagnose_or_stop
    use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
       label_undecided, label_unsettled, label_failed, certificate_certified, &
       certificate_disputed
@@ -52,17 +52,7 @@ contains
    subroutine run(path, overrides, pr)
       character(len=*), intent(in) :: path, overrides(:)
       type(point_result_t), intent(out) :: pr
-      type(deck_t) :: deck
-      type(model_t) :: model
-      type(transient_result_t) :: res
-      type(error_t), allocatable :: err
-      real(dp), allocatable :: u0(:), v0(:)
-      call load_or_stop('test_labels', path, overrides, deck, model, u0, v0)
-      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
-      if (allocated(err)) then
-         call check('run ' // path, .false., err%message)
-         call finish('test_labels')
-      end if
+      call diagnose_or_stop('test_labels', path, overrides, .false., pr)
    end subroutine run
 
    !> The reference beam with its stop out of reach is linear with stiffness-proportional

@@ -10,15 +10,11 @@
 !> - 19.2 Hz, inside the window: the chaos persists and the label stays certified.
 program test_persistence
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, str
+   use gapbeam_error, only: str
    use gapbeam_testing, only: check, finish, note
-   use gapbeam_deck, only: deck_t
-   use gapbeam_model, only: model_t
-   use gapbeam_test_runs, only: load_or_stop
-   use gapbeam_results, only: transient_result_t, point_result_t, label_text, label_chaotic, &
+   use gapbeam_test_runs, only: diagnose_or_stop
+   use gapbeam_results, only: point_result_t, label_text, label_chaotic, &
       certificate_certified, certificate_disputed, dispute_kind, dispute_transient, dispute_none
-   use gapbeam_attractor, only: diagnose
-   use gapbeam_certify, only: certify_point
    implicit none
    character(len=*), parameter :: sdof = 'test/decks/sdof_impact.nml'
    character(len=*), parameter :: short = '&solver transient_periods = 50, record_periods = 100 /'
@@ -34,19 +30,7 @@ contains
       character(len=*), intent(in) :: overrides(:)
       logical, intent(in) :: certify
       type(point_result_t), intent(out) :: pr
-      type(deck_t) :: deck
-      type(model_t) :: model
-      type(transient_result_t) :: res
-      type(error_t), allocatable :: err
-      real(dp), allocatable :: u0(:), v0(:)
-      call load_or_stop('test_persistence', sdof, overrides, deck, model, u0, v0)
-      call diagnose(model, deck%solver, deck%output, deck%diagnostics, u0, v0, res, pr, err)
-      if (allocated(err)) then
-         call check('run ' // sdof, .false., err%message)
-         call finish('test_persistence')
-      end if
-      if (certify) call certify_point(model, deck%solver, deck%output, deck%diagnostics, u0, &
-                                      v0, 1, pr)
+      call diagnose_or_stop('test_persistence', sdof, overrides, certify, pr)
    end subroutine run
 
    !> 18.7 Hz: chaotic after 50 + 100 periods; the persistence check (10 x) finds period 4
