@@ -267,13 +267,15 @@ contains
       end associate
    end function energy_at
 
-   !> x' A x with A in band storage when there is one, else dense.
+   !> x' A x with A in band storage when there is one and it is narrow, else dense (a reduced
+   !> model's band is the whole matrix: the dense product vectorises).
    real(dp) function quad(model, ab, ad, x, y) result(s)
       type(model_t), intent(in) :: model          !! model (size, band width)
       real(dp), intent(in) :: ab(:, :), ad(:, :)  !! band and dense storage
       real(dp), intent(in) :: x(:)                !! vector
       real(dp), intent(inout) :: y(:)             !! workspace
-      if (size(ab, 2) == model%n) then
+      if (size(ab, 2) == model%n .and. (4 * model%sys%kd < model%n .or. size(ad, 1) &
+          /= model%n)) then
          call band_matvec(model%n, model%sys%kd, ab, x, y)
       else
          call dense_matvec(model%n, ad, x, y)
