@@ -248,16 +248,12 @@ contains
       self%block_sum = self%block_sum + q
       if (self%caps%linear_exact .and. .not. event) then
          ! the linear part exact (free flight without error): the next step from this one's
-         ! error per unit time against the budget's, at once, not only at a block's end
+         ! error per unit time against the budget's (aiming at half of it; the rate scales as
+         ! h^order), at once, not only at a block's end
          rho = q / h * self%period / (budget_scale * self%tolerance)
-         if (rho > 1.0_dp) then
-            level = min(self%n_levels - 1, level + ceiling(log(rho) / log(2.0_dp**(0.5_dp &
-                                                           * self%order))))
-         else if (rho < 0.3_dp .and. self%block_sum / max(t1 - self%block_start, h) &
-                  * self%period / (budget_scale * self%tolerance) < 0.3_dp) then
-            level = max(0, level - min(1, max(1, floor(log(0.6_dp / max(rho, 1.0e-30_dp)) &
-                                                       / log(2.0_dp**(0.5_dp * self%order))))))
-         end if
+         dl = max(-2, nint(log(max(rho, 1.0e-30_dp) / 0.5_dp) / log(2.0_dp**(0.5_dp &
+                                                                      * self%order))))
+         level = min(self%n_levels - 1, max(0, level + dl))
       end if
       if (t1 - self%block_start >= block_fraction * self%period * (1.0_dp - 1.0e-9_dp)) then
          ! the step size of the next block: the local errors of a block add up as h^2
