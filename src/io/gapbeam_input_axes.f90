@@ -156,7 +156,7 @@ contains
       type(deck_t), intent(in) :: deck                   !! deck read so far
       real(dp), allocatable, intent(out) :: axis_out(:)  !! values
       type(error_t), allocatable, intent(inout) :: err   !! bad value
-      integer :: k, n_list
+      integer :: n_list
       character(len=:), allocatable :: lab
       if (allocated(err)) return
       n_list = 0
@@ -175,27 +175,9 @@ contains
          end if
          return
       end if
-      if (n_list > 0 .and. n > 0) then
-         call fatal_error(err, 'group &sweep: give either the list ' // c // '_values or ' &
-            // c // '_start, ' // c // '_end and n_' // c // ', not both')
-         return
-      end if
-      if (n_list > 0) then
-         axis_out = list
-      else if (n == 1) then
-         axis_out = [x0]
-      else if (n > 1) then
-         axis_out = [(x0 + (x1 - x0) * real(k - 1, dp) / real(n - 1, dp), k = 1, n)]
-         if (.not. all(ieee_is_finite(axis_out))) then
-            call fatal_error(err, 'group &sweep: ' // c // '_start = ' // str(x0) // ', ' // c &
-               // '_end = ' // str(x1) // ': the range between them overflows (its values ' &
-               // 'must be finite)')
-            return
-         end if
-      else
-         axis_out = [get_deck_value(deck, vars(1))]
-      end if
-      call check_extremes(deck, vars, axis_out, c // ' axis', err)
+      call make_axis(c // '_values', c // '_start', c // '_end', 'n_' // c, list, x0, x1, n, &
+                     get_deck_value(deck, vars(1)), axis_out, err)
+      if (.not. allocated(err)) call check_extremes(deck, vars, axis_out, c // ' axis', err)
    end subroutine variable_axis
 
    !> The extreme values of an axis (smallest, largest, smallest non-zero magnitude), set on
