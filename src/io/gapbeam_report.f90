@@ -25,7 +25,7 @@ module gapbeam_report
    use gapbeam_psd_output, only: write_response_psd
    use gapbeam_input_flow, only: deck_wear_depth
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, real_fields, &
-      text_field
+      text_field, array_names, array_extent, array_type, array_field
    implicit none
    private
    public :: write_modes, write_transient, write_calibration, on_trajectory_clock
@@ -427,15 +427,16 @@ contains
       call h5%put(g // 'certificate_text', certificate_text(diag%certificate))
       if (.not. allocated(diag%start_label)) return
       if (size(diag%start_label) == 0) return
-      call h5%put(g // 'starts/label', diag%start_label)
-      call h5%put(g // 'starts/attractor', diag%start_attractor)
-      call h5%put(g // 'starts/lyapunov', diag%start_lyapunov)
-      call h5%put(g // 'n_attractors', diag%n_attractors)
-      call h5%put(g // 'attractors/label', diag%attractor_label)
-      call h5%put(g // 'attractors/fraction', diag%attractor_fraction)
-      call h5%put(g // 'attractors/lyapunov', diag%attractor_lyapunov)
-      call h5%put(g // 'starts/transient_periods', diag%start_transient)
-      call h5%put(g // 'attractors/mean_transient_periods', diag%attractor_transient)
+      do k = 1, size(array_names)   ! the per-start arrays, whole
+         if (array_extent(k) /= 4) cycle
+         if (array_names(k) == 'attractors/label') call h5%put(g // 'n_attractors', &
+                                                               diag%n_attractors)
+         if (array_type(k:k) == 'i') then
+            call h5%put(g // trim(array_names(k)), nint(array_field(diag, k)))
+         else
+            call h5%put(g // trim(array_names(k)), array_field(diag, k))
+         end if
+      end do
    end subroutine write_diagnostics
 
    !> PREFIX.history.dat and PREFIX.poincare.dat.
