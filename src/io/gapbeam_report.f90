@@ -23,7 +23,7 @@ module gapbeam_report
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
    use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_psd_output, only: write_response_psd
-   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_deck_rules_flow, only: deck_wear_depth
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, real_fields, &
       text_field, array_names, array_extent, array_type, array_field
    implicit none

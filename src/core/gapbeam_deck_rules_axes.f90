@@ -1,12 +1,12 @@
-!> The deck reader's rules for the groups that name other deck variables (the axes of
-!> &sweep, the variables of &continuation) and the sizes of a run, counted in 64 bits
-!> (see gapbeam_input).
-module gapbeam_input_axes
+!> The deck rules of the groups that name other deck variables (the axes of &sweep, the
+!> variables of &continuation) and the sizes of a run, counted in 64 bits (see
+!> gapbeam_deck_rules).
+module gapbeam_deck_rules_axes
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_deck_text, only: source_t, present_group, given
+   use gapbeam_deck_rules, only: is_given
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: starts_given
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, &
@@ -33,8 +33,8 @@ contains
    !> ranges (x_start, x_end, n_x; the deck's value when neither is given). The extreme values
    !> of every axis are checked by setting them on a copy of the deck (gapbeam_deck_variable).
    !> The axes of &sweep (see the header).
-   subroutine make_sweep_axes(srcs, deck, err)
-      type(source_t), intent(in) :: srcs(:)
+   subroutine make_sweep_axes(given, deck, err)
+      character(len=*), intent(in) :: given            !! what the sources name (is_given)
       type(deck_t), intent(inout) :: deck
       type(error_t), allocatable, intent(inout) :: err
       type(deck_variable_t) :: var(2), forcing(2)
@@ -65,11 +65,11 @@ contains
             sw%n_amplitude, deck%forcing%amplitude_pp, aa, err)
          if (allocated(err)) return
          ! a forcing list given while no axis is that variable would be ignored silently
-         if ((given(srcs, 'sweep', 'frequency_hz') .or. sw%n_frequency > 0) .and. &
+         if ((is_given(given, 'sweep:frequency_hz') .or. sw%n_frequency > 0) .and. &
              .not. any(label_of(var) == '&forcing frequency_hz')) call fatal_error(err, &
             'group &sweep: frequency_hz (or n_frequency) is given but neither x_variable ' &
             // "nor y_variable is '&forcing frequency_hz'")
-         if ((given(srcs, 'sweep', 'amplitude_pp') .or. sw%n_amplitude > 0) .and. &
+         if ((is_given(given, 'sweep:amplitude_pp') .or. sw%n_amplitude > 0) .and. &
              .not. any(label_of(var) == '&forcing amplitude_pp')) call fatal_error(err, &
             'group &sweep: amplitude_pp (or n_amplitude) is given but neither x_variable ' &
             // "nor y_variable is '&forcing amplitude_pp'")
@@ -256,13 +256,13 @@ contains
    ! ---------------------------------------------------------------- &continuation
 
    !> &continuation: the variables and their ranges, the start, the curves.
-   subroutine check_continuation(srcs, deck, err)
-      type(source_t), intent(in) :: srcs(:)
+   subroutine check_continuation(given, deck, err)
+      character(len=*), intent(in) :: given            !! what the sources name (is_given)
       type(deck_t), intent(inout) :: deck
       type(error_t), allocatable, intent(inout) :: err
       integer :: k
       if (allocated(err)) return
-      if (.not. present_group(srcs, 'continuation')) then
+      if (.not. is_given(given, 'continuation')) then
          if (deck%job%analysis == 'continuation') call fatal_error(err, 'group &continuation ' &
             // "is missing: analysis='continuation' needs at least parameter, parameter_min " &
             // 'and parameter_max')
@@ -417,4 +417,4 @@ contains
          end if
       end associate
    end subroutine check_sizes
-end module gapbeam_input_axes
+end module gapbeam_deck_rules_axes
