@@ -28,9 +28,10 @@ module gapbeam_checkpoint
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_results, only: point_result_t
    use gapbeam_files, only: remove_file, file_exists, file_size, rename_file
+   use gapbeam_checksum, only: crc32, text_bytes
    implicit none
    private
-   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, crc32
+   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close
 
    character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! older formats: refused
@@ -489,42 +490,6 @@ contains
       integer(int64) :: crc
       crc = crc32(transfer(x, [0_int8]), crc32(transfer([p, m], [0_int8]), hash))
    end function record_crc
-
-   !> The bytes of a text.
-   pure function text_bytes(text) result(b)
-      character(len=*), intent(in) :: text             !! text
-      integer(int8), allocatable :: b(:)
-      integer :: i
-      allocate(b(len(text)))
-      do i = 1, len(text)
-         b(i) = int(iachar(text(i:i)) - merge(256, 0, iachar(text(i:i)) > 127), int8)
-      end do
-   end function text_bytes
-
-   !> CRC-32 (the zlib and PNG checksum: reflected polynomial 0xEDB88320) of `bytes`, continuing
-   !> from `previous` (the CRC of the bytes before) when given; a value in 0..2**32-1.
-   pure function crc32(bytes, previous) result(crc)
-      integer(int8), intent(in) :: bytes(:)            !! data
-      integer(int64), intent(in), optional :: previous !! CRC of the preceding data
-      integer(int64) :: crc
-      integer(int64), parameter :: poly = 3988292384_int64     ! 0xEDB88320
-      integer(int64), parameter :: mask = 4294967295_int64     ! 0xFFFFFFFF
-      integer :: i, k
-      crc = 0
-      if (present(previous)) crc = previous
-      crc = ieor(crc, mask)
-      do i = 1, size(bytes)
-         crc = ieor(crc, iand(int(bytes(i), int64), 255_int64))
-         do k = 1, 8
-            if (iand(crc, 1_int64) /= 0) then
-               crc = ieor(ishft(crc, -1), poly)
-            else
-               crc = ishft(crc, -1)
-            end if
-         end do
-      end do
-      crc = ieor(crc, mask)
-   end function crc32
 
    !> A point's results as one real array (for checkpoints); integers and characters are
    !> stored exactly (a text as its length, then one character code per real).
