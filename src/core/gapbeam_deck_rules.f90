@@ -13,13 +13,13 @@ module gapbeam_deck_rules
    use gapbeam_capabilities, only: solver_refusal, method_caps, method_caps_t
    use gapbeam_laws, only: stop_law_refusal
    use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v, &
-      rayleigh_from_ratios, beam_ei, beam_rho_a, dof_name, beam_is_timoshenko, &
+      rayleigh_from_ratios, beam_ei, beam_rho_a, dof_name, beam_is_timoshenko, stop_is_ring, &
       beam_shear_stiffness, beam_shear_coefficient
    use gapbeam_deck, only: deck_t
    implicit none
    private
    public :: check_structure, check_stops, check_loads, check_settings, check_capabilities, &
-      check_analysis, is_given
+      check_analysis, is_given, given_defaults
 
 contains
 
@@ -29,6 +29,27 @@ contains
       character(len=*), intent(in) :: name               !! 'calibrate', 'sweep:frequency_hz'
       is_given = index(given, ' ' // name // ' ') > 0
    end function is_given
+
+   !> Defaults that depend on what the deck gives: rk_rtol stands in for an rk45 deck's
+   !> tolerance; no Lyapunov exponent by default with ring supports.
+   subroutine given_defaults(given, deck)
+      character(len=*), intent(in) :: given            !! what the sources name (is_given)
+      type(deck_t), intent(inout) :: deck
+      if (.not. is_given(given, 'solver:tolerance') .and. is_given(given, 'solver:rk_rtol') &
+          .and. deck%solver%method == 'rk45') deck%solver%tolerance = deck%solver%rk_rtol
+      if (any_ring(deck%stops) .and. .not. is_given(given, 'diagnostics:lyapunov_periods')) &
+         deck%diagnostics%lyapunov_periods = 0
+   end subroutine given_defaults
+
+   !> Whether any stop is a ring support (circular clearance or friction).
+   pure logical function any_ring(stops)
+      type(stop_t), intent(in) :: stops(:)
+      integer :: k
+      any_ring = .false.
+      do k = 1, size(stops)
+         if (stop_is_ring(stops(k))) any_ring = .true.
+      end do
+   end function any_ring
 
    ! ---------------------------------------------------------------- the structure
 

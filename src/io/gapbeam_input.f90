@@ -19,9 +19,9 @@ module gapbeam_input
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck_text, only: source_t, load_file, make_source, parse_source, basename_stem, &
-      present_group, given
+      present_group
    use gapbeam_deck_rules, only: check_structure, check_stops, check_loads, check_settings, &
-      check_capabilities, check_analysis
+      check_capabilities, check_analysis, given_defaults
    use gapbeam_deck_rules_axes, only: make_sweep_axes, check_continuation, check_sizes
    use gapbeam_deck_rules_flow, only: check_flow
    use gapbeam_deck_rules_initial, only: check_initial, check_mechanism
@@ -29,7 +29,6 @@ module gapbeam_input
    use gapbeam_deck_apply, only: apply_visitor_t, source_where
    use gapbeam_deck_check, only: check_deck_values, deck_names_t, deck_names, group_variables
    use gapbeam_deck_table, only: walk_deck
-   use gapbeam_description, only: stop_t, stop_is_ring
    use gapbeam_deck, only: deck_t
    implicit none
    private
@@ -86,7 +85,7 @@ contains
       call walk_deck(v, deck)
       if (allocated(v%err)) call move_alloc(v%err, err)
       if (failed(err, path)) return
-      call given_defaults(srcs, deck)
+      call given_defaults(named, deck)
       call check_deck_values(deck, err);  if (failed(err, path)) return
       call check_structure(named, deck, err);  if (failed(err, path)) return
       call check_stops(deck%structure, deck%stops, err);  if (failed(err, path)) return
@@ -164,27 +163,6 @@ contains
       if (.not. present_group(srcs, 'beam')) call fatal_error(err, 'required group &beam is ' &
          // 'missing')
    end subroutine check_names
-
-   !> Defaults that depend on what the deck gives: rk_rtol stands in for an rk45 deck's
-   !> tolerance; no Lyapunov exponent by default with ring supports.
-   subroutine given_defaults(srcs, deck)
-      type(source_t), intent(in) :: srcs(:)
-      type(deck_t), intent(inout) :: deck
-      if (.not. given(srcs, 'solver', 'tolerance') .and. given(srcs, 'solver', 'rk_rtol') &
-          .and. deck%solver%method == 'rk45') deck%solver%tolerance = deck%solver%rk_rtol
-      if (any_ring(deck%stops) .and. .not. given(srcs, 'diagnostics', 'lyapunov_periods')) &
-         deck%diagnostics%lyapunov_periods = 0
-   end subroutine given_defaults
-
-   !> Whether any stop is a ring support (circular clearance or friction).
-   pure logical function any_ring(stops)
-      type(stop_t), intent(in) :: stops(:)
-      integer :: k
-      any_ring = .false.
-      do k = 1, size(stops)
-         if (stop_is_ring(stops(k))) any_ring = .true.
-      end do
-   end function any_ring
 
    !> The groups and variables the sources name, for the rules: ' group group:variable ... '.
    pure function given_list(srcs) result(t)
