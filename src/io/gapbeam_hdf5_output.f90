@@ -77,7 +77,6 @@ module gapbeam_hdf5_output
       procedure :: copy_from => writer_copy_from       !! a group copied from another file
       procedure :: exists => writer_exists             !! whether a dataset or group exists
       procedure :: failed => writer_failed             !! whether a call failed
-      procedure :: fail => writer_fail                 !! keep a failure found by the caller
       procedure :: close => writer_close               !! close and rename; the first failure
       procedure :: abort => writer_abort               !! close and delete, quietly
    end type h5_writer_t
@@ -368,14 +367,6 @@ contains
       class(h5_writer_t), intent(in) :: self             !! writer
       writer_failed = allocated(self%err)
    end function writer_failed
-
-   !> Keep a failure the caller found (the first failure is kept): the file is then not
-   !> written, and `close` reports it.
-   subroutine writer_fail(self, e)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      type(error_t), intent(in) :: e                     !! the failure
-      if (.not. allocated(self%err)) self%err = e
-   end subroutine writer_fail
 
    !> Close the file and rename `path.part` to `path`; report the first failure of any call.
    !> After a failure the incomplete file is deleted; a failed rename leaves `path.part`

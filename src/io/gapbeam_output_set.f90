@@ -57,7 +57,6 @@ module gapbeam_output_set
    contains
       procedure :: begin => set_begin              !! name the files; make the directory
       procedure :: temp => set_temp                !! temporary name of file k
-      procedure :: final_name => set_final_name    !! final name of file k
       procedure :: names => set_names              !! file names without the directory
       procedure :: size => set_size                !! number of files
       procedure :: open_h5 => set_open_h5          !! the .h5: root attributes, /deck, /run/files
@@ -105,14 +104,6 @@ contains
       character(len=:), allocatable :: name
       name = self%final(k)%s // self%tag // '.part'
    end function set_temp
-
-   !> The final name of file k.
-   function set_final_name(self, k) result(name)
-      class(output_set_t), intent(in) :: self            !! the set
-      integer, intent(in) :: k                           !! file number, as given to begin
-      character(len=:), allocatable :: name
-      name = self%final(k)%s
-   end function set_final_name
 
    !> Number of files in the set.
    pure integer function set_size(self)
