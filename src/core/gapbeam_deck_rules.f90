@@ -9,7 +9,7 @@
 module gapbeam_deck_rules
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
-   use gapbeam_error, only: error_t, fatal_error, str
+   use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_capabilities, only: solver_refusal, method_caps, method_caps_t
    use gapbeam_laws, only: stop_law_refusal
    use gapbeam_description, only: structure_t, stop_t, dof_w, dof_theta, dof_v, dof_theta_v, &
@@ -19,7 +19,7 @@ module gapbeam_deck_rules
    implicit none
    private
    public :: check_structure, check_stops, check_loads, check_settings, check_capabilities, &
-      check_analysis, is_given, given_defaults
+      check_analysis, is_given, given_defaults, output_prefix_problem
 
 contains
 
@@ -532,4 +532,54 @@ contains
             // "; use axis = 'x' or 'y'")
       end associate
    end subroutine check_analysis
+   ! ---------------------------------------------------------------- &job output
+
+   !> Why `prefix` cannot be an output prefix (the files are PREFIX.h5, PREFIX.history.dat,
+   !> ...), '' when it can: a prefix that names a directory ('results/x/', '.', '..', '/')
+   !> would give hidden files ('results/x/.h5'). It is refused rather than given a stem: the
+   !> user meant a directory, and only the user can say what the files there should be called.
+   pure function output_prefix_problem(prefix) result(why)
+      character(len=*), intent(in) :: prefix             !! output prefix as given
+      character(len=:), allocatable :: why, last
+      why = ''
+      last = trim(prefix)
+      last = last(index(last, '/', back=.true.) + 1:)
+      if (len_trim(prefix) == 0) then
+         why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
+      else if (has_control(prefix)) then
+         why = 'the output prefix contains a control character (' // control_names(prefix) &
+            // '): such file names cannot be typed or listed safely; use letters, digits, ' &
+            // "'_', '-', '.' and '/'"
+      else if (len(last) == 0 .or. last == '.' .or. last == '..') then
+         why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
+            // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
+            // 'a stem in it, e.g. ' // q(trim(prefix) // trim(merge('/  ', '   ', &
+            len(last) > 0)) // 'run')
+      end if
+   end function output_prefix_problem
+
+   !> Whether `text` holds a control character (ASCII 0-31 or 127).
+   pure logical function has_control(text)
+      character(len=*), intent(in) :: text               !! text
+      integer :: i
+      has_control = .false.
+      do i = 1, len(text)
+         if (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127) has_control = .true.
+      end do
+   end function has_control
+
+   !> The control characters of `text`, as 'code 27' items (the first three).
+   pure function control_names(text) result(t)
+      character(len=*), intent(in) :: text               !! text
+      character(len=:), allocatable :: t
+      integer :: i, n
+      t = '';  n = 0
+      do i = 1, len(text)
+         if (.not. (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127)) cycle
+         n = n + 1
+         if (n > 3) exit
+         if (n > 1) t = t // ', '
+         t = t // 'code ' // str(iachar(text(i:i))) // ' at position ' // str(i)
+      end do
+   end function control_names
 end module gapbeam_deck_rules

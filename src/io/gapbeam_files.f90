@@ -30,7 +30,7 @@ module gapbeam_files
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
    public :: write_table, write_text_file
    public :: process_id, real_path, file_size, errno_text
-   public :: output_prefix_problem, output_name_problem
+   public :: output_name_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
@@ -198,55 +198,6 @@ contains
          return
       end do
    end subroutine make_parent_directory
-
-   !> Why `prefix` cannot be an output prefix (the files are PREFIX.h5, PREFIX.history.dat,
-   !> ...), '' when it can: a prefix that names a directory ('results/x/', '.', '..', '/')
-   !> would give hidden files ('results/x/.h5'). It is refused rather than given a stem: the
-   !> user meant a directory, and only the user can say what the files there should be called.
-   pure function output_prefix_problem(prefix) result(why)
-      character(len=*), intent(in) :: prefix             !! output prefix as given
-      character(len=:), allocatable :: why, last
-      why = ''
-      last = trim(prefix)
-      last = last(index(last, '/', back=.true.) + 1:)
-      if (len_trim(prefix) == 0) then
-         why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
-      else if (has_control(prefix)) then
-         why = 'the output prefix contains a control character (' // control_names(prefix) &
-            // '): such file names cannot be typed or listed safely; use letters, digits, ' &
-            // "'_', '-', '.' and '/'"
-      else if (len(last) == 0 .or. last == '.' .or. last == '..') then
-         why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
-            // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
-            // 'a stem in it, e.g. ' // q(trim(prefix) // trim(merge('/  ', '   ', &
-            len(last) > 0)) // 'run')
-      end if
-   end function output_prefix_problem
-
-   !> Whether `text` holds a control character (ASCII 0-31 or 127).
-   pure logical function has_control(text)
-      character(len=*), intent(in) :: text               !! text
-      integer :: i
-      has_control = .false.
-      do i = 1, len(text)
-         if (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127) has_control = .true.
-      end do
-   end function has_control
-
-   !> The control characters of `text`, as 'code 27' items (the first three).
-   pure function control_names(text) result(t)
-      character(len=*), intent(in) :: text               !! text
-      character(len=:), allocatable :: t
-      integer :: i, n
-      t = '';  n = 0
-      do i = 1, len(text)
-         if (.not. (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127)) cycle
-         n = n + 1
-         if (n > 3) exit
-         if (n > 1) t = t // ', '
-         t = t // 'code ' // str(iachar(text(i:i))) // ' at position ' // str(i)
-      end do
-   end function control_names
 
    !> Why the files of output prefix `prefix` could not be created, found before anything is
    !> computed, or '' when they can: a component of the prefix longer than the file system's

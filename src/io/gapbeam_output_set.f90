@@ -35,7 +35,8 @@ module gapbeam_output_set
    use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_kinds, only: dp
    use gapbeam_files, only: rename_file, remove_file, file_exists, directory_exists, &
-      make_parent_directory, process_id, write_table, write_text_file, output_prefix_problem
+      make_parent_directory, process_id, write_table, write_text_file
+   use gapbeam_deck_rules, only: output_prefix_problem
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_file_info, only: write_file_info
    implicit none

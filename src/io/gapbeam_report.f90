@@ -17,9 +17,10 @@ module gapbeam_report
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text, &
-      certificate_text
+      certificate_text, on_trajectory_clock
    use gapbeam_parameters, only: run_parameters, stiffness_units
-   use gapbeam_deflection, only: shape_points, deflection, nodal_values
+   use gapbeam_deflection, only: shape_points, deflection, nodal_values, mode_shape_table, &
+      shape_curve_table
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
    use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_psd_output, only: write_response_psd
@@ -28,7 +29,7 @@ module gapbeam_report
       text_field, array_names, array_extent, array_type, array_field
    implicit none
    private
-   public :: write_modes, write_transient, write_calibration, on_trajectory_clock
+   public :: write_modes, write_transient, write_calibration
 
    !> Points per element of the mode shape curves (Hermite shape functions).
    integer, parameter :: curve_points = 16
@@ -49,7 +50,7 @@ contains
       character(len=17), allocatable :: names(:), units(:)
       integer :: j
       tab = mode_shape_table(sys, modes)
-      curves = shape_curve_table(sys, modes)
+      curves = shape_curve_table(sys, modes, curve_points)
       call set%begin(deck%job%output, [character(len=18) :: '.h5', '.modes.dat', &
                      '.shapes.dat', '.shape_curves.dat'])
       call set%open_h5(h5, 'modes', deck%text, deck%warnings)
@@ -98,40 +99,6 @@ contains
          units, curves)
       call set%finish(err)
    end subroutine write_modes
-
-   !> Node x and w of each mode at the nodes (root w = 0): (n_node, 1 + n_modes).
-   function mode_shape_table(sys, modes) result(tab)
-      type(system_t), intent(in) :: sys      !! assembled structure
-      type(modes_t), intent(in) :: modes     !! modes
-      real(dp), allocatable :: tab(:, :)
-      integer :: i, j, g
-      allocate(tab(sys%n_node, 1 + modes%n_modes), source=0.0_dp)
-      do i = 1, sys%n_node
-         tab(i, 1) = real(i - 1, dp) * sys%element_length
-         g = sys%dof_of(dof_w, i)
-         if (g > 0) then
-            do j = 1, modes%n_modes
-               tab(i, 1 + j) = modes%shapes(g, j)
-            end do
-         end if
-      end do
-   end function mode_shape_table
-
-   !> x and w of each mode between the nodes, from the element's Hermite shape functions:
-   !> (n_points, 1 + n_modes).
-   function shape_curve_table(sys, modes) result(tab)
-      type(system_t), intent(in) :: sys      !! assembled structure
-      type(modes_t), intent(in) :: modes     !! modes
-      real(dp), allocatable :: tab(:, :)
-      real(dp), allocatable :: x(:)
-      integer :: j
-      x = shape_points(sys, curve_points)
-      allocate(tab(size(x), 1 + modes%n_modes))
-      tab(:, 1) = x
-      do j = 1, modes%n_modes
-         tab(:, 1 + j) = deflection(sys, modes%shapes(:, j), curve_points)
-      end do
-   end function shape_curve_table
 
    !> Calibration result: PREFIX.h5 with /calibrate/value and the first frequency, and the
    !> calibrated structure's K and M.
@@ -190,28 +157,6 @@ contains
       if (with_state .and. text) call write_shape_table(set, deck, model, r)
       call set%finish(err)
    end subroutine write_transient
-
-   !> The results with their times on the clock of the whole trajectory: `res` is the final
-   !> record of a run that began `transient_periods` periods before it counted from the start
-   !> of the trajectory, however many periods the run that made the record integrated before
-   !> it (an extension of a settling test starts at t = 0 from the end of the previous one).
-   function on_trajectory_clock(res, transient_periods, record_periods, period) result(r)
-      type(transient_result_t), intent(in) :: res      !! final record, on its run's clock
-      integer, intent(in) :: transient_periods         !! periods before the record, in all
-      integer, intent(in) :: record_periods            !! periods of the record
-      real(dp), intent(in) :: period                   !! forcing period [s]
-      type(transient_result_t) :: r
-      real(dp) :: shift
-      r = res
-      ! the periods the record's own run integrated before the record: its end less the record
-      shift = real(transient_periods - (nint(res%t_end / period) - record_periods), dp) * period
-      if (shift == 0.0_dp) return
-      r%time = res%time + shift
-      r%p_time = res%p_time + shift
-      r%t_end = res%t_end + shift
-      where (res%first_contact_time >= 0.0_dp) r%first_contact_time = res%first_contact_time &
-                                                                        + shift
-   end function on_trajectory_clock
 
    !> PREFIX.h5 of a transient run, under the set's temporary name.
    subroutine write_transient_h5(set, deck, model, res, diag, stats, psd)
