@@ -347,10 +347,6 @@ contains
             // ' and size(units) = ' // str(size(units)) // ' must equal the number of columns ' &
             // str(size(columns, 2))
       end if
-      if (len_trim(path) == 0) then
-         call fatal_error(err, here(proc) // 'empty file path')
-         return
-      end if
       p = trim(path)
       described = ''
       header = ''
@@ -397,10 +393,6 @@ contains
       character(len=512) :: msg
       integer :: unit, ios
 
-      if (len_trim(path) == 0) then
-         call fatal_error(err, here(proc) // 'empty file path')
-         return
-      end if
       p = trim(path)
       call open_file(proc, p, .true., unit, err)
       if (allocated(err)) return
@@ -414,7 +406,7 @@ contains
    ! ---------------------------------------------------------------------------------------
 
    !> Create (or truncate) `p` for writing: formatted sequential, or unformatted stream for a
-   !> byte-for-byte copy.
+   !> byte-for-byte copy; an empty name refused.
    subroutine open_file(proc, p, stream, unit, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: p                  !! file name, trimmed
@@ -423,6 +415,10 @@ contains
       type(error_t), allocatable, intent(inout) :: err   !! set when the file cannot be created
       character(len=512) :: msg
       integer :: ios
+      if (len(p) == 0) then
+         call fatal_error(err, here(proc) // 'empty file path')
+         return
+      end if
       msg = ''
       if (stream) then
          open(newunit=unit, file=p, status='replace', action='write', access='stream', &
