@@ -113,10 +113,7 @@ contains
       call h5%put(c // 'poincare/strain_rate', res%p_rate)
       call h5%put(c // 'poincare/tip', res%p_tip)
       nb = size(res%branches)
-      allocate(ended(nb))
-      do k = 1, nb
-         ended(k) = res%branches(k)%ended
-      end do
+      ended = [character(len=256) :: (res%branches(k)%ended, k = 1, nb)]
       call h5%put(c // 'branches/period', [(res%branches(k)%period, k = 1, nb)])
       call h5%put(c // 'branches/parent', [(res%branches(k)%parent, k = 1, nb)])
       call h5%put(c // 'branches/first', [(res%branches(k)%first, k = 1, nb)])
@@ -132,12 +129,8 @@ contains
       call h5%put(c // 'bifurcations/grazing', res%bif_grazing)
       call h5%put(c // 'bifurcations/note', res%bif_note)
       nc = size(res%curves)
-      allocate(kinds(nc))
-      deallocate(ended);  allocate(ended(nc))
-      do k = 1, nc
-         kinds(k) = res%curves(k)%kind
-         ended(k) = res%curves(k)%ended
-      end do
+      kinds = [character(len=16) :: (res%curves(k)%kind, k = 1, nc)]
+      ended = [character(len=256) :: (res%curves(k)%ended, k = 1, nc)]
       call h5%put(c // 'curves/kind', kinds)
       call h5%put(c // 'curves/period', [(res%curves(k)%period, k = 1, nc)])
       call h5%put(c // 'curves/ended', ended)

@@ -111,7 +111,7 @@ contains
       character(len=warning_length), allocatable :: lines(:), more(:)
       integer, allocatable :: impacts(:, :), status(:)
       real(dp), allocatable :: contact(:, :)
-      integer :: ns, nr, nl, j, p, k
+      integer :: ns, nr, nl, j, p
       call point_sizes(results, sf%points, ns, nr, nl)
       allocate(impacts(ns, size(sf%points)), source=0)
       allocate(contact(ns, size(sf%points)), source=0.0_dp)
@@ -127,15 +127,8 @@ contains
          status(j) = 0
       end do
       more = untouched_sweep_warnings(impacts, contact, status)
-      k = 0
-      if (allocated(sf%warnings)) k = size(sf%warnings)
-      allocate(lines(k + size(more)))
-      do j = 1, k
-         lines(j) = sf%warnings(j)
-      end do
-      do j = 1, size(more)
-         lines(k + j) = more(j)
-      end do
+      lines = more
+      if (allocated(sf%warnings)) lines = [character(len=warning_length) :: sf%warnings, more]
    end function sweep_warnings
 
    !> /run/warnings of a sweep file into sf%warnings, less those about stops never touched
@@ -144,20 +137,12 @@ contains
       type(h5_reader_t), intent(inout) :: h5             !! open file
       type(sweep_file_t), intent(inout) :: sf            !! description
       character(len=:), allocatable :: all(:)
-      integer :: k, n
+      integer :: k
       allocate(sf%warnings(0))
       if (.not. h5%exists('/run/warnings')) return
       call h5%read('/run/warnings', all)
       if (h5%failed()) return
-      n = count([(.not. is_untouched_warning(all(k)), k = 1, size(all))])
-      deallocate(sf%warnings)
-      allocate(sf%warnings(n))
-      n = 0
-      do k = 1, size(all)
-         if (is_untouched_warning(all(k))) cycle
-         n = n + 1
-         sf%warnings(n) = all(k)
-      end do
+      sf%warnings = pack(all, [(.not. is_untouched_warning(all(k)), k = 1, size(all))])
    end subroutine read_warnings
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
@@ -222,12 +207,9 @@ contains
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: j                           !! text field
       character(len=:), allocatable :: t(:)
-      integer :: k, w
-      w = 1
-      do k = 1, size(points)
-         w = max(w, len(text_field(results(points(k)), j)))
-      end do
-      allocate(character(len=w) :: t(size(points)))
+      integer :: k
+      allocate(character(len=max(1, maxval([(len(text_field(results(points(k)), j)), &
+                                             k = 1, size(points))]))) :: t(size(points)))
       do k = 1, size(points)
          t(k) = text_field(results(points(k)), j)
       end do
