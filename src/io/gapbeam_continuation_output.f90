@@ -25,6 +25,7 @@ module gapbeam_continuation_output
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_output_set, only: output_set_t
+   use gapbeam_files, only: append => append_text
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_parameter_set, write_model, udunits
@@ -243,22 +244,6 @@ contains
       end do
       call set%text('.curves.dat', t(1:nt))
    end subroutine write_tables
-
-   !> Append text to a buffer t of used length nt (capacity doubles).
-   pure subroutine append(t, nt, x)
-      character(len=:), allocatable, intent(inout) :: t
-      integer, intent(inout) :: nt
-      character(len=*), intent(in) :: x
-      character(len=:), allocatable :: tmp
-      if (.not. allocated(t)) allocate(character(len=max(4096, 2 * len(x))) :: t)
-      if (nt + len(x) > len(t)) then
-         allocate(character(len=max(2 * len(t), nt + len(x))) :: tmp)
-         tmp(1:nt) = t(1:nt)
-         call move_alloc(tmp, t)
-      end if
-      t(nt + 1:nt + len(x)) = x
-      nt = nt + len(x)
-   end subroutine append
 
    pure function real_text(x) result(s)
       real(dp), intent(in) :: x

@@ -28,7 +28,7 @@ module gapbeam_files
    implicit none
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
-   public :: write_table, write_text_file
+   public :: write_table, write_text_file, append_text
    public :: process_id, real_path, file_size, errno_text
    public :: output_name_problem
 
@@ -400,6 +400,23 @@ contains
       write(unit, iostat=ios, iomsg=msg) text
       call close_file(proc, p, unit, ios, msg, int(len(text), int64), err)
    end subroutine write_text_file
+
+   !> Append text to a buffer t of used length nt (capacity doubles): a long text built
+   !> piece by piece in linear time; t(1:nt) is the text.
+   pure subroutine append_text(t, nt, x)
+      character(len=:), allocatable, intent(inout) :: t   !! buffer (allocated on first use)
+      integer, intent(inout) :: nt                         !! its used length (0 at first)
+      character(len=*), intent(in) :: x                    !! text to append
+      character(len=:), allocatable :: tmp
+      if (.not. allocated(t)) allocate(character(len=max(4096, 2 * len(x))) :: t)
+      if (nt + len(x) > len(t)) then
+         allocate(character(len=max(2 * len(t), nt + len(x))) :: tmp)
+         tmp(1:nt) = t(1:nt)
+         call move_alloc(tmp, t)
+      end if
+      t(nt + 1:nt + len(x)) = x
+      nt = nt + len(x)
+   end subroutine append_text
 
    ! ---------------------------------------------------------------------------------------
    ! Helpers

@@ -11,8 +11,8 @@ module gapbeam_hdf5_input
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_hdf5_output, only: file_open, path_exists, at
-   use hdf5, only: hid_t, hsize_t, size_t, h5fclose_f, h5oopen_f, h5oclose_f, h5sclose_f, h5sget_simple_extent_ndims_f, &
-      h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
+   use hdf5, only: hid_t, hsize_t, size_t, h5fclose_f, h5oopen_f, h5oclose_f, h5sclose_f, &
+      h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
       h5dget_space_f, h5tclose_f, h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, &
       H5T_STRING_F, H5T_FLOAT_F, H5T_INTEGER_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       h5aopen_f, h5aclose_f, h5aread_f, h5aexists_f, h5aget_type_f, h5aget_space_f, &

@@ -13,6 +13,7 @@ module gapbeam_report
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_xdmf, only: make_xdmf, write_xdmf_datasets
    use gapbeam_output_set, only: output_set_t
+   use gapbeam_files, only: append_text
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
@@ -461,7 +462,7 @@ contains
       real(dp), allocatable :: x(:), w(:)
       character(len=:), allocatable :: text, buf
       character(len=64) :: line
-      integer :: i, k, j, n, pos
+      integer :: i, k, j, pos
       x = shape_points(model%sys, deck%output%shape_points)
       text = '# ' // trim(deck%job%title) // ': deflected shape relative to the base' &
          // new_line('a') // '# columns: x [m], w [m]; one block (gnuplot index) per history ' &
@@ -475,22 +476,17 @@ contains
             // str(deck%stops(j)%gap) // new_line('a')
       end do
       text = text // '# x w' // new_line('a')
-      n = size(res%time)
-      allocate(character(len=len(text) + n * (40 + size(x) * 50)) :: buf)
-      buf(1:len(text)) = text
-      pos = len(text)
-      do i = 1, n
+      pos = 0
+      call append_text(buf, pos, text)
+      do i = 1, size(res%time)
          w = deflection(model%sys, res%history_u(:, i), deck%output%shape_points)
          write(line, '(a, es24.16e3)') '# t = ', res%time(i)
-         buf(pos + 1:pos + len_trim(line) + 1) = trim(line) // new_line('a')
-         pos = pos + len_trim(line) + 1
+         call append_text(buf, pos, trim(line) // new_line('a'))
          do k = 1, size(x)
             write(line, '(es24.16e3, 1x, es24.16e3)') x(k), w(k)
-            buf(pos + 1:pos + len_trim(adjustl(line)) + 1) = trim(adjustl(line)) // new_line('a')
-            pos = pos + len_trim(adjustl(line)) + 1
+            call append_text(buf, pos, trim(adjustl(line)) // new_line('a'))
          end do
-         buf(pos + 1:pos + 2) = new_line('a') // new_line('a')
-         pos = pos + 2
+         call append_text(buf, pos, new_line('a') // new_line('a'))
       end do
       call set%text('.shape.dat', buf(1:pos))
    end subroutine write_shape_table
