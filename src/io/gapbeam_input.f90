@@ -19,9 +19,9 @@ module gapbeam_input
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck_text, only: source_t, load_file, make_source, parse_source, basename_stem, &
-      present_group
+      given_list
    use gapbeam_deck_rules, only: check_structure, check_stops, check_loads, check_settings, &
-      check_capabilities, check_analysis, given_defaults
+      check_capabilities, check_analysis, given_defaults, is_given
    use gapbeam_deck_rules_axes, only: make_sweep_axes, check_continuation, check_sizes
    use gapbeam_deck_rules_flow, only: check_flow
    use gapbeam_deck_rules_initial, only: check_initial, check_mechanism
@@ -159,28 +159,11 @@ contains
             end associate
          end do
       end do
-      if (.not. present_group(srcs, 'job')) call fatal_error(err, 'required group &job is missing')
-      if (.not. present_group(srcs, 'beam')) call fatal_error(err, 'required group &beam is ' &
-         // 'missing')
+      if (.not. is_given(given_list(srcs), 'job')) call fatal_error(err, 'required group &job ' &
+         // 'is missing')
+      if (.not. is_given(given_list(srcs), 'beam')) call fatal_error(err, 'required group &beam ' &
+         // 'is missing')
    end subroutine check_names
-
-   !> The groups and variables the sources name, for the rules: ' group group:variable ... '.
-   pure function given_list(srcs) result(t)
-      type(source_t), intent(in) :: srcs(:)            !! parsed sources
-      character(len=:), allocatable :: t
-      integer :: s, i, k
-      t = ' '
-      do s = 1, size(srcs)
-         do i = 1, size(srcs(s)%groups)
-            associate (g => srcs(s)%groups(i))
-               t = t // g%name // ' '
-               do k = 1, size(g%items)
-                  t = t // g%name // ':' // g%items(k)%name // ' '
-               end do
-            end associate
-         end do
-      end do
-   end function given_list
 
    ! ---------------------------------------------------------------- text helpers
 
