@@ -28,6 +28,8 @@
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods;
 !> a record that met its target is then doubled (within lyapunov_max_periods) and lambda and
 !> sigma are those of the whole, so that the stop's own luck is half of what is reported.
+!> With lyapunov_starts = K > 1 this is done from K independent starts, combined (their
+!> spread and their own sigmas; see largest_lyapunov and combine_starts).
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
