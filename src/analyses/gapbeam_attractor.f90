@@ -451,10 +451,11 @@ contains
    !> the displacement has grown to the attractor's size (decorrelation_periods), so that the
    !> starts are trajectories of their own, spread along the attractor. Each start averages
    !> until its own sigma meets sqrt(K) x the target (K starts of N / K periods meet the
-   !> target of one start of N), at most max(lyapunov_periods, the budget / K) periods. On an
-   !> orbit that start 1 finds confidently stable (lambda + chaos_sigmas sigma < 0) the
-   !> others are not run: displaced starts return to the same orbit, and its stretchings
-   !> repeat, which the batch means see whole.
+   !> target of one start of N), at most max(lyapunov_periods, the budget / K) periods. Start
+   !> 1 probes: confidently stable (lambda + chaos_sigmas sigma < 0) after its first
+   !> lyapunov_periods, it is what one start would be, and when it ends so the others are
+   !> not run (displaced starts return to the same orbit, and its stretchings repeat, which
+   !> the batch means see whole); otherwise those periods are its lead-in.
    subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period, &
                                monitor, cache)
       type(model_t), intent(in) :: model               !! model
@@ -492,9 +493,8 @@ contains
       allocate(part(n_starts))
       done = 0.0_dp
       lead = 0
-      if (n_starts > 1) lead = diag%lyapunov_periods
       call one_start(model, integ, u, v, diag, period, q, n_k, spread, lead, part(1), ua, va, &
-                     err, monitor, done)
+                     err, monitor, done, probe=n_starts > 1)
       if (allocated(err)) return
       done = done + 2.0_dp * real(lead + part(1)%periods, dp)
       j = 1
@@ -584,11 +584,15 @@ contains
    end subroutine displace_start
 
    !> One start of the exponent from (u, v): Benettin's pair averaged until sigma meets
-   !> `spread` x the target (the target itself once the estimate is confidently stable), at
-   !> most n_max periods, then the record doubled (module header). (ua, va): the reference
+   !> `spread` x the target (the target itself while the estimate is confidently stable), at
+   !> most n_max periods, then the record doubled (module header); its first `lead` periods
+   !> are run but not averaged. A `probe` (the first of several starts) decides its lead-in
+   !> after its first lyapunov_periods: confidently stable there, it goes on as a single start
+   !> would (no lead-in, the target itself: a stable orbit gets what one start gives it);
+   !> otherwise those periods become its lead-in (`lead` returned). (ua, va): the reference
    !> state at the end. The monitor is told done + 2k after period k.
    subroutine one_start(model, integ, u, v, diag, period, q, n_max, spread, lead, lyap, ua, &
-                        va, err, monitor, done)
+                        va, err, monitor, done, probe)
       type(model_t), intent(in) :: model               !! model
       class(integrator_t), intent(inout) :: integ      !! the exponent's integrator
       real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
@@ -597,19 +601,20 @@ contains
       integer, intent(in) :: q                         !! orbit period (1: none)
       integer, intent(in) :: n_max                     !! most periods
       real(dp), intent(in) :: spread                   !! target factor (sqrt of the starts)
-      integer, intent(in) :: lead                      !! periods run first, not averaged
+      integer, intent(inout) :: lead                   !! periods run first, not averaged
       type(lyapunov_t), intent(out) :: lyap            !! result of this start
       real(dp), allocatable, intent(out) :: ua(:), va(:)   !! reference state at the end
       type(error_t), allocatable, intent(out) :: err   !! solver failure
       class(monitor_t), intent(inout), optional :: monitor   !! told done + 2k
       real(dp), intent(in) :: done                     !! work before this start
+      logical, intent(in), optional :: probe           !! decide the lead-in (above)
       type(state_t) :: sa, sb
       type(pair_t) :: pair
       real(dp), allocatable :: du(:), dv(:), logs(:), strain(:, :)
       logical, allocatable :: counted(:)
-      real(dp) :: d0, d, x_norm, target, sigma, lambda
-      integer :: k, n, n_next, m
-      logical :: rings, confirming
+      real(dp) :: d0, d, x_norm, target, sigma, lambda, scale
+      integer :: k, n, n_next, m, room
+      logical :: rings, confirming, deciding
 
       x_norm = energy_norm(model, u, v)
       if (x_norm == 0.0_dp) x_norm = 1.0_dp
@@ -621,8 +626,13 @@ contains
          du = 1.0_dp;  dv = 0.0_dp;  d = energy_norm(model, du, dv)
       end if
       ua = u;  va = v
-      allocate(logs(lead + n_max), strain(2, lead + n_max))
-      allocate(counted(lead + n_max), source=.true.)
+      room = lead + n_max
+      deciding = .false.
+      if (present(probe)) deciding = probe
+      if (deciding) room = diag%lyapunov_periods + n_max
+      scale = spread
+      allocate(logs(room), strain(2, room))
+      allocate(counted(room), source=.true.)
       ! ring supports: whole states carried from period to period (gapbeam_exponent_pair)
       rings = model%n_rings > 0
       if (rings) call pair_start(model, u, v, d0, pair)
@@ -659,10 +669,19 @@ contains
          end do
          call exponent_estimate(pack(logs(lead + 1:lead + n), counted(lead + 1:lead + n)), &
                                 period, q, lambda, sigma)
+         if (deciding) then
+            deciding = .false.
+            if (lambda + diag%chaos_sigmas * sigma < 0.0_dp) then
+               scale = 1.0_dp
+            else
+               lead = k
+               cycle
+            end if
+         end if
          if (confirming) exit
          target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
          lyap%converged = sigma <= target
-         if (.not. (lambda + diag%chaos_sigmas * sigma < 0.0_dp)) target = spread * target
+         if (.not. (lambda + diag%chaos_sigmas * sigma < 0.0_dp)) target = scale * target
          if (n >= n_max) exit
          if (sigma <= target) then
             ! the target met: the record doubled and lambda, sigma taken from the whole of it,
