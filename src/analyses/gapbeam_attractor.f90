@@ -130,7 +130,8 @@ contains
          end do
          if (present(monitor)) then
             call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch, ic)
-            watch%offset = watch%offset + 2.0_dp * real(pr%lyapunov_periods, dp)
+            watch%offset = watch%offset &
+                           + 2.0_dp * real(pr%lyapunov_periods + pr%lyapunov_lead, dp)
          else
             call exponent(model, cfg, diag, res%u, res%v, pr, err, section, cache=ic)
          end if
@@ -150,7 +151,7 @@ contains
          call run(more, u, v)
          if (allocated(err)) return
          run_steps = run_steps + int(res%steps_accepted)
-         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods + pr%lyapunov_lead
          added = added + cfg%record_periods
       end do
       ! still changing after every attempt: not settled
@@ -164,7 +165,7 @@ contains
       ! the repeat distance showed), while the distance shrinks and the budget lasts
       if (settled .and. pending > tol .and. diag%lyapunov_periods > 0 .and. &
           pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp) then
-         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods + pr%lyapunov_lead
          rate = -pr%lyapunov * period
          u = pr%u_end;  v = pr%v_end
          do tries = 1, 8
@@ -238,7 +239,8 @@ contains
       integer :: k, n_rec, p
       logical :: settled
       found = 0
-      after = pr%transient_periods + cfg%record_periods + pr%lyapunov_periods
+      after = pr%transient_periods + cfg%record_periods + pr%lyapunov_periods &
+              + pr%lyapunov_lead
       if (n_periods <= 0 .or. .not. allocated(pr%u_end)) return
       tol = auto_period_tolerance(model, cfg, diag)
       c = cfg
@@ -360,7 +362,7 @@ contains
       pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
       pr%lyapunov_dropped = 0;  pr%lyapunov_rerun = 0;  pr%lyapunov_starts = 0
-      pr%lyapunov_spread = 0.0_dp
+      pr%lyapunov_spread = 0.0_dp;  pr%lyapunov_lead = 0
       if (diag%lyapunov_periods > 0) then
          call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
                                pr%period, monitor, cache)
@@ -373,6 +375,7 @@ contains
          pr%lyapunov_converged = merge(1, 0, lyap%converged)
          pr%lyapunov_dropped = lyap%discordant;  pr%lyapunov_rerun = lyap%retried
          pr%lyapunov_starts = lyap%starts;  pr%lyapunov_spread = lyap%spread
+         pr%lyapunov_lead = lyap%lead
       else
          pr%lyapunov_running = [real(dp) ::]
       end if
@@ -498,6 +501,7 @@ contains
       if (allocated(err)) return
       done = done + 2.0_dp * real(lead + part(1)%periods, dp)
       j = 1
+      n_decor = 0
       if (part(1)%exponent + diag%chaos_sigmas * part(1)%uncertainty >= 0.0_dp) then
          ! periods until a displacement of start_displacement has grown by 1 / itself twice
          ! over at the first start's rate (or its sigma, when lambda is within its noise)
@@ -516,6 +520,7 @@ contains
          j = n_starts
       end if
       call combine_starts(part(1:j), period, lyap)
+      lyap%lead = lead + (j - 1) * n_decor
       lyap%converged = lyap%uncertainty <= max(diag%lyapunov_abs_error, &
                                                diag%lyapunov_rel_error * abs(lyap%exponent))
       if (j == 1) lyap%converged = part(1)%converged

@@ -112,6 +112,7 @@ module gapbeam_results
       integer :: discordant = 0
       integer :: retried = 0                     !! periods run again from the other side
       integer :: starts = 1                      !! independent starts combined [-]
+      integer :: lead = 0                        !! periods run but not averaged (lead-ins)
       !> standard error from the spread of the starts' exponents (0: one start) [1/s]
       real(dp) :: spread = 0.0_dp
       !> root strain [-] and its rate [1/s] of the reference trajectory at the end of each
@@ -151,6 +152,7 @@ module gapbeam_results
       integer :: lyapunov_rerun = 0                  !! periods run again from the other side
       integer :: lyapunov_starts = 0                 !! independent starts combined (0: none)
       real(dp) :: lyapunov_spread = 0.0_dp           !! sigma from the starts' spread [1/s]
+      integer :: lyapunov_lead = 0                   !! its periods run, not averaged [-]
       integer :: period_max_tested = 0               !! periods 1..this were tried [-]
       real(dp) :: period_tolerance = 0.0_dp          !! repeat tolerance used [-]
       integer :: closest_period = 0                  !! the period that repeats best [-]
