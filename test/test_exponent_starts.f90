@@ -18,7 +18,7 @@ program test_exponent_starts
    use gapbeam_attractor, only: combine_starts, diagnose
    use gapbeam_report, only: write_transient
    use gapbeam_hdf5_input, only: h5_reader_t
-   use gapbeam_test_runs, only: diagnose_or_stop, load_or_stop
+   use gapbeam_test_runs, only: diagnose_or_stop, load_or_stop, expect_refused
    use gapbeam_testing, only: check, check_le, finish, note
    implicit none
    character(len=*), parameter :: chaos = 'inputs/moon_shaw_9p8hz.nml'
@@ -30,6 +30,7 @@ program test_exponent_starts
    call record_lengths_and_starts_agree()
    call stable_orbit_runs_one_start()
    call rerun_periods_are_written()
+   call bad_starts_are_refused()
    call finish('test_exponent_starts')
 
 contains
@@ -186,4 +187,18 @@ contains
       call check('no rings: nothing rerun or dropped', plain%lyapunov_rerun == 0 .and. &
                  plain%lyapunov_dropped == 0)
    end subroutine rerun_periods_are_written
+
+   !> lyapunov_starts outside 1..64, and starts whose periods (each at least
+   !> lyapunov_periods, with a lead-in of up to 4 x) pass the most a run may integrate.
+   subroutine bad_starts_are_refused()
+      call expect_refused(chaos, 'lyapunov_starts = 0 refused', &
+         '&diagnostics lyapunov_starts = 0 /', [character(len=30) :: '&diagnostics', &
+         'lyapunov_starts = 0', '1..64'])
+      call expect_refused(chaos, 'lyapunov_starts = 65 refused', &
+         '&diagnostics lyapunov_starts = 65 /', [character(len=30) :: '&diagnostics', &
+         'lyapunov_starts = 65', '1..64'])
+      call expect_refused(chaos, '64 starts of at least 1e7 periods each refused', &
+         '&diagnostics lyapunov_starts = 64, lyapunov_periods = 10000000 /', &
+         [character(len=30) :: 'lyapunov_periods = 10000000', 'at most'])
+   end subroutine bad_starts_are_refused
 end program test_exponent_starts
