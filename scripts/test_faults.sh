@@ -452,6 +452,8 @@ elif mode == 'v1':
     b[0:20] = b'GAPBEAM-CHECKPOINT-1'
 elif mode == 'v4':
     b[0:20] = b'GAPBEAM-CHECKPOINT-4'
+elif mode == 'v5':
+    b[0:20] = b'GAPBEAM-CHECKPOINT-5'
 elif mode == 'header':                         # a byte of the deck text in the header
     b[36 + siglen // 2] ^= 0x01
 else:
@@ -788,6 +790,7 @@ checkpoint_case headcut 0 'cut short in its header' \
    'a checkpoint cut short in its header (killed while creating it): started afresh (was: refused)'
 checkpoint_case v1 1 'older gapbeam' 'a checkpoint of the old format (no checksums): refused'
 checkpoint_case v4 1 'do not cover the deck' 'a checkpoint of format 4 (checksums without the deck): refused'
+checkpoint_case v5 1 'starts and the rerun periods' 'a checkpoint of format 5 (no exponent starts): refused'
 checkpoint_case header 1 'damaged header' 'a damaged deck text in the checkpoint header: refused'
 checkpoint_case midmark 0 'a damaged mark or length' \
    "a middle record's damaged begin mark: skipped, the rest read, the point recomputed (was: 'a full disk?')"
