@@ -180,8 +180,7 @@ contains
          .not. r%failed() .and. rerun == pr%lyapunov_rerun .and. &
          dropped == pr%lyapunov_dropped .and. starts == 1)
       call r%close()
-      call execute_command_line('rm -f ' // prefix // '.h5 ' // prefix // '.history.dat ' &
-                                // prefix // '.poincare.dat')
+      call execute_command_line('rm -f ' // prefix // '.h5 ' // prefix // '.*.dat')
       call diagnose_or_stop('test_exponent_starts', stable, [character(len=60) :: quiet], &
                             .false., plain)
       call check('no rings: nothing rerun or dropped', plain%lyapunov_rerun == 0 .and. &
