@@ -12,8 +12,12 @@
 !>   the node in contact (t.x' for a ring, the other plane's translation for a flat stop of a
 !>   two-plane model);
 !> * sliding distance: the friction slider's travel over the slip pieces, sigma (tau_a(tb) -
-!>   tau_a(ta)) at the contact radius (exact; the stick spring's stretch, at most mu f_n / k_t,
-!>   is not sliding), or int |v_t| dt over the contact time for a support without friction;
+!>   tau_a(ta)) on a flat stop (exact; the stick spring's stretch, at most mu f_n / k_t, is not
+!>   sliding); on a circle at the contact radius rho = g + d, sigma int (rho / g) dtau_a, by
+!>   parts (rho_b / g) (tau_a(tb) - tau_a(ta)) less the quadrature of (tau_a - tau_a(ta)) d' / g
+!>   (the radius changes with the penetration: the mean of its end values was a second-order
+!>   error per piece, which the long steps of rk45 showed); or int |v_t| dt over the contact
+!>   time for a support without friction;
 !> * friction work over a slip piece: int -f_t v_t dt - (E_t(tb) - E_t(ta)) (the work into the
 !>   Jenkins element less the change of its spring energy); nothing in stick;
 !> * wear volume rate = wear_coefficient W_N (Archard with the work-rate form of tube-wear
@@ -159,11 +163,11 @@ contains
       real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
-      real(dp) :: rho_a(self%model%n_rings), rho_b(self%model%n_rings)
+      real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings)
       integer :: q, r, k, e
       associate (m => self%model)
          h = p%tb - p%ta
-         pw = 0.0_dp
+         pw = 0.0_dp;  sq = 0.0_dp
          ! the ends: stick-spring energy (its change is not dissipated)
          do e = 1, 2
             t = merge(p%ta, p%tb, e == 1)
@@ -176,16 +180,13 @@ contains
                   ea(r) = 0.0_dp
                   if (m%r_mu(r) > 0.0_dp) ea(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
                   ta_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
-                  rho_a(r) = m%r_gap(r) + d
                else
                   eb(r) = 0.0_dp
                   if (m%r_mu(r) > 0.0_dp) eb(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
                   tb_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
                   rho_b(r) = m%r_gap(r) + d
                end if
-               if (.not. m%r_circular(r)) then      ! flat: no radius, the factor is 1
-                  rho_a(r) = 1.0_dp;  rho_b(r) = 1.0_dp
-               end if
+               if (.not. m%r_circular(r)) rho_b(r) = 1.0_dp   ! flat: no radius, the factor is 1
             end do
          end do
          do q = 1, 3
@@ -198,6 +199,11 @@ contains
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
+               ! the slider's travel at the contact radius rho, int rho dtau_a, by parts:
+               ! rho_b (tau_a(tb) - tau_a(ta)) - int (tau_a - tau_a(ta)) rho' dt (rho' = d')
+               if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp .and. m%r_circular(r)) &
+                  sq(r) = sq(r) + wq * ring_tangent_gap(m, r, ring_anchor_of(m, r, p%r_mode(r), &
+                          p%r_sigma(r), p%r_anchor(r), x, xd), ta_a(r)) * dn
                if (self%energy .and. d > 0.0_dp) then
                   fe = m%laws(m%r_law(r))%law%elastic(m%r_k(r), m%r_c(r), m%r_p(r), d)
                   if (fn /= fe) self%e_damp = self%e_damp + wq * (fn - fe) * dn
@@ -234,11 +240,9 @@ contains
                ! its share without mu: slip only, the stick spring's motion is not wear
                self%fric(k) = self%fric(k) + pw(r) - (eb(r) - ea(r))
                self%wn(k) = self%wn(k) + (pw(r) - (eb(r) - ea(r))) / m%r_mu(r)
-               ! the slider's travel, at the contact radius
-               tc = 1.0_dp
-               if (m%r_circular(r)) tc = 0.5_dp * (rho_a(r) + rho_b(r)) / m%r_gap(r)
-               self%slide(k) = self%slide(k) + p%r_sigma(r) * ring_tangent_gap(m, r, tb_a(r), &
-                  ta_a(r)) * tc
+               ! the slider's travel, at the contact radius (rho = 1: flat)
+               self%slide(k) = self%slide(k) + p%r_sigma(r) * (rho_b(r) * ring_tangent_gap(m, &
+                  r, tb_a(r), ta_a(r)) - sq(r)) / merge(m%r_gap(r), 1.0_dp, m%r_circular(r))
             end if
          end do
       end associate
