@@ -163,11 +163,11 @@ contains
       real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
-      real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings)
+      real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings), tin(self%model%n_rings)
       integer :: q, r, k, e
       associate (m => self%model)
          h = p%tb - p%ta
-         pw = 0.0_dp;  sq = 0.0_dp
+         pw = 0.0_dp;  sq = 0.0_dp;  tin = 0.0_dp
          ! the ends: stick-spring energy (its change is not dissipated)
          do e = 1, 2
             t = merge(p%ta, p%tb, e == 1)
@@ -209,6 +209,7 @@ contains
                   if (fn /= fe) self%e_damp = self%e_damp + wq * (fn - fe) * dn
                end if
                if (fn <= 0.0_dp) cycle
+               tin(r) = tin(r) + wq
                acc_f(k) = acc_f(k) + wq * fn
                acc_f2(k) = acc_f2(k) + wq * fn**2
                acc_work(k) = acc_work(k) + wq * fn * abs(dn)
@@ -222,13 +223,11 @@ contains
          end do
          do r = 1, m%n_rings
             k = m%r_stop(r)
-            if (p%fn_a(r) > 0.0_dp .and. p%fn_b(r) > 0.0_dp) then
-               tc = h
-            else if (p%fn_a(r) > 0.0_dp .or. p%fn_b(r) > 0.0_dp) then
-               tc = 0.5_dp * h
-            else
-               tc = 0.0_dp
-            end if
+            ! the contact time: the quadrature of the contact's indicator (pieces end at
+            ! located onsets and releases, so a piece is in contact at all its points or none;
+            ! the mean of the ends' counted half of a piece that ends at a release, whose
+            ! normal force is zero on the right)
+            tc = tin(r)
             acc_contact(k) = acc_contact(k) + tc
             self%contact(k) = self%contact(k) + tc
             if (p%r_mode(r) /= ring_slip .and. m%r_mu(r) > 0.0_dp) &
