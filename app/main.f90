@@ -16,7 +16,8 @@ program main
    use gapbeam_warning_text, only: warning_length, warning_prefix
    use gapbeam_settings, only: batch_options_t
    use gapbeam_input, only: read_deck
-   use gapbeam_files, only: make_parent_directory, output_prefix_problem, output_name_problem
+   use gapbeam_files, only: make_parent_directory, output_name_problem
+   use gapbeam_deck_rules, only: output_prefix_problem
    use gapbeam_output_catalogue, only: catalogue_text, section_names, section_analyses
    use gapbeam_lock, only: lock_t, acquire_lock, release_lock
    use gapbeam_jobs, only: run_modes, run_calibrate, run_transient_analysis, run_work_precision, &

@@ -24,8 +24,12 @@ Parts:
   periodic  the same tube at 7 Hz with 0.05 mm clearances (a period-1 sliding orbit with six
             impacts per period at each baffle), 15 + 20 periods: the truncation error of the
             basis without the statistical spread of a chaotic record (cut-offs at tolerance
-            1e-5 against the full model at 1e-6), and the same tolerance ladder.
-  map       inputs/tube_map.nml (45 points) with the full model and as shipped (reduced): CPU
+            1e-5 against the full model at 1e-6), and the same tolerance ladder; the
+            exponential integrator on the 'auto' basis at 1e-3 .. 1e-6 and on the full model
+            at 1e-4 (BENCH_TUBES_PERIODIC_QUICK=1: these, the reference and the full and
+            default models at 1e-4 only).
+  map       inputs/tube_map.nml (45 points) with the full model and as shipped (reduced), the
+            reduced model under rk45 and under the exponential integrator: CPU
             (/run/cpu_seconds) and the contact class of every point: per baffle no contact,
             impacting (in contact less than half the time) or sustained contact, and sticking
             or sliding (the share of the normal work done while slipping, W_f / (mu W_N), below
@@ -199,7 +203,8 @@ def diff_line(name, run, ref):
 
 def describe(r):
     if r['kind'] == 'none':
-        return 'full, tol %.0e' % r['tolerance']
+        return 'full%s, tol %.0e' % ({'rk45': ' rk45', 'exponential': ' exp'}.get(
+            r.get('method'), ''), r['tolerance'])
     label = 'auto' if r['kind'] == 'auto' else 'cut %g Hz' % r['cutoff_hz']
     if r.get('method') == 'rk45':
         label += ' rk45'
@@ -248,9 +253,12 @@ def part_deck(run, out, dat):
     for r in [auto, rk, ex] + spread:
         out += diff_line(describe(r), r, full)
     ref = spread[-1]
+    # the full model under the exponential integrator: its linear part exact too, so the
+    # high modes of the finite elements cost steps only through the interpolant's check
+    fullex = [run.variant('none', 0, 1e-4, tr, rec, EXP)]
     if quick:
         cuts, autos, rks, excuts = [], [], [], []
-        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3,)]
+        exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3, 1e-5, 1e-6)]
     else:
         cuts = [run.variant('modal', c, 1e-4, tr, rec) for c in (150, 300, 700)]
         autos = [run.variant('auto', 0, t, tr, rec) for t in (1e-3, 1e-5)]
@@ -258,14 +266,17 @@ def part_deck(run, out, dat):
         exs = [run.variant('auto', 0, t, tr, rec, EXP) for t in (1e-3, 1e-5, 1e-6)]
         excuts = [run.variant('modal', c, 1e-4, tr, rec, EXP) for c in (300, 700)]
     out.append('  against the full model at 1e-6 (every run, for the chart):')
-    for r in [full] + spread[:-1] + [auto] + cuts + autos + [rk] + rks + [ex] + exs + excuts:
+    # (each curve's points in the order of their tolerance: the chart draws them as lines)
+    by_tol = lambda rows: sorted(rows, key=lambda r: -r['tolerance'])
+    for r in by_tol([full] + spread[:-1]) + by_tol([auto] + autos) + cuts + by_tol([rk] + rks) \
+            + by_tol([ex] + exs) + excuts + fullex:
         e = wear_errors(r, ref)
         out.append('    %-34s %8.3f s cpu/s  W_N %7.2f %%  W_f %7.2f %%  impact rate %7.2f %%  '
                    'peak %7.2f %%' % (describe(r), r['cpu_per_simulated_s'], 100 * e['wn'],
                                       100 * e['wf'], 100 * e['impacts'], 100 * e['peak']))
         dat.append('deck %s %s %g %g %d %.6g %.6g %.6g %.6g %.6g %.6g' % (
-            'full' if r['kind'] == 'none' else r['kind'] + {'rk45': '_rk45', 'exponential':
-                                                           '_exp'}.get(r.get('method'), ''),
+            ('full' if r['kind'] == 'none' else r['kind']) + {
+                'rk45': '_rk45', 'exponential': '_exp'}.get(r.get('method'), ''),
             r['kind'],
             r['cutoff_hz'],
             r['tolerance'], r['n'], r['cpu_per_simulated_s'], e['wn'], e['wf'],
@@ -291,19 +302,28 @@ def part_periodic(run, out, dat):
     out.append('== the periodic case (%s with %s), %d + %d periods' % (DECK, PERIODIC, tr, rec))
     out.append('  reference: the full model at 1e-6: %.2f s cpu' % ref['cpu_s'])
     rows = [ref]
-    for c in (60, 100, 150, 200, 300, 450, 700, 1000, 1500):
-        rows.append(run.variant('modal', c, 1e-5, tr, rec, PERIODIC))
-    for t in (1e-3, 1e-4, 1e-5):
+    # BENCH_TUBES_PERIODIC_QUICK=1: the full and default models at 1e-4 and the exponential
+    # integrator (the 'auto' basis at 1e-3 .. 1e-6, the full model at 1e-4) only
+    quick = os.environ.get('BENCH_TUBES_PERIODIC_QUICK', '0') == '1'
+    if not quick:
+        for c in (60, 100, 150, 200, 300, 450, 700, 1000, 1500):
+            rows.append(run.variant('modal', c, 1e-5, tr, rec, PERIODIC))
+    for t in ((1e-4,) if quick else (1e-3, 1e-4, 1e-5)):
         rows.append(run.variant('none', 0, t, tr, rec, PERIODIC))
-    for t in (1e-3, 1e-4, 1e-5):
+    for t in ((1e-4,) if quick else (1e-3, 1e-4, 1e-5)):
         rows.append(run.variant('auto', 0, t, tr, rec, PERIODIC))
+    for t in (1e-3, 1e-4, 1e-5, 1e-6):
+        rows.append(run.variant('auto', 0, t, tr, rec, PERIODIC + ' ' + EXP))
+    rows.append(run.variant('none', 0, 1e-4, tr, rec, PERIODIC + ' ' + EXP))
     for r in rows[1:]:
         e = wear_errors(r, ref)
         out.append('    %-34s %8.3f s cpu/s  W_N %9.2e  W_f %9.2e  impact rate %9.2e  peak '
                    '%9.2e' % (describe(r), r['cpu_per_simulated_s'], e['wn'], e['wf'],
                               e['impacts'], e['peak']))
         dat.append('periodic %s %s %g %g %d %.6g %.6g %.6g %.6g %.6g %.6g' % (
-            'full' if r['kind'] == 'none' else r['kind'], r['kind'], r['cutoff_hz'],
+            ('full' if r['kind'] == 'none' else r['kind']) + {
+                'rk45': '_rk45', 'exponential': '_exp'}.get(r.get('method'), ''),
+            r['kind'], r['cutoff_hz'],
             r['tolerance'], r['n'], r['cpu_per_simulated_s'], e['wn'], e['wf'],
             e['impacts'], e['peak'], r['steps']))
     out += support_table(rows[:1], ['full, tol 1e-06'])

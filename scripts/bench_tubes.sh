@@ -21,7 +21,10 @@
 # runs a subset of the map's points; BENCH_TUBES_CASES='periodic deck' draws the periodic
 # panel of the chart too (default 'deck'). BENCH_TUBES_QUICK=1 runs the deck part's side-by-side
 # set only (full, default, rk45 and exponential at 1e-4, the full model at 1e-6 as the reference,
-# the exponential integrator at 1e-3). The whole benchmark costs about an hour of CPU (the full model at tolerance
+# the exponential integrator at 1e-3, 1e-5 and 1e-6, the full model under it at 1e-4);
+# BENCH_TUBES_PERIODIC_QUICK=1 the periodic part's short set (the full and default models at
+# 1e-4, the exponential integrator on the 'auto' basis at 1e-3 .. 1e-6 and on the full model at
+# 1e-4, against the full model at 1e-6). The whole benchmark costs about an hour of CPU (the full model at tolerance
 # 1e-6 on 70 periods alone takes about 6 minutes); every run is serial.
 set -euo pipefail
 

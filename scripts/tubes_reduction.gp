@@ -6,7 +6,7 @@
 #        (cases='periodic deck' draws both panels when the periodic part was run; default 'deck')
 #
 # datafile: one line per run (scripts/bench_tubes.py): case (periodic | deck), curve (full |
-# modal | auto | auto_rk45 | auto_exp | modal_exp), kind, cut-off [Hz], tolerance, coordinates, CPU per simulated second [s/s],
+# modal | auto | auto_rk45 | auto_exp | modal_exp | full_exp), kind, cut-off [Hz], tolerance, coordinates, CPU per simulated second [s/s],
 # then the largest relative errors over the supports of the normal work rate, friction work
 # rate, impact rate and peak force against the case's reference (the full model at the
 # tightest tolerance), and the steps.
@@ -32,11 +32,12 @@ pos(x) = (x > 0 ? x : 1e-7)
 do for [c in cases] {
    set title (c eq 'periodic' ? \
       'periodic case: 7 Hz, 0.05 mm (reference: full model at tolerance 1e-6)' : \
-      'the deck: 8 Hz, 0.2 mm, not periodic (reference: full model at 1e-6, 40 periods)')
+      'the deck: 8 Hz, 0.2 mm, not periodic (reference: full model at 1e-6, the same record)')
    plot datafile u (sel(c, 'full') ? $7 : NaN):(pos($8)) w lp pt 7 lw 2 t 'full model, tolerance 1e-3..1e-5', \
         datafile u (sel(c, 'auto') ? $7 : NaN):(pos($8)) w lp pt 5 lw 2 t "reduced, kind = 'auto', Newmark, tolerance 1e-3..1e-5", \
         datafile u (sel(c, 'auto_rk45') ? $7 : NaN):(pos($8)) w lp pt 13 lw 2 t "reduced, kind = 'auto', rk45, tolerance 1e-3..1e-5", \
         datafile u (sel(c, 'auto_exp') ? $7 : NaN):(pos($8)) w lp pt 11 lw 2 t "reduced, kind = 'auto', exponential, tolerance 1e-3..1e-6", \
+        datafile u (sel(c, 'full_exp') ? $7 : NaN):(pos($8)) w p pt 15 ps 1.8 t 'full model, exponential, tolerance 1e-4', \
         datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)) w p pt 9 ps 1.5 t 'reduced, cut-off [Hz] (label)', \
         datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)) w p pt 8 ps 1.5 t 'reduced, cut-off [Hz], exponential', \
         datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)):(sprintf('%g', $4)) w labels offset 2.5,-0.5 notitle, \

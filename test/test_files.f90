@@ -4,8 +4,8 @@ program test_files
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, str
    use gapbeam_files, only: rename_file, remove_file, make_parent_directory, file_exists, &
-      output_prefix_problem, directory_exists, &
-      write_table, write_text_file
+      directory_exists, write_table, write_text_file
+   use gapbeam_deck_rules, only: output_prefix_problem
    use gapbeam_testing, only: check, check_close, finish
    implicit none
 

@@ -26,7 +26,7 @@ program test_flow
    use gapbeam_deck, only: deck_t
    use gapbeam_input, only: read_deck
    use gapbeam_flow_results, only: wear_depth_t
-   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_deck_rules_flow, only: deck_wear_depth
    use gapbeam_wear_geometry, only: seconds_per_year
    use gapbeam_test_runs, only: load_deck
    use gapbeam_model_builder, only: build_model

@@ -22,8 +22,9 @@ program test_output_extras
    use gapbeam_parameters, only: parameter_set_t, run_parameters, forcing_text
    use gapbeam_output_catalogue, only: dataset_t, describe
    use gapbeam_results, only: transient_result_t
-   use gapbeam_report, only: on_trajectory_clock
-   use gapbeam_file_info, only: crc32_hex, creation_time
+   use gapbeam_results, only: on_trajectory_clock
+   use gapbeam_file_info, only: creation_time
+   use gapbeam_checksum, only: crc32_hex
    use gapbeam_version, only: program_version
    implicit none
 

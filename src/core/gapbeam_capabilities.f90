@@ -31,6 +31,9 @@ module gapbeam_capabilities
       character(len=48) :: title = ''          !! how a sentence names it ('Newmark')
       logical :: implicit = .true.             !! implicit (a linear solve per step)
       logical :: exact = .false.               !! closed form between events (round-off)
+      !> its linear part exact (free flight without error): the step may grow after any step
+      !> well inside the error budget, not only at a block's end
+      logical :: linear_exact = .false.
       integer :: order = 2                     !! order of accuracy (0: exact)
       !> local error estimate: 'none', 'newmark' (a1 - a0 of the step, Zienkiewicz-Xie),
       !> 'embedded' (an embedded pair), 'none' for the exact method
@@ -142,7 +145,7 @@ contains
          title='the embedded Runge-Kutta method rk45', parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exponential', family='exponential', summary='modal exponential: ' &
          // 'the linear modes and harmonic loads exact, the contact forces collocated', &
-         implicit=.false., order=4, estimator='embedded', control_order=3, &
+         implicit=.false., order=4, estimator='embedded', control_order=3, linear_exact=.true., &
          controls="'auto', 'error', 'embedded'", auto_control='error', two_planes=.true., &
          point_forces=.true., rings=.true., massless=.false., carries_acceleration=.false., &
          stages=8, lyapunov_with='newmark', title='the modal exponential integrator', &

@@ -6,7 +6,7 @@
 !> "group &beam: length = -0.2: must be > 0 and finite" or
 !> "group &stops: side(2) = 'up': allowed: 'positive', 'negative', 'both'". The rules that tie
 !> variables together (a section given as a rectangle or in general, ring supports need two
-!> planes, ...) are the reader's (io/gapbeam_input), after these.
+!> planes, ...) are core/gapbeam_deck_rules' (and its companions'), checked after these.
 module gapbeam_deck_check
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str

@@ -14,14 +14,16 @@
 !>    N4 = le (xi^3 - xi^2 - phi (xi - xi^2)/2)/(1 + phi).
 !> A fixed dof (dof_of = 0) is zero. Points: x = 0, then `per_element` points on each element
 !> ending at its right node, so the nodes are among them: n = n_elem * per_element + 1. The
-!> second plane of a two-plane model (v, theta_v = dv/dx) the same way (`plane = 2`).
+!> second plane of a two-plane model (v, theta_v = dv/dx) the same way (`plane = 2`). The
+!> modes as tables, x and w of each mode, at the nodes and on the curve between them.
 module gapbeam_deflection
    use gapbeam_kinds, only: dp
    use gapbeam_model, only: system_t
+   use gapbeam_results, only: modes_t
    use gapbeam_description, only: dof_w, dof_theta, dof_v, dof_theta_v
    implicit none
    private
-   public :: shape_points, deflection, nodal_values
+   public :: shape_points, deflection, nodal_values, mode_shape_table, shape_curve_table
 
 contains
 
@@ -91,6 +93,41 @@ contains
          theta(i) = value_of(sys, u, dof_theta, i)
       end do
    end subroutine nodal_values
+
+   !> Node x and w of each mode at the nodes (root w = 0): (n_node, 1 + n_modes).
+   pure function mode_shape_table(sys, modes) result(tab)
+      type(system_t), intent(in) :: sys      !! assembled structure
+      type(modes_t), intent(in) :: modes     !! modes
+      real(dp), allocatable :: tab(:, :)
+      integer :: i, j, g
+      allocate(tab(sys%n_node, 1 + modes%n_modes), source=0.0_dp)
+      do i = 1, sys%n_node
+         tab(i, 1) = real(i - 1, dp) * sys%element_length
+         g = sys%dof_of(dof_w, i)
+         if (g > 0) then
+            do j = 1, modes%n_modes
+               tab(i, 1 + j) = modes%shapes(g, j)
+            end do
+         end if
+      end do
+   end function mode_shape_table
+
+   !> x and w of each mode between the nodes, from the element's Hermite shape functions:
+   !> (n_points, 1 + n_modes).
+   pure function shape_curve_table(sys, modes, per_element) result(tab)
+      type(system_t), intent(in) :: sys      !! assembled structure
+      type(modes_t), intent(in) :: modes     !! modes
+      integer, intent(in) :: per_element     !! points per element
+      real(dp), allocatable :: tab(:, :)
+      real(dp), allocatable :: x(:)
+      integer :: j
+      x = shape_points(sys, per_element)
+      allocate(tab(size(x), 1 + modes%n_modes))
+      tab(:, 1) = x
+      do j = 1, modes%n_modes
+         tab(:, 1 + j) = deflection(sys, modes%shapes(:, j), per_element)
+      end do
+   end function shape_curve_table
 
    pure real(dp) function value_of(sys, u, dof, node)
       type(system_t), intent(in) :: sys

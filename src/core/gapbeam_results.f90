@@ -7,7 +7,8 @@ module gapbeam_results
    implicit none
    private
    public :: modes_t, transient_result_t, allocate_result, lyapunov_t, point_result_t, &
-      series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach, certificate_text
+      series_result_t, stable_step_t, candidate_t, label_text, cpu_to_reach, certificate_text, &
+      on_trajectory_clock
    public :: dispute_kind, dispute_none, dispute_contradiction, dispute_transient, dispute_other
    public :: label_chaotic, label_undecided, label_unsettled, label_failed
    public :: certificate_none, certificate_certified, certificate_disputed
@@ -338,4 +339,26 @@ contains
          end if
       end do
    end function cpu_to_reach
+
+   !> The results with their times on the clock of the whole trajectory: `res` is the final
+   !> record of a run that began `transient_periods` periods before it counted from the start
+   !> of the trajectory, however many periods the run that made the record integrated before
+   !> it (an extension of a settling test starts at t = 0 from the end of the previous one).
+   pure function on_trajectory_clock(res, transient_periods, record_periods, period) result(r)
+      type(transient_result_t), intent(in) :: res      !! final record, on its run's clock
+      integer, intent(in) :: transient_periods         !! periods before the record, in all
+      integer, intent(in) :: record_periods            !! periods of the record
+      real(dp), intent(in) :: period                   !! forcing period [s]
+      type(transient_result_t) :: r
+      real(dp) :: shift
+      r = res
+      ! the periods the record's own run integrated before the record: its end less the record
+      shift = real(transient_periods - (nint(res%t_end / period) - record_periods), dp) * period
+      if (shift == 0.0_dp) return
+      r%time = res%time + shift
+      r%p_time = res%p_time + shift
+      r%t_end = res%t_end + shift
+      where (res%first_contact_time >= 0.0_dp) r%first_contact_time = res%first_contact_time &
+                                                                        + shift
+   end function on_trajectory_clock
 end module gapbeam_results

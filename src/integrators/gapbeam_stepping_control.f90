@@ -246,6 +246,15 @@ contains
       self%fda_prev = self%fda
       self%h_prev = merge(0.0_dp, h, event)
       self%block_sum = self%block_sum + q
+      if (self%caps%linear_exact .and. .not. event) then
+         ! the linear part exact (free flight without error): the next step from this one's
+         ! error per unit time against the budget's (aiming at half of it; the rate scales as
+         ! h^order), at once, not only at a block's end
+         rho = q / h * self%period / (budget_scale * self%tolerance)
+         dl = max(-2, nint(log(max(rho, 1.0e-30_dp) / 0.5_dp) / log(2.0_dp**(0.5_dp &
+                                                                      * self%order))))
+         level = min(self%n_levels - 1, max(0, level + dl))
+      end if
       if (t1 - self%block_start >= block_fraction * self%period * (1.0_dp - 1.0e-9_dp)) then
          ! the step size of the next block: the local errors of a block add up as h^2
          rho = self%block_sum / (budget_scale * self%tolerance * (t1 - self%block_start) &

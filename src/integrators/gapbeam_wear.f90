@@ -58,7 +58,7 @@ module gapbeam_wear
       procedure :: piece => meter_piece
       procedure :: sample => meter_sample
       procedure :: finish => meter_finish
-      procedure, private :: energy_at, ring_piece_stats, scalar_point
+      procedure, private :: energy_at, ring_piece_stats, scalar_point, located_peak
    end type wear_meter_t
 
 contains
@@ -164,6 +164,7 @@ contains
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
       real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings), tin(self%model%n_rings)
+      real(dp) :: fq(self%model%n_rings, 3)
       integer :: q, r, k, e
       associate (m => self%model)
          h = p%tb - p%ta
@@ -197,6 +198,7 @@ contains
                k = m%r_stop(r)
                x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
+               fq(r, q) = fn
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
                ! the slider's travel at the contact radius rho, int rho dtau_a, by parts:
@@ -234,6 +236,8 @@ contains
                self%stick(k) = self%stick(k) + tc
             if (p%r_onset(r)) n_impacts(k) = n_impacts(k) + 1
             peak(k) = max(peak(k), p%fn_b(r))
+            if (maxval(fq(r, :)) > max(p%fn_a(r), p%fn_b(r))) &
+               peak(k) = max(peak(k), self%located_peak(p, r, fq(r, :)))
             if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp) then
                ! the slider's dissipation mu int f_n |d tau_a / dt| dt; the normal work rate is
                ! its share without mu: slip only, the stick spring's motion is not wear
@@ -246,6 +250,47 @@ contains
          end do
       end associate
    end subroutine ring_piece_stats
+
+   !> The largest normal force of ring r inside a piece whose Gauss points' forces fq exceed
+   !> both ends': golden-section search on the piece's interpolant between the neighbours of
+   !> the largest sample (the peak of an impact located, not the largest value at a step's
+   !> end).
+   real(dp) function located_peak(self, p, r, fq) result(fmax)
+      class(wear_meter_t), intent(inout) :: self   !! meter
+      class(piece_t), intent(in) :: p              !! the piece
+      integer, intent(in) :: r                     !! ring
+      real(dp), intent(in) :: fq(3)                !! normal force at the Gauss points [N]
+      real(dp), parameter :: gr = 0.5_dp * (sqrt(5.0_dp) - 1.0_dp)
+      real(dp) :: sn(5), a, b, c, d, fc, fd
+      integer :: j, it
+      sn = [0.0_dp, gx(1), gx(2), gx(3), 1.0_dp]
+      j = 1 + maxloc(fq, 1)
+      fmax = fq(j - 1)
+      a = sn(j - 1);  b = sn(j + 1)
+      c = b - gr * (b - a);  d = a + gr * (b - a)
+      fc = force_at(c);  fd = force_at(d)
+      do it = 1, 40
+         if (fc >= fd) then
+            b = d;  d = c;  fd = fc
+            c = b - gr * (b - a);  fc = force_at(c)
+         else
+            a = c;  c = d;  fc = fd
+            d = a + gr * (b - a);  fd = force_at(d)
+         end if
+         if (b - a <= 1.0e-6_dp) exit
+      end do
+      fmax = max(fmax, fc, fd)
+   contains
+      real(dp) function force_at(s) result(fn)
+         real(dp), intent(in) :: s
+         real(dp) :: pr(2), ft
+         call p%state_at(p%ta + s * (p%tb - p%ta), self%u, self%v)
+         associate (m => self%model)
+            call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
+                            self%u(m%r_dof(:, r)), self%v(m%r_dof(:, r)), pr, fn, ft)
+         end associate
+      end function force_at
+   end function located_peak
 
    !> Stored energy at a state of a piece: kinetic, strain, contact springs and stick springs
    !> (the rings in the piece's regime) [J].
@@ -270,13 +315,15 @@ contains
       end associate
    end function energy_at
 
-   !> x' A x with A in band storage when there is one, else dense.
+   !> x' A x with A in band storage when there is one and it is narrow, else dense (a reduced
+   !> model's band is the whole matrix: the dense product vectorises).
    real(dp) function quad(model, ab, ad, x, y) result(s)
       type(model_t), intent(in) :: model          !! model (size, band width)
       real(dp), intent(in) :: ab(:, :), ad(:, :)  !! band and dense storage
       real(dp), intent(in) :: x(:)                !! vector
       real(dp), intent(inout) :: y(:)             !! workspace
-      if (size(ab, 2) == model%n) then
+      if (size(ab, 2) == model%n .and. (4 * model%sys%kd < model%n .or. size(ad, 1) &
+          /= model%n)) then
          call band_matvec(model%n, model%sys%kd, ab, x, y)
       else
          call dense_matvec(model%n, ad, x, y)

@@ -28,9 +28,11 @@ module gapbeam_checkpoint
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_results, only: point_result_t
    use gapbeam_files, only: remove_file, file_exists, file_size, rename_file
+   use gapbeam_checksum, only: crc32, text_bytes
+   use gapbeam_point_fields, only: array_field, set_array_field
    implicit none
    private
-   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close, crc32
+   public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close
 
    character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! older formats: refused
@@ -490,52 +492,17 @@ contains
       crc = crc32(transfer(x, [0_int8]), crc32(transfer([p, m], [0_int8]), hash))
    end function record_crc
 
-   !> The bytes of a text.
-   pure function text_bytes(text) result(b)
-      character(len=*), intent(in) :: text             !! text
-      integer(int8), allocatable :: b(:)
-      integer :: i
-      allocate(b(len(text)))
-      do i = 1, len(text)
-         b(i) = int(iachar(text(i:i)) - merge(256, 0, iachar(text(i:i)) > 127), int8)
-      end do
-   end function text_bytes
-
-   !> CRC-32 (the zlib and PNG checksum: reflected polynomial 0xEDB88320) of `bytes`, continuing
-   !> from `previous` (the CRC of the bytes before) when given; a value in 0..2**32-1.
-   pure function crc32(bytes, previous) result(crc)
-      integer(int8), intent(in) :: bytes(:)            !! data
-      integer(int64), intent(in), optional :: previous !! CRC of the preceding data
-      integer(int64) :: crc
-      integer(int64), parameter :: poly = 3988292384_int64     ! 0xEDB88320
-      integer(int64), parameter :: mask = 4294967295_int64     ! 0xFFFFFFFF
-      integer :: i, k
-      crc = 0
-      if (present(previous)) crc = previous
-      crc = ieor(crc, mask)
-      do i = 1, size(bytes)
-         crc = ieor(crc, iand(int(bytes(i), int64), 255_int64))
-         do k = 1, 8
-            if (iand(crc, 1_int64) /= 0) then
-               crc = ieor(ishft(crc, -1), poly)
-            else
-               crc = ishft(crc, -1)
-            end if
-         end do
-      end do
-      crc = ieor(crc, mask)
-   end function crc32
-
    !> A point's results as one real array (for checkpoints); integers and characters are
-   !> stored exactly (a text as its length, then one character code per real).
+   !> stored exactly (a text as its length, then one character code per real); the per-stop
+   !> arrays in the order of gapbeam_point_fields (array_names 1-6, then the wear, 7-10).
    pure function pack_point(pr) result(x)
       type(point_result_t), intent(in) :: pr   !! a finished point
       real(dp), allocatable :: x(:)
+      integer :: k
       x = [real(pr%status, dp), real(pr%period, dp), real(pr%label, dp), pr%lyapunov, &
            pr%lyapunov_error, real(pr%steps, dp), pr%seconds, &
            real(size(pr%lyapunov_running), dp), pr%lyapunov_running, &
-           real(size(pr%n_impacts), dp), real(pr%n_impacts, dp), pr%peak_force, pr%rms_force, &
-           pr%contact_fraction, pr%impulse_per_period, pr%work_rate, &
+           real(size(pr%n_impacts), dp), (array_field(pr, k), k = 1, 6), &
            real(size(pr%p_strain), dp), pr%p_strain, pr%p_strain_rate, &
            real(size(pr%u_end), dp), pr%u_end, pr%v_end, &
            real(pr%lyapunov_periods, dp), real(pr%lyapunov_converged, dp), &
@@ -548,24 +515,12 @@ contains
            pr%perturbed_distance, pr%seconds_certify, pr%x, pr%y, pr%f1_open_hz, &
            text_reals(pr%method), text_reals(pr%certificate_reason), &
            text_reals(pr%accuracy_method), &
-           real(size(wear(pr%normal_work_rate)), dp), wear(pr%normal_work_rate), &
-           wear(pr%sliding_distance), wear(pr%friction_work_rate), wear(pr%wear_volume_rate)]
+           real(size(array_field(pr, 7)), dp), (array_field(pr, k), k = 7, 10)]
       ! statistics over draws (when the point has them): draws, items, outputs, mean, ci
       if (pr%n_draws > 0) x = [x, real(pr%n_draws, dp), real(size(pr%draw_mean, 1), dp), &
          real(size(pr%draw_mean, 2), dp), reshape(pr%draw_mean, [size(pr%draw_mean)]), &
          reshape(pr%draw_ci, [size(pr%draw_ci)])]
    end function pack_point
-
-   !> A wear array of a point, empty when the point has none.
-   pure function wear(x) result(y)
-      real(dp), allocatable, intent(in) :: x(:)   !! per stop
-      real(dp), allocatable :: y(:)
-      if (allocated(x)) then
-         y = x
-      else
-         allocate(y(0))
-      end if
-   end function wear
 
    !> A text (possibly unallocated: '') as its length and character codes.
    pure function text_reals(t) result(x)
@@ -584,7 +539,7 @@ contains
       real(dp), intent(in) :: x(:)                !! packed record
       type(point_result_t), intent(out) :: pr     !! the point
       logical, intent(out) :: ok                  !! record well formed
-      integer :: k, m, ns, nr, n, nd, ni, no
+      integer :: k, m, ns, nr, n, nd, ni, no, j
       integer, parameter :: n_scalars = 26
       real(dp) :: s(n_scalars)
       ok = .false.
@@ -597,12 +552,10 @@ contains
       pr%lyapunov_running = x(k + 1:k + m);  k = k + m + 1
       if (k > size(x)) return
       ns = nint(x(k));  if (ns < 0 .or. k + 6 * ns > size(x)) return
-      pr%n_impacts = nint(x(k + 1:k + ns));  k = k + ns
-      pr%peak_force = x(k + 1:k + ns);  k = k + ns
-      pr%rms_force = x(k + 1:k + ns);  k = k + ns
-      pr%contact_fraction = x(k + 1:k + ns);  k = k + ns
-      pr%impulse_per_period = x(k + 1:k + ns);  k = k + ns
-      pr%work_rate = x(k + 1:k + ns);  k = k + ns + 1
+      do j = 1, 6
+         call set_array_field(pr, j, x(k + 1:k + ns));  k = k + ns
+      end do
+      k = k + 1
       if (k > size(x)) return
       nr = nint(x(k));  if (nr < 0 .or. k + 2 * nr > size(x)) return
       pr%p_strain = x(k + 1:k + nr);  k = k + nr
@@ -632,10 +585,9 @@ contains
       if (k + 1 > size(x)) return
       k = k + 1
       ns = nint(x(k));  if (ns < 0 .or. k + 4 * ns > size(x)) return
-      pr%normal_work_rate = x(k + 1:k + ns);  k = k + ns
-      pr%sliding_distance = x(k + 1:k + ns);  k = k + ns
-      pr%friction_work_rate = x(k + 1:k + ns);  k = k + ns
-      pr%wear_volume_rate = x(k + 1:k + ns);  k = k + ns
+      do j = 7, 10
+         call set_array_field(pr, j, x(k + 1:k + ns));  k = k + ns
+      end do
       ! the statistics over draws, when there are any
       if (k < size(x)) then
          if (k + 3 > size(x)) return

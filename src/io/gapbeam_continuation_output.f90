@@ -25,6 +25,7 @@ module gapbeam_continuation_output
    use gapbeam_error, only: error_t, str
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_output_set, only: output_set_t
+   use gapbeam_files, only: append => append_text
    use gapbeam_model, only: model_t
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_parameter_set, write_model, udunits
@@ -113,10 +114,7 @@ contains
       call h5%put(c // 'poincare/strain_rate', res%p_rate)
       call h5%put(c // 'poincare/tip', res%p_tip)
       nb = size(res%branches)
-      allocate(ended(nb))
-      do k = 1, nb
-         ended(k) = res%branches(k)%ended
-      end do
+      ended = [character(len=256) :: (res%branches(k)%ended, k = 1, nb)]
       call h5%put(c // 'branches/period', [(res%branches(k)%period, k = 1, nb)])
       call h5%put(c // 'branches/parent', [(res%branches(k)%parent, k = 1, nb)])
       call h5%put(c // 'branches/first', [(res%branches(k)%first, k = 1, nb)])
@@ -132,12 +130,8 @@ contains
       call h5%put(c // 'bifurcations/grazing', res%bif_grazing)
       call h5%put(c // 'bifurcations/note', res%bif_note)
       nc = size(res%curves)
-      allocate(kinds(nc))
-      deallocate(ended);  allocate(ended(nc))
-      do k = 1, nc
-         kinds(k) = res%curves(k)%kind
-         ended(k) = res%curves(k)%ended
-      end do
+      kinds = [character(len=16) :: (res%curves(k)%kind, k = 1, nc)]
+      ended = [character(len=256) :: (res%curves(k)%ended, k = 1, nc)]
       call h5%put(c // 'curves/kind', kinds)
       call h5%put(c // 'curves/period', [(res%curves(k)%period, k = 1, nc)])
       call h5%put(c // 'curves/ended', ended)
@@ -250,22 +244,6 @@ contains
       end do
       call set%text('.curves.dat', t(1:nt))
    end subroutine write_tables
-
-   !> Append text to a buffer t of used length nt (capacity doubles).
-   pure subroutine append(t, nt, x)
-      character(len=:), allocatable, intent(inout) :: t
-      integer, intent(inout) :: nt
-      character(len=*), intent(in) :: x
-      character(len=:), allocatable :: tmp
-      if (.not. allocated(t)) allocate(character(len=max(4096, 2 * len(x))) :: t)
-      if (nt + len(x) > len(t)) then
-         allocate(character(len=max(2 * len(t), nt + len(x))) :: tmp)
-         tmp(1:nt) = t(1:nt)
-         call move_alloc(tmp, t)
-      end if
-      t(nt + 1:nt + len(x)) = x
-      nt = nt + len(x)
-   end subroutine append
 
    pure function real_text(x) result(s)
       real(dp), intent(in) :: x

@@ -19,7 +19,7 @@ module gapbeam_deck_text
    implicit none
    private
    public :: source_t, value_t, load_file, make_source, parse_source, lower, basename_stem, &
-      present_group, given
+      given_list
    public :: value_number, value_logical, value_string
 
    integer, parameter :: value_number = 1    !! a number (integer or real syntax, NaN, Inf)
@@ -169,34 +169,24 @@ contains
       t = t(1:k)
    end function unix_line_ends
 
-   !> Whether any source has group `name`.
-   pure logical function present_group(srcs, name)
-      type(source_t), intent(in) :: srcs(:)          !! parsed sources
-      character(len=*), intent(in) :: name           !! group
-      integer :: s, i
-      present_group = .false.
-      do s = 1, size(srcs)
-         do i = 1, size(srcs(s)%groups)
-            if (srcs(s)%groups(i)%name == name) present_group = .true.
-         end do
-      end do
-   end function present_group
-
-   !> Whether any source assigns variable `var` of group `group`.
-   pure logical function given(srcs, group, var)
-      type(source_t), intent(in) :: srcs(:)          !! parsed sources
-      character(len=*), intent(in) :: group, var     !! group and variable
+   !> The groups and variables the sources name, ' group group:variable ... ' (the deck rules'
+   !> `given`, core/gapbeam_deck_rules: is_given).
+   pure function given_list(srcs) result(t)
+      type(source_t), intent(in) :: srcs(:)            !! parsed sources
+      character(len=:), allocatable :: t
       integer :: s, i, k
-      given = .false.
+      t = ' '
       do s = 1, size(srcs)
          do i = 1, size(srcs(s)%groups)
-            if (srcs(s)%groups(i)%name /= group) cycle
-            do k = 1, size(srcs(s)%groups(i)%items)
-               if (srcs(s)%groups(i)%items(k)%name == var) given = .true.
-            end do
+            associate (g => srcs(s)%groups(i))
+               t = t // g%name // ' '
+               do k = 1, size(g%items)
+                  t = t // g%name // ':' // g%items(k)%name // ' '
+               end do
+            end associate
          end do
       end do
-   end function given
+   end function given_list
 
    ! ---------------------------------------------------------------- the scanner
 

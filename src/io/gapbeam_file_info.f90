@@ -15,18 +15,17 @@
 !> level -- and the second is what each record holds -- stop, node, dof, period. Each
 !> two-dimensional dataset names its axes in its `dimensions` attribute.
 module gapbeam_file_info
-   use, intrinsic :: iso_fortran_env, only: int8, int64
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_model, only: system_t, model_t, has_modal_damping
    use gapbeam_description, only: dof_name
    use gapbeam_error, only: str
-   use gapbeam_checkpoint, only: crc32
+   use gapbeam_checksum, only: crc32_hex
    use gapbeam_version, only: program_version, compiler_text, git_commit
    implicit none
    private
    public :: write_file_info, write_parameter_set, write_structure, write_model, creation_time, &
-      crc32_hex, udunits
+      udunits
 
    !> The axis-order rule, as stored in the root attribute `axis_order`.
    character(len=*), parameter :: axis_order_text = 'C order (h5py, numpy, h5dump, ParaView):' &
@@ -147,26 +146,6 @@ contains
          // time(3:4) // ':' // time(5:6)
       if (len_trim(zone) == 5) t = t // zone(1:3) // ':' // zone(4:5)
    end function creation_time
-
-   !> CRC-32 (zlib's) of a text as 8 lower-case hex digits.
-   function crc32_hex(text) result(h)
-      character(len=*), intent(in) :: text               !! the text
-      character(len=:), allocatable :: h
-      character(len=8) :: buf
-      integer(int64) :: crc
-      integer(int8), allocatable :: bytes(:)
-      integer :: i
-      allocate(bytes(len(text)))
-      do i = 1, len(text)
-         bytes(i) = int(iachar(text(i:i)) - merge(256, 0, iachar(text(i:i)) > 127), int8)
-      end do
-      crc = crc32(bytes)
-      write(buf, '(z8.8)') crc
-      h = buf
-      do i = 1, len(h)
-         if (h(i:i) >= 'A' .and. h(i:i) <= 'F') h(i:i) = achar(iachar(h(i:i)) + 32)
-      end do
-   end function crc32_hex
 
    !> A deck variable's unit as UDUNITS-2 ('-' or none is '1', a pure number).
    pure function udunits(u) result(t)

@@ -28,9 +28,9 @@ module gapbeam_files
    implicit none
    private
    public :: rename_file, remove_file, make_parent_directory, file_exists, directory_exists
-   public :: write_table, write_text_file
+   public :: write_table, write_text_file, append_text
    public :: process_id, real_path, file_size, errno_text
-   public :: output_prefix_problem, output_name_problem
+   public :: output_name_problem
 
    character(len=*), parameter :: module_name = 'gapbeam_files'
    character(len=*), parameter :: value_format = '(*(es24.16e3, :, 1x))'   ! one table row
@@ -199,55 +199,6 @@ contains
       end do
    end subroutine make_parent_directory
 
-   !> Why `prefix` cannot be an output prefix (the files are PREFIX.h5, PREFIX.history.dat,
-   !> ...), '' when it can: a prefix that names a directory ('results/x/', '.', '..', '/')
-   !> would give hidden files ('results/x/.h5'). It is refused rather than given a stem: the
-   !> user meant a directory, and only the user can say what the files there should be called.
-   pure function output_prefix_problem(prefix) result(why)
-      character(len=*), intent(in) :: prefix             !! output prefix as given
-      character(len=:), allocatable :: why, last
-      why = ''
-      last = trim(prefix)
-      last = last(index(last, '/', back=.true.) + 1:)
-      if (len_trim(prefix) == 0) then
-         why = 'the output prefix is empty: give a file stem, e.g. ''results/run'''
-      else if (has_control(prefix)) then
-         why = 'the output prefix contains a control character (' // control_names(prefix) &
-            // '): such file names cannot be typed or listed safely; use letters, digits, ' &
-            // "'_', '-', '.' and '/'"
-      else if (len(last) == 0 .or. last == '.' .or. last == '..') then
-         why = 'the output prefix ' // q(trim(prefix)) // ' names a directory, not a file ' &
-            // 'stem: the files would be hidden (' // q(trim(prefix) // '.h5') // '); give ' &
-            // 'a stem in it, e.g. ' // q(trim(prefix) // trim(merge('/  ', '   ', &
-            len(last) > 0)) // 'run')
-      end if
-   end function output_prefix_problem
-
-   !> Whether `text` holds a control character (ASCII 0-31 or 127).
-   pure logical function has_control(text)
-      character(len=*), intent(in) :: text               !! text
-      integer :: i
-      has_control = .false.
-      do i = 1, len(text)
-         if (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127) has_control = .true.
-      end do
-   end function has_control
-
-   !> The control characters of `text`, as 'code 27' items (the first three).
-   pure function control_names(text) result(t)
-      character(len=*), intent(in) :: text               !! text
-      character(len=:), allocatable :: t
-      integer :: i, n
-      t = '';  n = 0
-      do i = 1, len(text)
-         if (.not. (iachar(text(i:i)) < 32 .or. iachar(text(i:i)) == 127)) cycle
-         n = n + 1
-         if (n > 3) exit
-         if (n > 1) t = t // ', '
-         t = t // 'code ' // str(iachar(text(i:i))) // ' at position ' // str(i)
-      end do
-   end function control_names
-
    !> Why the files of output prefix `prefix` could not be created, found before anything is
    !> computed, or '' when they can: a component of the prefix longer than the file system's
    !> NAME_MAX (pathconf of the nearest directory that exists; 255 when unknown), the last one
@@ -396,10 +347,6 @@ contains
             // ' and size(units) = ' // str(size(units)) // ' must equal the number of columns ' &
             // str(size(columns, 2))
       end if
-      if (len_trim(path) == 0) then
-         call fatal_error(err, here(proc) // 'empty file path')
-         return
-      end if
       p = trim(path)
       described = ''
       header = ''
@@ -446,10 +393,6 @@ contains
       character(len=512) :: msg
       integer :: unit, ios
 
-      if (len_trim(path) == 0) then
-         call fatal_error(err, here(proc) // 'empty file path')
-         return
-      end if
       p = trim(path)
       call open_file(proc, p, .true., unit, err)
       if (allocated(err)) return
@@ -458,12 +401,29 @@ contains
       call close_file(proc, p, unit, ios, msg, int(len(text), int64), err)
    end subroutine write_text_file
 
+   !> Append text to a buffer t of used length nt (capacity doubles): a long text built
+   !> piece by piece in linear time; t(1:nt) is the text.
+   pure subroutine append_text(t, nt, x)
+      character(len=:), allocatable, intent(inout) :: t   !! buffer (allocated on first use)
+      integer, intent(inout) :: nt                         !! its used length (0 at first)
+      character(len=*), intent(in) :: x                    !! text to append
+      character(len=:), allocatable :: tmp
+      if (.not. allocated(t)) allocate(character(len=max(4096, 2 * len(x))) :: t)
+      if (nt + len(x) > len(t)) then
+         allocate(character(len=max(2 * len(t), nt + len(x))) :: tmp)
+         tmp(1:nt) = t(1:nt)
+         call move_alloc(tmp, t)
+      end if
+      t(nt + 1:nt + len(x)) = x
+      nt = nt + len(x)
+   end subroutine append_text
+
    ! ---------------------------------------------------------------------------------------
    ! Helpers
    ! ---------------------------------------------------------------------------------------
 
    !> Create (or truncate) `p` for writing: formatted sequential, or unformatted stream for a
-   !> byte-for-byte copy.
+   !> byte-for-byte copy; an empty name refused.
    subroutine open_file(proc, p, stream, unit, err)
       character(len=*), intent(in) :: proc               !! calling procedure, for messages
       character(len=*), intent(in) :: p                  !! file name, trimmed
@@ -472,6 +432,10 @@ contains
       type(error_t), allocatable, intent(inout) :: err   !! set when the file cannot be created
       character(len=512) :: msg
       integer :: ios
+      if (len(p) == 0) then
+         call fatal_error(err, here(proc) // 'empty file path')
+         return
+      end if
       msg = ''
       if (stream) then
          open(newunit=unit, file=p, status='replace', action='write', access='stream', &

@@ -10,10 +10,9 @@ module gapbeam_hdf5_input
       c_associated, c_f_pointer, c_size_t, c_int
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str, q => quoted
-   use gapbeam_hdf5_output, only: library_open, file_access_list, path_exists, at
-   use hdf5, only: hid_t, hsize_t, size_t, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, &
-      h5pclose_f, h5oopen_f, h5oclose_f, h5sclose_f, h5sget_simple_extent_ndims_f, &
-      h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
+   use gapbeam_hdf5_output, only: file_open, path_exists, at
+   use hdf5, only: hid_t, hsize_t, size_t, h5fclose_f, h5oopen_f, h5oclose_f, h5sclose_f, &
+      h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, &
       h5dget_space_f, h5tclose_f, h5tget_size_f, h5tget_class_f, h5tis_variable_str_f, &
       H5T_STRING_F, H5T_FLOAT_F, H5T_INTEGER_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       h5aopen_f, h5aclose_f, h5aread_f, h5aexists_f, h5aget_type_f, h5aget_space_f, &
@@ -76,8 +75,7 @@ contains
       character(len=*), intent(in) :: path               !! file name
       type(error_t), allocatable, intent(out), optional :: err   !! this call's failure
       type(error_t), allocatable :: e
-      integer(hid_t) :: fapl
-      integer :: hdferr, status
+      integer :: hdferr
       logical :: found
       inquire(file=trim(path), exist=found)
       if (self%is_open) then
@@ -86,12 +84,7 @@ contains
       else if (len_trim(path) == 0 .or. .not. found) then
          call fatal_error(e, module_name // ':open: file ' // q(trim(path)) // ' does not exist')
       else
-         call library_open(hdferr)
-         if (hdferr == 0) call file_access_list(fapl, hdferr)
-         if (hdferr == 0) then
-            call h5fopen_f(trim(path), H5F_ACC_RDONLY_F, self%file_id, hdferr, access_prp=fapl)
-            call h5pclose_f(fapl, status)
-         end if
+         call file_open(trim(path), .false., self%file_id, hdferr)
          if (hdferr /= 0) call fatal_error(e, module_name // ':open: cannot open file ' &
             // q(trim(path)) // ' for reading (not an HDF5 file, or not readable)')
          self%is_open = hdferr == 0

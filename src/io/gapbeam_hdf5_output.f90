@@ -46,7 +46,7 @@ module gapbeam_hdf5_output
    private
    public :: h5_writer_t
    ! shared with gapbeam_hdf5_input, the reader
-   public :: library_open, file_access_list, path_exists, at
+   public :: file_open, path_exists, at
 
    character(len=*), parameter :: module_name = 'gapbeam_hdf5_output'
    integer(hid_t), parameter :: no_id = -1_hid_t   ! an identifier not (or no longer) open
@@ -77,7 +77,6 @@ module gapbeam_hdf5_output
       procedure :: copy_from => writer_copy_from       !! a group copied from another file
       procedure :: exists => writer_exists             !! whether a dataset or group exists
       procedure :: failed => writer_failed             !! whether a call failed
-      procedure :: fail => writer_fail                 !! keep a failure found by the caller
       procedure :: close => writer_close               !! close and rename; the first failure
       procedure :: abort => writer_abort               !! close and delete, quietly
    end type h5_writer_t
@@ -95,8 +94,7 @@ contains
       character(len=*), intent(in) :: path               !! final file name
       character(len=*), intent(in) :: analysis           !! analysis word of the catalogue
       logical, intent(in), optional :: in_place          !! write `path` itself
-      integer(hid_t) :: fapl
-      integer :: hdferr, status
+      integer :: hdferr
       if (self%is_open) call note(self, .true., 'create: the writer has file ' &
          // q(self%part_path) // ' open already')
       if (len_trim(path) == 0) call note(self, .true., 'create: empty file path')
@@ -107,13 +105,7 @@ contains
       self%path = trim(path)
       self%part_path = self%path
       if (.not. self%in_place) self%part_path = self%path // '.part'
-      call library_open(hdferr)
-      if (hdferr == 0) call file_access_list(fapl, hdferr)
-      if (hdferr == 0) then
-         call h5fcreate_f(self%part_path, H5F_ACC_TRUNC_F, self%file_id, hdferr, &
-                          access_prp=fapl)
-         call h5pclose_f(fapl, status)
-      end if
+      call file_open(self%part_path, .true., self%file_id, hdferr)
       self%is_open = hdferr == 0
       call note(self, hdferr /= 0, 'create: cannot create file ' // q(self%part_path) &
          // ' (temporary name of ' // q(self%path) // '; does the directory exist and is it ' &
@@ -334,14 +326,10 @@ contains
       class(h5_writer_t), intent(inout) :: self          !! writer
       character(len=*), intent(in) :: source             !! HDF5 file to copy from
       character(len=*), intent(in) :: obj_path           !! e.g. '/parameters'
-      integer(hid_t) :: src_id, fapl
-      integer :: hdferr, status
+      integer(hid_t) :: src_id
+      integer :: hdferr
       if (.not. open_for(self, obj_path)) return
-      call file_access_list(fapl, hdferr)
-      if (hdferr == 0) then
-         call h5fopen_f(trim(source), H5F_ACC_RDONLY_F, src_id, hdferr, access_prp=fapl)
-         call h5pclose_f(fapl, status)
-      end if
+      call file_open(trim(source), .false., src_id, hdferr)
       call note(self, hdferr /= 0, 'copy_from: cannot open file ' // q(source))
       if (allocated(self%err)) return
       call make_groups(self, obj_path(1:index(obj_path, '/', back=.true.) - 1))
@@ -368,14 +356,6 @@ contains
       class(h5_writer_t), intent(in) :: self             !! writer
       writer_failed = allocated(self%err)
    end function writer_failed
-
-   !> Keep a failure the caller found (the first failure is kept): the file is then not
-   !> written, and `close` reports it.
-   subroutine writer_fail(self, e)
-      class(h5_writer_t), intent(inout) :: self          !! writer
-      type(error_t), intent(in) :: e                     !! the failure
-      if (.not. allocated(self%err)) self%err = e
-   end subroutine writer_fail
 
    !> Close the file and rename `path.part` to `path`; report the first failure of any call.
    !> After a failure the incomplete file is deleted; a failed rename leaves `path.part`
@@ -500,13 +480,26 @@ contains
       if (hdferr == 0) call h5eset_auto_f(0, hdferr)
    end subroutine library_open
 
-   !> File access property list closing every object of a file with the file.
-   subroutine file_access_list(fapl, hdferr)
-      integer(hid_t), intent(out) :: fapl                !! new list (close with h5pclose_f)
+   !> Create (truncating) or open read-only an HDF5 file, the library initialised, with a
+   !> file access list that closes every object of the file with the file.
+   subroutine file_open(path, create, file_id, hdferr)
+      character(len=*), intent(in) :: path               !! file name
+      logical, intent(in) :: create                      !! create, else open read-only
+      integer(hid_t), intent(out) :: file_id             !! the open file
       integer, intent(out) :: hdferr                     !! 0 on success
-      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, hdferr)
-      if (hdferr == 0) call h5pset_fclose_degree_f(fapl, H5F_CLOSE_STRONG_F, hdferr)
-   end subroutine file_access_list
+      integer(hid_t) :: fapl
+      integer :: status
+      call library_open(hdferr)
+      if (hdferr == 0) call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, hdferr)
+      if (hdferr /= 0) return
+      call h5pset_fclose_degree_f(fapl, H5F_CLOSE_STRONG_F, hdferr)
+      if (hdferr == 0 .and. create) then
+         call h5fcreate_f(path, H5F_ACC_TRUNC_F, file_id, hdferr, access_prp=fapl)
+      else if (hdferr == 0) then
+         call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, hdferr, access_prp=fapl)
+      end if
+      call h5pclose_f(fapl, status)
+   end subroutine file_open
 
    !> Whether every link of the absolute path `p` exists ('/' always does).
    logical function path_exists(file_id, p) result(found)

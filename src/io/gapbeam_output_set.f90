@@ -35,7 +35,8 @@ module gapbeam_output_set
    use gapbeam_error, only: error_t, fatal_error, str, q => quoted
    use gapbeam_kinds, only: dp
    use gapbeam_files, only: rename_file, remove_file, file_exists, directory_exists, &
-      make_parent_directory, process_id, write_table, write_text_file, output_prefix_problem
+      make_parent_directory, process_id, write_table, write_text_file
+   use gapbeam_deck_rules, only: output_prefix_problem
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_file_info, only: write_file_info
    implicit none
@@ -57,7 +58,6 @@ module gapbeam_output_set
    contains
       procedure :: begin => set_begin              !! name the files; make the directory
       procedure :: temp => set_temp                !! temporary name of file k
-      procedure :: final_name => set_final_name    !! final name of file k
       procedure :: names => set_names              !! file names without the directory
       procedure :: size => set_size                !! number of files
       procedure :: open_h5 => set_open_h5          !! the .h5: root attributes, /deck, /run/files
@@ -105,14 +105,6 @@ contains
       character(len=:), allocatable :: name
       name = self%final(k)%s // self%tag // '.part'
    end function set_temp
-
-   !> The final name of file k.
-   function set_final_name(self, k) result(name)
-      class(output_set_t), intent(in) :: self            !! the set
-      integer, intent(in) :: k                           !! file number, as given to begin
-      character(len=:), allocatable :: name
-      name = self%final(k)%s
-   end function set_final_name
 
    !> Number of files in the set.
    pure integer function set_size(self)

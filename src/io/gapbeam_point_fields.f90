@@ -1,7 +1,8 @@
-!> The scalar fields of a point (point_result_t) that the result files carry, listed once:
-!> their names (the dataset names under /sweep of a sweep file, one value per point, and under
-!> /diagnostics of a transient file) and their values in that order, read and set. A field
-!> added here reaches both files (and its catalogue entries say what it is).
+!> The fields of a point (point_result_t) that the result files carry, listed once: their
+!> names (the dataset names under /sweep of a sweep file, one value or one array per point,
+!> and under /diagnostics of a transient file) and their values in that order, read and set.
+!> The sweep file's writer and reader and the transient file's /diagnostics loop over these
+!> lists: a field added here reaches them all (and its catalogue entries say what it is).
 module gapbeam_point_fields
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp
@@ -9,7 +10,8 @@ module gapbeam_point_fields
    implicit none
    private
    public :: int_names, real_names, text_names, int_fields, set_int_fields, real_fields, &
-      set_real_fields, text_field, set_text_field, stop_names, stop_field, set_stop_field
+      set_real_fields, text_field, set_text_field, array_names, array_extent, array_type, &
+      array_late, array_field, set_array_field
 
    !> Integer fields per point (see point_result_t), /sweep/<name> and /diagnostics/<name>.
    character(len=*), parameter :: int_names(14) = [character(len=20) :: 'period', 'label', &
@@ -26,11 +28,26 @@ module gapbeam_point_fields
    !> Texts per point, /sweep/<name> and /diagnostics/<name>.
    character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
       'certificate_reason', 'accuracy_method', 'message']
-   !> Per-stop arrays per point, /sweep/<name> (stops, points).
-   character(len=*), parameter :: stop_names(10) = [character(len=26) :: 'impacts/count', &
+   !> Arrays per point, /sweep/<name> (n, points): per stop, per recorded period (the Poincare
+   !> points, then the running Lyapunov estimate), per start (the starts' and the attractors'
+   !> results, /diagnostics/<name> of a transient file too).
+   character(len=*), parameter :: array_names(21) = [character(len=34) :: 'impacts/count', &
       'impacts/peak_force', 'impacts/rms_force', 'impacts/contact_fraction', &
       'impacts/impulse_per_period', 'impacts/work_rate', 'wear/normal_work_rate', &
-      'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate']
+      'wear/sliding_distance', 'wear/friction_work_rate', 'wear/wear_volume_rate', &
+      'poincare/strain', 'poincare/strain_rate', 'lyapunov_running', 'starts/label', &
+      'starts/attractor', 'starts/lyapunov', 'attractors/label', 'attractors/fraction', &
+      'attractors/lyapunov', 'starts/transient_periods', 'attractors/mean_transient_periods']
+   !> The length n of each array: 1 stops, 2 recorded periods, 3 Lyapunov periods, 4 starts.
+   integer, parameter :: array_extent(21) = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 3, 4, 4, 4, &
+      4, 4, 4, 4, 4]
+   !> The type of each array in the files: 'r' reals, NaN past a point's own values; 'z' reals,
+   !> 0 past them (counts); 'i' integers, 0 past them.
+   character(len=*), parameter :: array_type = 'zrrrrrrrrrrrriirirrir'
+   !> The arrays that files of an older gapbeam lack (the wear outputs, the starts' transients).
+   logical, parameter :: array_late(21) = [.false., .false., .false., .false., .false., &
+      .false., .true., .true., .true., .true., .false., .false., .false., .false., .false., &
+      .false., .false., .false., .false., .true., .true.]
 contains
 
    !> The integer fields of a point, in the order of int_names.
@@ -105,8 +122,8 @@ contains
       end select
    end subroutine set_text_field
 
-   !> Per-stop array k (stop_names) of a point, as reals; empty when the point has none.
-   pure function stop_field(pr, k) result(v)
+   !> Array k (array_names) of a point, as reals; empty when the point has none.
+   pure function array_field(pr, k) result(v)
       type(point_result_t), intent(in) :: pr   !! point
       integer, intent(in) :: k                 !! field
       real(dp), allocatable :: v(:)
@@ -121,12 +138,23 @@ contains
       case (7);  if (allocated(pr%normal_work_rate)) v = pr%normal_work_rate
       case (8);  if (allocated(pr%sliding_distance)) v = pr%sliding_distance
       case (9);  if (allocated(pr%friction_work_rate)) v = pr%friction_work_rate
-      case default;  if (allocated(pr%wear_volume_rate)) v = pr%wear_volume_rate
+      case (10);  if (allocated(pr%wear_volume_rate)) v = pr%wear_volume_rate
+      case (11);  if (allocated(pr%p_strain)) v = pr%p_strain
+      case (12);  if (allocated(pr%p_strain_rate)) v = pr%p_strain_rate
+      case (13);  if (allocated(pr%lyapunov_running)) v = pr%lyapunov_running
+      case (14);  if (allocated(pr%start_label)) v = real(pr%start_label, dp)
+      case (15);  if (allocated(pr%start_attractor)) v = real(pr%start_attractor, dp)
+      case (16);  if (allocated(pr%start_lyapunov)) v = pr%start_lyapunov
+      case (17);  if (allocated(pr%attractor_label)) v = real(pr%attractor_label, dp)
+      case (18);  if (allocated(pr%attractor_fraction)) v = pr%attractor_fraction
+      case (19);  if (allocated(pr%attractor_lyapunov)) v = pr%attractor_lyapunov
+      case (20);  if (allocated(pr%start_transient)) v = real(pr%start_transient, dp)
+      case default;  if (allocated(pr%attractor_transient)) v = pr%attractor_transient
       end select
-   end function stop_field
+   end function array_field
 
-   !> Set per-stop array k of a point.
-   pure subroutine set_stop_field(pr, k, v)
+   !> Set array k of a point.
+   pure subroutine set_array_field(pr, k, v)
       type(point_result_t), intent(inout) :: pr   !! point
       integer, intent(in) :: k                    !! field
       real(dp), intent(in) :: v(:)                !! values
@@ -140,7 +168,18 @@ contains
       case (7);  pr%normal_work_rate = v
       case (8);  pr%sliding_distance = v
       case (9);  pr%friction_work_rate = v
-      case default;  pr%wear_volume_rate = v
+      case (10);  pr%wear_volume_rate = v
+      case (11);  pr%p_strain = v
+      case (12);  pr%p_strain_rate = v
+      case (13);  pr%lyapunov_running = v
+      case (14);  pr%start_label = nint(v)
+      case (15);  pr%start_attractor = nint(v)
+      case (16);  pr%start_lyapunov = v
+      case (17);  pr%attractor_label = nint(v)
+      case (18);  pr%attractor_fraction = v
+      case (19);  pr%attractor_lyapunov = v
+      case (20);  pr%start_transient = nint(v)
+      case default;  pr%attractor_transient = v
       end select
-   end subroutine set_stop_field
+   end subroutine set_array_field
 end module gapbeam_point_fields

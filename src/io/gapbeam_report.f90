@@ -13,22 +13,24 @@ module gapbeam_report
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_xdmf, only: make_xdmf, write_xdmf_datasets
    use gapbeam_output_set, only: output_set_t
+   use gapbeam_files, only: append_text
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: system_t, model_t
    use gapbeam_description, only: dof_w
    use gapbeam_results, only: modes_t, transient_result_t, point_result_t, label_text, &
-      certificate_text
+      certificate_text, on_trajectory_clock
    use gapbeam_parameters, only: run_parameters, stiffness_units
-   use gapbeam_deflection, only: shape_points, deflection, nodal_values
+   use gapbeam_deflection, only: shape_points, deflection, nodal_values, mode_shape_table, &
+      shape_curve_table
    use gapbeam_file_info, only: write_parameter_set, write_structure, write_model
    use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_psd_output, only: write_response_psd
-   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_deck_rules_flow, only: deck_wear_depth
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, real_fields, &
-      text_field
+      text_field, array_names, array_extent, array_type, array_field
    implicit none
    private
-   public :: write_modes, write_transient, write_calibration, on_trajectory_clock
+   public :: write_modes, write_transient, write_calibration
 
    !> Points per element of the mode shape curves (Hermite shape functions).
    integer, parameter :: curve_points = 16
@@ -49,7 +51,7 @@ contains
       character(len=17), allocatable :: names(:), units(:)
       integer :: j
       tab = mode_shape_table(sys, modes)
-      curves = shape_curve_table(sys, modes)
+      curves = shape_curve_table(sys, modes, curve_points)
       call set%begin(deck%job%output, [character(len=18) :: '.h5', '.modes.dat', &
                      '.shapes.dat', '.shape_curves.dat'])
       call set%open_h5(h5, 'modes', deck%text, deck%warnings)
@@ -98,40 +100,6 @@ contains
          units, curves)
       call set%finish(err)
    end subroutine write_modes
-
-   !> Node x and w of each mode at the nodes (root w = 0): (n_node, 1 + n_modes).
-   function mode_shape_table(sys, modes) result(tab)
-      type(system_t), intent(in) :: sys      !! assembled structure
-      type(modes_t), intent(in) :: modes     !! modes
-      real(dp), allocatable :: tab(:, :)
-      integer :: i, j, g
-      allocate(tab(sys%n_node, 1 + modes%n_modes), source=0.0_dp)
-      do i = 1, sys%n_node
-         tab(i, 1) = real(i - 1, dp) * sys%element_length
-         g = sys%dof_of(dof_w, i)
-         if (g > 0) then
-            do j = 1, modes%n_modes
-               tab(i, 1 + j) = modes%shapes(g, j)
-            end do
-         end if
-      end do
-   end function mode_shape_table
-
-   !> x and w of each mode between the nodes, from the element's Hermite shape functions:
-   !> (n_points, 1 + n_modes).
-   function shape_curve_table(sys, modes) result(tab)
-      type(system_t), intent(in) :: sys      !! assembled structure
-      type(modes_t), intent(in) :: modes     !! modes
-      real(dp), allocatable :: tab(:, :)
-      real(dp), allocatable :: x(:)
-      integer :: j
-      x = shape_points(sys, curve_points)
-      allocate(tab(size(x), 1 + modes%n_modes))
-      tab(:, 1) = x
-      do j = 1, modes%n_modes
-         tab(:, 1 + j) = deflection(sys, modes%shapes(:, j), curve_points)
-      end do
-   end function shape_curve_table
 
    !> Calibration result: PREFIX.h5 with /calibrate/value and the first frequency, and the
    !> calibrated structure's K and M.
@@ -190,28 +158,6 @@ contains
       if (with_state .and. text) call write_shape_table(set, deck, model, r)
       call set%finish(err)
    end subroutine write_transient
-
-   !> The results with their times on the clock of the whole trajectory: `res` is the final
-   !> record of a run that began `transient_periods` periods before it counted from the start
-   !> of the trajectory, however many periods the run that made the record integrated before
-   !> it (an extension of a settling test starts at t = 0 from the end of the previous one).
-   function on_trajectory_clock(res, transient_periods, record_periods, period) result(r)
-      type(transient_result_t), intent(in) :: res      !! final record, on its run's clock
-      integer, intent(in) :: transient_periods         !! periods before the record, in all
-      integer, intent(in) :: record_periods            !! periods of the record
-      real(dp), intent(in) :: period                   !! forcing period [s]
-      type(transient_result_t) :: r
-      real(dp) :: shift
-      r = res
-      ! the periods the record's own run integrated before the record: its end less the record
-      shift = real(transient_periods - (nint(res%t_end / period) - record_periods), dp) * period
-      if (shift == 0.0_dp) return
-      r%time = res%time + shift
-      r%p_time = res%p_time + shift
-      r%t_end = res%t_end + shift
-      where (res%first_contact_time >= 0.0_dp) r%first_contact_time = res%first_contact_time &
-                                                                        + shift
-   end function on_trajectory_clock
 
    !> PREFIX.h5 of a transient run, under the set's temporary name.
    subroutine write_transient_h5(set, deck, model, res, diag, stats, psd)
@@ -427,15 +373,16 @@ contains
       call h5%put(g // 'certificate_text', certificate_text(diag%certificate))
       if (.not. allocated(diag%start_label)) return
       if (size(diag%start_label) == 0) return
-      call h5%put(g // 'starts/label', diag%start_label)
-      call h5%put(g // 'starts/attractor', diag%start_attractor)
-      call h5%put(g // 'starts/lyapunov', diag%start_lyapunov)
-      call h5%put(g // 'n_attractors', diag%n_attractors)
-      call h5%put(g // 'attractors/label', diag%attractor_label)
-      call h5%put(g // 'attractors/fraction', diag%attractor_fraction)
-      call h5%put(g // 'attractors/lyapunov', diag%attractor_lyapunov)
-      call h5%put(g // 'starts/transient_periods', diag%start_transient)
-      call h5%put(g // 'attractors/mean_transient_periods', diag%attractor_transient)
+      do k = 1, size(array_names)   ! the per-start arrays, whole
+         if (array_extent(k) /= 4) cycle
+         if (array_names(k) == 'attractors/label') call h5%put(g // 'n_attractors', &
+                                                               diag%n_attractors)
+         if (array_type(k:k) == 'i') then
+            call h5%put(g // trim(array_names(k)), nint(array_field(diag, k)))
+         else
+            call h5%put(g // trim(array_names(k)), array_field(diag, k))
+         end if
+      end do
    end subroutine write_diagnostics
 
    !> PREFIX.history.dat and PREFIX.poincare.dat.
@@ -515,7 +462,7 @@ contains
       real(dp), allocatable :: x(:), w(:)
       character(len=:), allocatable :: text, buf
       character(len=64) :: line
-      integer :: i, k, j, n, pos
+      integer :: i, k, j, pos
       x = shape_points(model%sys, deck%output%shape_points)
       text = '# ' // trim(deck%job%title) // ': deflected shape relative to the base' &
          // new_line('a') // '# columns: x [m], w [m]; one block (gnuplot index) per history ' &
@@ -529,22 +476,17 @@ contains
             // str(deck%stops(j)%gap) // new_line('a')
       end do
       text = text // '# x w' // new_line('a')
-      n = size(res%time)
-      allocate(character(len=len(text) + n * (40 + size(x) * 50)) :: buf)
-      buf(1:len(text)) = text
-      pos = len(text)
-      do i = 1, n
+      pos = 0
+      call append_text(buf, pos, text)
+      do i = 1, size(res%time)
          w = deflection(model%sys, res%history_u(:, i), deck%output%shape_points)
          write(line, '(a, es24.16e3)') '# t = ', res%time(i)
-         buf(pos + 1:pos + len_trim(line) + 1) = trim(line) // new_line('a')
-         pos = pos + len_trim(line) + 1
+         call append_text(buf, pos, trim(line) // new_line('a'))
          do k = 1, size(x)
             write(line, '(es24.16e3, 1x, es24.16e3)') x(k), w(k)
-            buf(pos + 1:pos + len_trim(adjustl(line)) + 1) = trim(adjustl(line)) // new_line('a')
-            pos = pos + len_trim(adjustl(line)) + 1
+            call append_text(buf, pos, trim(adjustl(line)) // new_line('a'))
          end do
-         buf(pos + 1:pos + 2) = new_line('a') // new_line('a')
-         pos = pos + 2
+         call append_text(buf, pos, new_line('a') // new_line('a'))
       end do
       call set%text('.shape.dat', buf(1:pos))
    end subroutine write_shape_table

@@ -29,8 +29,8 @@ module gapbeam_sweep_output
    use gapbeam_parameters, only: parameter_set_t
    use gapbeam_file_info, only: write_parameter_set, write_model, udunits
    use gapbeam_point_fields, only: int_names, real_names, text_names, int_fields, &
-      set_int_fields, real_fields, set_real_fields, text_field, set_text_field, stop_names, &
-      stop_field, set_stop_field
+      set_int_fields, real_fields, set_real_fields, text_field, set_text_field, array_names, &
+      array_extent, array_type, array_late, array_field, set_array_field
    use gapbeam_sweep_statistics, only: write_sweep_statistics, read_sweep_statistics
    use gapbeam_warning_text, only: untouched_sweep_warnings, is_untouched_warning, &
       warning_length
@@ -73,7 +73,7 @@ module gapbeam_sweep_output
       character(len=:), allocatable :: v(:)        !! the texts, blank padded
    end type text_list_t
 
-   !> One per-stop statistic of every point of a file, (stops, points).
+   !> One array of every point of a file, (n, points).
    type :: stat_t
       real(dp), allocatable :: v(:, :)             !! values
    end type stat_t
@@ -111,7 +111,7 @@ contains
       character(len=warning_length), allocatable :: lines(:), more(:)
       integer, allocatable :: impacts(:, :), status(:)
       real(dp), allocatable :: contact(:, :)
-      integer :: ns, nr, nl, j, p, k
+      integer :: ns, nr, nl, j, p
       call point_sizes(results, sf%points, ns, nr, nl)
       allocate(impacts(ns, size(sf%points)), source=0)
       allocate(contact(ns, size(sf%points)), source=0.0_dp)
@@ -127,15 +127,8 @@ contains
          status(j) = 0
       end do
       more = untouched_sweep_warnings(impacts, contact, status)
-      k = 0
-      if (allocated(sf%warnings)) k = size(sf%warnings)
-      allocate(lines(k + size(more)))
-      do j = 1, k
-         lines(j) = sf%warnings(j)
-      end do
-      do j = 1, size(more)
-         lines(k + j) = more(j)
-      end do
+      lines = more
+      if (allocated(sf%warnings)) lines = [character(len=warning_length) :: sf%warnings, more]
    end function sweep_warnings
 
    !> /run/warnings of a sweep file into sf%warnings, less those about stops never touched
@@ -144,20 +137,12 @@ contains
       type(h5_reader_t), intent(inout) :: h5             !! open file
       type(sweep_file_t), intent(inout) :: sf            !! description
       character(len=:), allocatable :: all(:)
-      integer :: k, n
+      integer :: k
       allocate(sf%warnings(0))
       if (.not. h5%exists('/run/warnings')) return
       call h5%read('/run/warnings', all)
       if (h5%failed()) return
-      n = count([(.not. is_untouched_warning(all(k)), k = 1, size(all))])
-      deallocate(sf%warnings)
-      allocate(sf%warnings(n))
-      n = 0
-      do k = 1, size(all)
-         if (is_untouched_warning(all(k))) cycle
-         n = n + 1
-         sf%warnings(n) = all(k)
-      end do
+      sf%warnings = pack(all, [(.not. is_untouched_warning(all(k)), k = 1, size(all))])
    end subroutine read_warnings
 
    !> Sizes of the per-point arrays: stops, recorded periods, Lyapunov periods, from the
@@ -181,34 +166,24 @@ contains
       end do
    end subroutine point_sizes
 
-   !> `x` (if allocated) in an array of length n, NaN where x has no value.
-   pure function padded(x, n) result(y)
-      real(dp), allocatable, intent(in) :: x(:)          !! values (possibly too short, or none)
-      integer, intent(in) :: n                           !! length wanted
-      real(dp) :: y(n)
-      integer :: m
-      y = ieee_value(0.0_dp, ieee_quiet_nan)
-      if (.not. allocated(x)) return
-      m = min(n, size(x))
-      y(1:m) = x(1:m)
-   end function padded
-
-   !> Per-stop array k (stop_names) of every point of the file, Fortran (stops, points): in C
-   !> order (h5py) one row per point; past a point's own, 0 impacts and NaN otherwise.
-   function stop_table(results, points, k, ns) result(v)
+   !> Array k (array_names) of every point of the file, Fortran (n, points): in C order
+   !> (h5py) one row per point; past a point's own values 0 (array_type 'z', 'i') or NaN.
+   function array_table(results, points, k, n) result(v)
       type(point_result_t), intent(in) :: results(:)     !! all points
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: k                           !! the array
-      integer, intent(in) :: ns                          !! stops
-      real(dp) :: v(ns, size(points))
+      integer, intent(in) :: n                           !! its length
+      real(dp) :: v(n, size(points))
       real(dp), allocatable :: x(:)
-      integer :: j
+      integer :: j, m
+      v = ieee_value(0.0_dp, ieee_quiet_nan)
+      if (array_type(k:k) /= 'r') v = 0.0_dp
       do j = 1, size(points)
-         x = stop_field(results(points(j)), k)
-         v(:, j) = padded(x, ns)
-         if (k == 1) where (v(:, j) /= v(:, j)) v(:, j) = 0.0_dp
+         x = array_field(results(points(j)), k)
+         m = min(n, size(x))
+         v(1:m, j) = x(1:m)
       end do
-   end function stop_table
+   end function array_table
 
    !> Forcing frequency and amplitude of point p of a file's sweep, and its axis values.
    pure subroutine point_axes(sf, p, x, y, f, a)
@@ -232,48 +207,13 @@ contains
       integer, intent(in) :: points(:)                   !! the points of the file
       integer, intent(in) :: j                           !! text field
       character(len=:), allocatable :: t(:)
-      integer :: k, w
-      w = 1
-      do k = 1, size(points)
-         w = max(w, len(text_field(results(points(k)), j)))
-      end do
-      allocate(character(len=w) :: t(size(points)))
+      integer :: k
+      allocate(character(len=max(1, maxval([(len(text_field(results(points(k)), j)), &
+                                             k = 1, size(points))]))) :: t(size(points)))
       do k = 1, size(points)
          t(k) = text_field(results(points(k)), j)
       end do
    end function texts
-
-   !> Starts and attractors of the points, (n_starts, points): labels and attractor numbers
-   !> (0 past the end), exponents and fractions (NaN past the end).
-   subroutine start_tables(results, points, ns, s_label, s_attr, s_lyap, a_label, a_frac, &
-                           a_lyap)
-      type(point_result_t), intent(in) :: results(:)     !! all points
-      integer, intent(in) :: points(:)                   !! the points of the file
-      integer, intent(in) :: ns                          !! starts per point
-      integer, allocatable, intent(out) :: s_label(:, :), s_attr(:, :), a_label(:, :)
-      real(dp), allocatable, intent(out) :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :)
-      integer :: j, m, n
-      real(dp) :: nan
-      nan = ieee_value(0.0_dp, ieee_quiet_nan)
-      m = size(points)
-      allocate(s_label(ns, m), s_attr(ns, m), a_label(ns, m), source=0)
-      allocate(s_lyap(ns, m), a_frac(ns, m), a_lyap(ns, m), source=nan)
-      do j = 1, m
-         associate (r => results(points(j)))
-            if (allocated(r%start_label)) then
-               n = min(ns, size(r%start_label))
-               s_label(1:n, j) = r%start_label(1:n);  s_attr(1:n, j) = r%start_attractor(1:n)
-               s_lyap(1:n, j) = r%start_lyapunov(1:n)
-            end if
-            if (allocated(r%attractor_label)) then
-               n = min(ns, size(r%attractor_label))
-               a_label(1:n, j) = r%attractor_label(1:n)
-               a_frac(1:n, j) = r%attractor_fraction(1:n)
-               a_lyap(1:n, j) = r%attractor_lyapunov(1:n)
-            end if
-         end associate
-      end do
-   end subroutine start_tables
 
    !> PREFIX.h5 of a sweep: the datasets listed in the module header.
    subroutine sweep_h5(set, sf, results)
@@ -284,7 +224,7 @@ contains
       real(dp), allocatable :: f(:), a(:), x(:), y(:), rv(:, :)
       integer, allocatable :: iv(:, :)
       character(len=16), allocatable :: labels(:), certs(:)
-      integer :: m, ns, nr, nl, j, k
+      integer :: m, ns, nr, nl, j, k, sizes(4)
       m = size(sf%points)
       call point_sizes(results, sf%points, ns, nr, nl)
       allocate(f(m), a(m), x(m), y(m), labels(m), certs(m))
@@ -337,80 +277,19 @@ contains
       do k = 1, size(text_names)
          call h5%put('/sweep/' // trim(text_names(k)), texts(results, sf%points, k))
       end do
-      do k = 1, size(stop_names)
-         call h5%put('/sweep/' // trim(stop_names(k)), stop_table(results, sf%points, k, ns))
+      sizes = [ns, nr, nl, size(sf%start_kind)]
+      do k = 1, size(array_names)
+         if (k == 11) call write_sweep_statistics(h5, results, sf%points, ns)
+         if (k == 14) call h5%put('/sweep/starts/kind', sf%start_kind)
+         rv = array_table(results, sf%points, k, sizes(array_extent(k)))
+         if (array_type(k:k) == 'i') then
+            call h5%put('/sweep/' // trim(array_names(k)), nint(rv))
+         else
+            call h5%put('/sweep/' // trim(array_names(k)), rv)
+         end if
       end do
-      call write_sweep_statistics(h5, results, sf%points, ns)
-      call h5%put('/sweep/poincare/strain', per_point(results, sf%points, 1, nr))
-      call h5%put('/sweep/poincare/strain_rate', per_point(results, sf%points, 2, nr))
-      call h5%put('/sweep/lyapunov_running', per_point(results, sf%points, 3, nl))
-      call write_starts(h5, sf, results)
       call set%close_h5(h5)
    end subroutine sweep_h5
-
-   !> One per-period series of every point of the file, (n, points): 1 the Poincare strain,
-   !> 2 its rate, 3 the running Lyapunov estimate; NaN past a point's own.
-   function per_point(results, points, which, n) result(v)
-      type(point_result_t), intent(in) :: results(:)     !! all points
-      integer, intent(in) :: points(:)                   !! the points of the file
-      integer, intent(in) :: which                       !! the series
-      integer, intent(in) :: n                           !! its length
-      real(dp) :: v(n, size(points))
-      integer :: j
-      do j = 1, size(points)
-         select case (which)
-         case (1);  v(:, j) = padded(results(points(j))%p_strain, n)
-         case (2);  v(:, j) = padded(results(points(j))%p_strain_rate, n)
-         case default;  v(:, j) = padded(results(points(j))%lyapunov_running, n)
-         end select
-      end do
-   end function per_point
-
-   !> /sweep/starts and /sweep/attractors.
-   subroutine write_starts(h5, sf, results)
-      type(h5_writer_t), intent(inout) :: h5             !! writer
-      type(sweep_file_t), intent(in) :: sf               !! file description
-      type(point_result_t), intent(in) :: results(:)     !! all points
-      real(dp), allocatable :: s_lyap(:, :), a_frac(:, :), a_lyap(:, :), a_tr(:, :)
-      integer, allocatable :: s_label(:, :), s_attr(:, :), a_label(:, :), s_tr(:, :)
-      call start_tables(results, sf%points, size(sf%start_kind), s_label, s_attr, s_lyap, &
-                        a_label, a_frac, a_lyap)
-      call h5%put('/sweep/starts/kind', sf%start_kind)
-      call h5%put('/sweep/starts/label', s_label)
-      call h5%put('/sweep/starts/attractor', s_attr)
-      call h5%put('/sweep/starts/lyapunov', s_lyap)
-      call h5%put('/sweep/attractors/label', a_label)
-      call h5%put('/sweep/attractors/fraction', a_frac)
-      call h5%put('/sweep/attractors/lyapunov', a_lyap)
-      call transient_tables(results, sf%points, size(sf%start_kind), s_tr, a_tr)
-      call h5%put('/sweep/starts/transient_periods', s_tr)
-      call h5%put('/sweep/attractors/mean_transient_periods', a_tr)
-   end subroutine write_starts
-
-   !> The starts' transient periods (0 past the end) and the attractors' means (NaN past the
-   !> end), (n_starts, points).
-   subroutine transient_tables(results, points, ns, s_tr, a_tr)
-      type(point_result_t), intent(in) :: results(:)     !! all points
-      integer, intent(in) :: points(:)                   !! the points of the file
-      integer, intent(in) :: ns                          !! starts per point
-      integer, allocatable, intent(out) :: s_tr(:, :)    !! per start
-      real(dp), allocatable, intent(out) :: a_tr(:, :)   !! per attractor
-      integer :: j, n
-      allocate(s_tr(ns, size(points)), source=0)
-      allocate(a_tr(ns, size(points)), source=ieee_value(0.0_dp, ieee_quiet_nan))
-      do j = 1, size(points)
-         associate (r => results(points(j)))
-            if (allocated(r%start_transient)) then
-               n = min(ns, size(r%start_transient))
-               s_tr(1:n, j) = r%start_transient(1:n)
-            end if
-            if (allocated(r%attractor_transient)) then
-               n = min(ns, size(r%attractor_transient))
-               a_tr(1:n, j) = r%attractor_transient(1:n)
-            end if
-         end associate
-      end do
-   end subroutine transient_tables
 
    !> PREFIX.sweep.dat (one row per point) and PREFIX.bifurcation.dat (every Poincare point
    !> with its axis values and the point's label and certificate), under the set's temporary
@@ -421,8 +300,8 @@ contains
       type(sweep_file_t), intent(in) :: sf               !! file description
       type(point_result_t), intent(in) :: results(:)     !! all points (indexed by point)
       integer, parameter :: nc = 22
-      integer :: m, ns, nr, nl, j, p
-      real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), row(:), counts(:, :)
+      integer :: m, ns, nr, nl, j, p, k
+      real(dp), allocatable :: f(:), a(:), x(:), y(:), cols(:, :), st(:, :)
       character(len=24) :: names(nc), units(nc), xn, yn, xu, yu
 
       ! (locals: gfortran mishandles deferred-length results inside array constructors)
@@ -442,15 +321,14 @@ contains
          cols(j, 3) = results(p)%period;  cols(j, 4) = results(p)%label
          cols(j, 5) = results(p)%lyapunov;  cols(j, 6) = results(p)%lyapunov_error
          if (ns > 0) then
-            counts = stop_table(results, [p], 1, ns)
-            cols(j, 7) = counts(1, 1)
-            row = padded(results(p)%peak_force, ns);  cols(j, 8) = row(1)
-            row = padded(results(p)%rms_force, ns);  cols(j, 9) = row(1)
-            row = padded(results(p)%work_rate, ns);  cols(j, 10) = row(1)
-            cols(j, 18) = sum(padded(results(p)%normal_work_rate, ns))
-            cols(j, 19) = sum(padded(results(p)%wear_volume_rate, ns))
-            cols(j, 20) = maxval(padded(results(p)%contact_fraction, ns))
-            cols(j, 21) = sum(counts(:, 1))
+            allocate(st(ns, 10))
+            do k = 1, 10
+               st(:, k:k) = array_table(results, [p], k, ns)
+            end do
+            cols(j, 7:10) = [st(1, 1), st(1, 2), st(1, 3), st(1, 6)]
+            cols(j, 18) = sum(st(:, 7));  cols(j, 19) = sum(st(:, 10))
+            cols(j, 20) = maxval(st(:, 4));  cols(j, 21) = sum(st(:, 1))
+            deallocate(st)
          end if
          cols(j, 11) = results(p)%status;  cols(j, 12) = results(p)%certificate
          cols(j, 13) = results(p)%n_attractors;  cols(j, 14) = results(p)%lyapunov_periods
@@ -484,8 +362,8 @@ contains
          p = sf%points(j)
          cols((j - 1) * nr + 1:j * nr, 1) = x(j)
          cols((j - 1) * nr + 1:j * nr, 2) = y(j)
-         cols((j - 1) * nr + 1:j * nr, 3) = padded(results(p)%p_strain, nr)
-         cols((j - 1) * nr + 1:j * nr, 4) = padded(results(p)%p_strain_rate, nr)
+         cols((j - 1) * nr + 1:j * nr, 3:3) = array_table(results, [p], 11, nr)
+         cols((j - 1) * nr + 1:j * nr, 4:4) = array_table(results, [p], 12, nr)
          cols((j - 1) * nr + 1:j * nr, 5) = results(p)%label
          cols((j - 1) * nr + 1:j * nr, 6) = results(p)%certificate
       end do
@@ -553,13 +431,11 @@ contains
       type(error_t), allocatable, intent(out) :: err               !! I/O failure
       character(len=*), parameter :: here = 'gapbeam_sweep_output:read_sweep: '
       type(h5_reader_t) :: h5
-      type(stat_t) :: st(size(stop_names))
+      type(stat_t) :: st(size(array_names))
       type(text_list_t) :: tv(size(text_names))
-      integer :: total, j, n, k
-      integer, allocatable :: iv(:, :), s_label(:, :), s_attr(:, :), a_label(:, :), ione(:), &
-         s_tr(:, :)
-      real(dp), allocatable :: rv(:, :), ps(:, :), pr(:, :), lr(:, :), xv(:), yv(:), &
-         s_lyap(:, :), a_frac(:, :), a_lyap(:, :), one(:), a_tr(:, :)
+      integer :: total, j, n, k, m
+      integer, allocatable :: iv(:, :), ione(:)
+      real(dp), allocatable :: rv(:, :), xv(:), yv(:), one(:)
       character(len=:), allocatable :: kinds(:), axis_order
       type(point_result_t), allocatable :: drawn(:)
       logical :: aligned, ok
@@ -606,33 +482,11 @@ contains
          call h5%read('/sweep/' // trim(text_names(k)), tv(k)%v)
          aligned = aligned .and. size(tv(k)%v) == n
       end do
-      do k = 1, size(stop_names)   ! the wear outputs are zero in files written before them
-         if (k < 7 .or. h5%exists('/sweep/wear/normal_work_rate')) then
-            call h5%read('/sweep/' // trim(stop_names(k)), st(k)%v)
-         else
-            allocate(st(k)%v, mold=st(1)%v)
-            st(k)%v = 0.0_dp
-         end if
+      do k = 1, size(array_names)
+         call read_array(h5, k, st)
          aligned = aligned .and. size(st(k)%v, 2) == n
       end do
-      call h5%read('/sweep/poincare/strain', ps)
-      call h5%read('/sweep/poincare/strain_rate', pr)
-      call h5%read('/sweep/lyapunov_running', lr)
       call h5%read('/sweep/starts/kind', kinds)
-      call h5%read('/sweep/starts/label', s_label)
-      call h5%read('/sweep/starts/attractor', s_attr)
-      call h5%read('/sweep/starts/lyapunov', s_lyap)
-      call h5%read('/sweep/attractors/label', a_label)
-      call h5%read('/sweep/attractors/fraction', a_frac)
-      call h5%read('/sweep/attractors/lyapunov', a_lyap)
-      ! the starts' transients (absent in files written before them: zero, NaN)
-      if (h5%exists('/sweep/starts/transient_periods')) then
-         call h5%read('/sweep/starts/transient_periods', s_tr)
-         call h5%read('/sweep/attractors/mean_transient_periods', a_tr)
-      else
-         allocate(s_tr, mold=s_label);  s_tr = 0
-         allocate(a_tr, mold=a_lyap);  a_tr = ieee_value(0.0_dp, ieee_quiet_nan)
-      end if
       sf%has_model = h5%exists('/model')
       allocate(drawn(n))
       call read_sweep_statistics(h5, drawn, [(j, j = 1, n)], ok)
@@ -641,8 +495,7 @@ contains
       if (allocated(err)) return
       sf%start_kind = kinds
       if (.not. allocated(results)) allocate(results(total))
-      if (.not. aligned .or. size(ps, 2) /= n .or. size(s_label, 2) /= n .or. &
-          size(a_label, 2) /= n) then
+      if (.not. aligned) then
          call fatal_error(err, here // path // ': a per-point dataset of /sweep does not have ' &
             // 'one entry per point')
       else if (size(results) /= total) then
@@ -660,19 +513,12 @@ contains
                call set_text_field(r, k, trim(tv(k)%v(j)))
             end do
             r%x = xv(j);  r%y = yv(j)
-            do k = 1, size(stop_names)
-               call set_stop_field(r, k, st(k)%v(:, j))
+            do k = 1, size(array_names)   ! without the padding past the point's own values
+               m = size(st(k)%v, 1)
+               if (k == 13) m = min(m, max(0, r%lyapunov_periods))
+               if (index(array_names(k), 'attractors/') == 1) m = r%n_attractors
+               call set_array_field(r, k, st(k)%v(1:m, j))
             end do
-            r%p_strain = ps(:, j);  r%p_strain_rate = pr(:, j)
-            ! the running estimate without the padding past the point's own periods
-            r%lyapunov_running = lr(1:min(size(lr, 1), max(0, r%lyapunov_periods)), j)
-            r%start_label = s_label(:, j);  r%start_attractor = s_attr(:, j)
-            r%start_lyapunov = s_lyap(:, j);  r%start_transient = s_tr(:, j)
-            k = r%n_attractors
-            r%attractor_transient = a_tr(1:k, j)
-            r%attractor_label = a_label(1:k, j)
-            r%attractor_fraction = a_frac(1:k, j)
-            r%attractor_lyapunov = a_lyap(1:k, j)
             r%n_draws = drawn(j)%n_draws
             if (allocated(drawn(j)%draw_mean)) then
                call move_alloc(drawn(j)%draw_mean, r%draw_mean)
@@ -681,6 +527,28 @@ contains
          end associate
       end do
    end subroutine read_sweep
+
+   !> Array k (array_names) of a sweep file, as reals; an array that files of an older gapbeam
+   !> lack (array_late) as 0, the attractors' mean transients as NaN.
+   subroutine read_array(h5, k, st)
+      type(h5_reader_t), intent(inout) :: h5             !! open file
+      integer, intent(in) :: k                           !! the array
+      type(stat_t), intent(inout) :: st(:)               !! the arrays read (those before k)
+      character(len=:), allocatable :: path
+      integer, allocatable :: iv(:, :)
+      path = '/sweep/' // trim(array_names(k))
+      if (array_late(k) .and. .not. h5%exists(path)) then
+         allocate(st(k)%v, mold=st(merge(1, 14, array_extent(k) == 1))%v)
+         st(k)%v = 0.0_dp
+         if (array_extent(k) == 4 .and. array_type(k:k) == 'r') st(k)%v = ieee_value(0.0_dp, &
+                                                                              ieee_quiet_nan)
+      else if (array_type(k:k) == 'i') then
+         call h5%read(path, iv)
+         st(k)%v = real(iv, dp)
+      else
+         call h5%read(path, st(k)%v)
+      end if
+   end subroutine read_array
 
    !> Merge shard files into OUT (prefix without '.h5'): all from one deck, shards 1..N each
    !> exactly once, every point present once. The result is written by write_sweep, like a

@@ -40,14 +40,10 @@ module gapbeam_xdmf
    use gapbeam_deflection, only: shape_points, deflection
    use gapbeam_hdf5_output, only: h5_writer_t
    use gapbeam_hdf5_input, only: h5_reader_t
+   use gapbeam_files, only: append_text
    implicit none
    private
    public :: write_xdmf_datasets, make_xdmf, suggested_warp_scale
-
-   !> One piece of text.
-   type :: chunk_t
-      character(len=:), allocatable :: s
-   end type chunk_t
 
    !> The drawn stops: point ranges of /history/stop_mesh_* per grid.
    type :: stop_mesh_t
@@ -236,19 +232,14 @@ contains
       text = xdmf_document()
    contains
       function xdmf_document() result(t)
-         character(len=:), allocatable :: t
+         character(len=:), allocatable :: t, h5
          character(len=*), parameter :: nl = new_line('a')
-         type(chunk_t), allocatable :: parts(:)
-         character(len=:), allocatable :: h5, endian
          character(len=32) :: buf
-         integer :: i, n, j
-         n = size(res%time)
+         integer :: i, nt, j
          h5 = xml_escape(h5_name)
-         endian = merge('Little', 'Big   ', little(1))
-         endian = trim(endian)
-         allocate(parts(n + 2))
+         nt = 0
          write(buf, '(g0.3)') suggested_warp_scale(span, swing)
-         parts(1)%s = '<?xml version="1.0" encoding="utf-8"?>' // nl &
+         call append_text(t, nt, '<?xml version="1.0" encoding="utf-8"?>' // nl &
             // '<!-- gapbeam: the beam and its stops relative to the moving base at every ' &
             // 'history sample, time in seconds.' // nl &
             // '     ParaView: open with either XDMF reader, add Warp By Vector (vector ' &
@@ -260,19 +251,19 @@ contains
             // 'datasets: keep it beside this file, unchanged). docs/outputs.md, ParaView. -->' &
             // nl // '<Xdmf Version="3.0">' // nl // ' <Domain>' // nl &
             // '  <Grid Name="' // xml_escape(trim(deck%job%title)) // '" GridType="Collection" ' &
-            // 'CollectionType="Temporal">' // nl
-         do i = 1, n
+            // 'CollectionType="Temporal">' // nl)
+         do i = 1, size(res%time)
             write(buf, '(es24.16e3)') res%time(i)
-            parts(i + 1)%s = '   <Grid Name="sample ' // str(i) // '" GridType="Collection" ' &
-               // 'CollectionType="Spatial">' // nl // '    <Time Value="' &
-               // trim(adjustl(buf)) // '"/>' // nl // beam_grid(i)
+            call append_text(t, nt, '   <Grid Name="sample ' // str(i) // '" GridType=' &
+               // '"Collection" CollectionType="Spatial">' // nl // '    <Time Value="' &
+               // trim(adjustl(buf)) // '"/>' // nl // beam_grid(i))
             do j = 1, sm%n_grids
-               parts(i + 1)%s = parts(i + 1)%s // stop_grid(i, j)
+               call append_text(t, nt, stop_grid(i, j))
             end do
-            parts(i + 1)%s = parts(i + 1)%s // '   </Grid>' // nl
+            call append_text(t, nt, '   </Grid>' // nl)
          end do
-         parts(n + 2)%s = '  </Grid>' // nl // ' </Domain>' // nl // '</Xdmf>' // nl
-         t = joined(parts)
+         call append_text(t, nt, '  </Grid>' // nl // ' </Domain>' // nl // '</Xdmf>' // nl)
+         t = t(1:nt)
       end function xdmf_document
 
       !> The beam's grid at sample i (from 1).
@@ -357,23 +348,6 @@ contains
             // xml_escape(h5_name) // '</DataItem>' // new_line('a')
       end function data_item
    end subroutine make_xdmf
-
-   !> The pieces joined.
-   function joined(parts) result(t)
-      type(chunk_t), intent(in) :: parts(:)
-      character(len=:), allocatable :: t
-      integer :: total, pos, k
-      total = 0
-      do k = 1, size(parts)
-         total = total + len(parts(k)%s)
-      end do
-      allocate(character(len=total) :: t)
-      pos = 0
-      do k = 1, size(parts)
-         t(pos + 1:pos + len(parts(k)%s)) = parts(k)%s
-         pos = pos + len(parts(k)%s)
-      end do
-   end function joined
 
    !> `s` with the XML special characters escaped.
    pure function xml_escape(s) result(t)

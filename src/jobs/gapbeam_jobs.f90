@@ -30,7 +30,7 @@ module gapbeam_jobs
    use gapbeam_capabilities, only: method_caps_t, method_caps
    use gapbeam_model_size, only: model_size_study
    use gapbeam_report, only: write_modes, write_transient, write_calibration
-   use gapbeam_input_flow, only: deck_wear_depth
+   use gapbeam_deck_rules_flow, only: deck_wear_depth
    use gapbeam_flow_results, only: wear_depth_t, draw_statistics_t, flow_modes_t, response_psd_t
    use gapbeam_flow_load, only: deck_flow_modes
    use gapbeam_draws_job, only: run_draws

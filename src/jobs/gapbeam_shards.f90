@@ -25,7 +25,7 @@ module gapbeam_shards
    use gapbeam_sweep, only: sweep_plan_t, n_points, n_groups, n_items, group_of_item, &
       group_points
    use gapbeam_hdf5_input, only: h5_reader_t
-   use gapbeam_checkpoint, only: crc32
+   use gapbeam_checksum, only: crc32
    implicit none
    private
    public :: shard_deal_t, deal_shards, shard_items, deal_signature, deal_summary, &

@@ -1,7 +1,9 @@
 !> The deck rules of the flow excitation (&flow, &turbulence, &wear and the support
 !> geometry of &stops) that tie variables together; the ranges of single values are the deck
-!> table's (core/gapbeam_deck_table). Called by read_deck after the stops and the loads.
-module gapbeam_input_flow
+!> table's (gapbeam_deck_table). Called by read_deck (io/gapbeam_input) after the stops and the
+!> loads. And the wear depth of a deck's supports over &wear years (deck_wear_depth), which
+!> the transient writer and job take from the same geometry.
+module gapbeam_deck_rules_flow
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
    use gapbeam_deck, only: deck_t
@@ -245,4 +247,4 @@ contains
             // 'critical velocities)')
       end select
    end subroutine check_flow_analysis
-end module gapbeam_input_flow
+end module gapbeam_deck_rules_flow

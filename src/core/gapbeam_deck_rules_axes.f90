@@ -1,12 +1,12 @@
-!> The deck reader's rules for the groups that name other deck variables (the axes of
-!> &sweep, the variables of &continuation) and the sizes of a run, counted in 64 bits
-!> (see gapbeam_input).
-module gapbeam_input_axes
+!> The deck rules of the groups that name other deck variables (the axes of &sweep, the
+!> variables of &continuation) and the sizes of a run, counted in 64 bits (see
+!> gapbeam_deck_rules).
+module gapbeam_deck_rules_axes
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_deck_text, only: source_t, present_group, given
+   use gapbeam_deck_rules, only: is_given
    use gapbeam_deck, only: deck_t
    use gapbeam_settings, only: starts_given
    use gapbeam_deck_variable, only: deck_variable_t, parse_deck_variable, &
@@ -33,8 +33,8 @@ contains
    !> ranges (x_start, x_end, n_x; the deck's value when neither is given). The extreme values
    !> of every axis are checked by setting them on a copy of the deck (gapbeam_deck_variable).
    !> The axes of &sweep (see the header).
-   subroutine make_sweep_axes(srcs, deck, err)
-      type(source_t), intent(in) :: srcs(:)
+   subroutine make_sweep_axes(given, deck, err)
+      character(len=*), intent(in) :: given            !! what the sources name (is_given)
       type(deck_t), intent(inout) :: deck
       type(error_t), allocatable, intent(inout) :: err
       type(deck_variable_t) :: var(2), forcing(2)
@@ -65,11 +65,11 @@ contains
             sw%n_amplitude, deck%forcing%amplitude_pp, aa, err)
          if (allocated(err)) return
          ! a forcing list given while no axis is that variable would be ignored silently
-         if ((given(srcs, 'sweep', 'frequency_hz') .or. sw%n_frequency > 0) .and. &
+         if ((is_given(given, 'sweep:frequency_hz') .or. sw%n_frequency > 0) .and. &
              .not. any(label_of(var) == '&forcing frequency_hz')) call fatal_error(err, &
             'group &sweep: frequency_hz (or n_frequency) is given but neither x_variable ' &
             // "nor y_variable is '&forcing frequency_hz'")
-         if ((given(srcs, 'sweep', 'amplitude_pp') .or. sw%n_amplitude > 0) .and. &
+         if ((is_given(given, 'sweep:amplitude_pp') .or. sw%n_amplitude > 0) .and. &
              .not. any(label_of(var) == '&forcing amplitude_pp')) call fatal_error(err, &
             'group &sweep: amplitude_pp (or n_amplitude) is given but neither x_variable ' &
             // "nor y_variable is '&forcing amplitude_pp'")
@@ -156,7 +156,7 @@ contains
       type(deck_t), intent(in) :: deck                   !! deck read so far
       real(dp), allocatable, intent(out) :: axis_out(:)  !! values
       type(error_t), allocatable, intent(inout) :: err   !! bad value
-      integer :: k, n_list
+      integer :: n_list
       character(len=:), allocatable :: lab
       if (allocated(err)) return
       n_list = 0
@@ -175,27 +175,9 @@ contains
          end if
          return
       end if
-      if (n_list > 0 .and. n > 0) then
-         call fatal_error(err, 'group &sweep: give either the list ' // c // '_values or ' &
-            // c // '_start, ' // c // '_end and n_' // c // ', not both')
-         return
-      end if
-      if (n_list > 0) then
-         axis_out = list
-      else if (n == 1) then
-         axis_out = [x0]
-      else if (n > 1) then
-         axis_out = [(x0 + (x1 - x0) * real(k - 1, dp) / real(n - 1, dp), k = 1, n)]
-         if (.not. all(ieee_is_finite(axis_out))) then
-            call fatal_error(err, 'group &sweep: ' // c // '_start = ' // str(x0) // ', ' // c &
-               // '_end = ' // str(x1) // ': the range between them overflows (its values ' &
-               // 'must be finite)')
-            return
-         end if
-      else
-         axis_out = [get_deck_value(deck, vars(1))]
-      end if
-      call check_extremes(deck, vars, axis_out, c // ' axis', err)
+      call make_axis(c // '_values', c // '_start', c // '_end', 'n_' // c, list, x0, x1, n, &
+                     get_deck_value(deck, vars(1)), axis_out, err)
+      if (.not. allocated(err)) call check_extremes(deck, vars, axis_out, c // ' axis', err)
    end subroutine variable_axis
 
    !> The extreme values of an axis (smallest, largest, smallest non-zero magnitude), set on
@@ -274,13 +256,13 @@ contains
    ! ---------------------------------------------------------------- &continuation
 
    !> &continuation: the variables and their ranges, the start, the curves.
-   subroutine check_continuation(srcs, deck, err)
-      type(source_t), intent(in) :: srcs(:)
+   subroutine check_continuation(given, deck, err)
+      character(len=*), intent(in) :: given            !! what the sources name (is_given)
       type(deck_t), intent(inout) :: deck
       type(error_t), allocatable, intent(inout) :: err
       integer :: k
       if (allocated(err)) return
-      if (.not. present_group(srcs, 'continuation')) then
+      if (.not. is_given(given, 'continuation')) then
          if (deck%job%analysis == 'continuation') call fatal_error(err, 'group &continuation ' &
             // "is missing: analysis='continuation' needs at least parameter, parameter_min " &
             // 'and parameter_max')
@@ -435,4 +417,4 @@ contains
          end if
       end associate
    end subroutine check_sizes
-end module gapbeam_input_axes
+end module gapbeam_deck_rules_axes
