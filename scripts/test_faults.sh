@@ -106,10 +106,10 @@ run() {
    seconds=$(( $(date +%s) - t0 ))
 }
 
-# First 300 characters of stderr on one line.
+# First 300 characters of stderr (of the case's run, or of the file $1) on one line.
 stderr_line() {
    local s
-   s=$(head -c 2000 "${dir}/run.stderr")
+   s=$(head -c 2000 "${1:-${dir}/run.stderr}")
    s=${s//$'\n'/ | }
    [[ -n ${s} ]] || s='(empty)'
    if [[ ${#s} -gt 300 ]]; then s="${s:0:300} ..."; fi
@@ -452,6 +452,8 @@ elif mode == 'v1':
     b[0:20] = b'GAPBEAM-CHECKPOINT-1'
 elif mode == 'v4':
     b[0:20] = b'GAPBEAM-CHECKPOINT-4'
+elif mode == 'v5':
+    b[0:20] = b'GAPBEAM-CHECKPOINT-5'
 elif mode == 'header':                         # a byte of the deck text in the header
     b[36 + siglen // 2] ^= 0x01
 else:
@@ -677,7 +679,9 @@ report 'merge into an output that names a directory (m/): refused' "${why[@]}"
 
 # ---- item 3: one writer per output prefix -------------------------------------------------------
 # N runs started together (a barrier file), on one prefix: one runs, the others exit 4 at once
-# naming the holder; the files are those of a single run; no lock file is left.
+# naming the holder (also when refused between the holder's flock and its writing its name into
+# the lock file); the files are those of a single run; no lock file is left. A run that fails
+# a check has its own stderr quoted (the report's 'stderr was' is the case's reference run's).
 concurrent() {   # concurrent N NAME DECK ARG...: runs N copies in ${dir}/c<k>
    local n=$1 name=$2 k
    shift 2
@@ -689,10 +693,11 @@ concurrent() {   # concurrent N NAME DECK ARG...: runs N copies in ${dir}/c<k>
            2>"${dir}/c${k}/stderr"; printf '%s' "$?" >"${dir}/c${k}/status" ) &
    done
    sleep 0.2; : >"${dir}/go"; wait
-   local ok=0 locked=0 other=0 s
+   local ok=0 locked=0 other=0 s n_why
    why=()
    for ((k = 1; k <= n; k++)); do
       s=$(<"${dir}/c${k}/status")
+      n_why=${#why[@]}
       if [[ ${s} -eq 0 ]]; then
          ok=$((ok + 1))
       elif [[ ${s} -eq 4 ]]; then
@@ -703,6 +708,8 @@ concurrent() {   # concurrent N NAME DECK ARG...: runs N copies in ${dir}/c<k>
       else
          other=$((other + 1)); why+=("run ${k}: exit status ${s}")
       fi
+      [[ ${#why[@]} -eq ${n_why} ]] \
+         || why+=("run ${k}'s stderr: $(stderr_line "${dir}/c${k}/stderr")")
    done
    printf 'NOTE  faults: %s: %d runs: %d ran, %d refused (lock)\n' "${name}" "${n}" "${ok}" "${locked}"
    [[ ${ok} -ge 1 ]] || why+=('no run succeeded')
@@ -749,6 +756,25 @@ grep -q 'names pid 4242 on host some-other-host.example' "${dir}/run.stderr" \
 [[ ! -e ${dir}/out.h5 && -f ${dir}/out.lock ]] || why+=('out.h5 written, or the lock file removed')
 report 'a lock file naming another host is refused (exit 4), not taken over' "${why[@]}"
 
+# a run refused between the holder's flock and its line in the lock file (a fresh, empty file):
+# the message names the holder once it has written its line (was: 'holder unknown', the cause
+# of the rare unmatched line among 6 simultaneous runs); flock(1) plays the holder
+new_case
+flock -n "${dir}/out.lock" -c "sleep 1; printf 'gapbeam lock: pid %s host %s\\n' \"\$\$\" \
+   \"$(hostname)\" >'${dir}/out.lock'; sleep 1" &
+holder=$!
+sleep 0.3
+run "${default_timeout}" "${inputs}/moon_shaw_modes.nml" "$(out_override out)"
+wait "${holder}" || true
+why=()
+mapfile -t why < <(crash_reasons)
+[[ ${status} -eq 4 ]] || why+=("exit status ${status}, want 4")
+grep -q '^error: .*is in use by another gapbeam run (pid [0-9]* on host ' "${dir}/run.stderr" \
+   || why+=('the error does not name the holder')
+[[ ! -e ${dir}/out.h5 ]] || why+=('out.h5 written')
+report 'a run refused while the holder has not yet named itself in the new lock file names it' \
+   "${why[@]}"
+
 # ---- item 5: checkpoints: a record is trusted only with its checksum -----------------------------
 # a sweep stopped by its time limit after a chunk of 4 of its 8 points, its checkpoint corrupted,
 # then run again: the results must equal an uninterrupted run's
@@ -788,6 +814,7 @@ checkpoint_case headcut 0 'cut short in its header' \
    'a checkpoint cut short in its header (killed while creating it): started afresh (was: refused)'
 checkpoint_case v1 1 'older gapbeam' 'a checkpoint of the old format (no checksums): refused'
 checkpoint_case v4 1 'do not cover the deck' 'a checkpoint of format 4 (checksums without the deck): refused'
+checkpoint_case v5 1 'starts and the rerun periods' 'a checkpoint of format 5 (no exponent starts): refused'
 checkpoint_case header 1 'damaged header' 'a damaged deck text in the checkpoint header: refused'
 checkpoint_case midmark 0 'a damaged mark or length' \
    "a middle record's damaged begin mark: skipped, the rest read, the point recomputed (was: 'a full disk?')"

@@ -433,6 +433,21 @@ def check_sweep(c, gapbeam, name, res, n_stops, points=None):
 
     c.run("{}: /run/cpu_seconds <= /run/wall_seconds x /run/threads".format(name), cpu_within_wall)
 
+    def exponent_counts():
+        # the exponent's starts and its pair's rerun / dropped periods, per point (one start
+        # where an exponent ran, none where not; 0 <= dropped <= rerun <= periods)
+        n = data["/sweep/lyapunov_periods"][0]
+        starts = data["/sweep/lyapunov_starts"][0]
+        rerun = data["/sweep/lyapunov_rerun"][0]
+        dropped = data["/sweep/lyapunov_dropped"][0]
+        ok = (np.array_equal(starts, np.where(n > 0, 1, 0))
+              and np.all((0 <= dropped) & (dropped <= rerun) & (rerun <= n))
+              and np.all(data["/sweep/lyapunov_spread"][0] == 0.0))
+        return (ok, "starts {}, rerun {}, dropped {}".format(starts, rerun, dropped))
+
+    c.run("{}: lyapunov_starts, _rerun, _dropped, _spread of every point".format(name),
+          exponent_counts)
+
     try:
         import pandas as pd
     except ImportError:

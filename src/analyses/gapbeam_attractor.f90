@@ -28,6 +28,8 @@
 !> sigma <= max(lyapunov_abs_error, lyapunov_rel_error |lambda|) or N = lyapunov_max_periods;
 !> a record that met its target is then doubled (within lyapunov_max_periods) and lambda and
 !> sigma are those of the whole, so that the stop's own luck is half of what is reported.
+!> With lyapunov_starts = K > 1 this is done from K independent starts, combined (their
+!> spread and their own sigmas; see largest_lyapunov and combine_starts).
 module gapbeam_attractor
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
@@ -43,9 +45,14 @@ module gapbeam_attractor
    use gapbeam_clock, only: thread_cpu_seconds
    use gapbeam_progress, only: monitor_t
    use gapbeam_exponent_pair, only: pair_t, pair_start, pair_period
+   use gapbeam_starts, only: uniform_numbers
    implicit none
    private
-   public :: point_diagnostics, diagnose, persistence, exponent_estimate
+   public :: point_diagnostics, diagnose, persistence, exponent_estimate, combine_starts
+
+   !> a further start of the exponent is displaced by this x its state's energy norm [-]
+   real(dp), parameter :: start_displacement = 1.0e-3_dp
+   integer, parameter :: stream_starts = 900000000   !! generator streams of those directions
 
    !> A monitor told the work of one phase shifted by the work of the phases before it.
    type, extends(monitor_t) :: shifted_monitor_t
@@ -123,7 +130,8 @@ contains
          end do
          if (present(monitor)) then
             call exponent(model, cfg, diag, res%u, res%v, pr, err, section, watch, ic)
-            watch%offset = watch%offset + 2.0_dp * real(pr%lyapunov_periods, dp)
+            watch%offset = watch%offset &
+                           + 2.0_dp * real(pr%lyapunov_periods + pr%lyapunov_lead, dp)
          else
             call exponent(model, cfg, diag, res%u, res%v, pr, err, section, cache=ic)
          end if
@@ -143,7 +151,7 @@ contains
          call run(more, u, v)
          if (allocated(err)) return
          run_steps = run_steps + int(res%steps_accepted)
-         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods + pr%lyapunov_lead
          added = added + cfg%record_periods
       end do
       ! still changing after every attempt: not settled
@@ -157,7 +165,7 @@ contains
       ! the repeat distance showed), while the distance shrinks and the budget lasts
       if (settled .and. pending > tol .and. diag%lyapunov_periods > 0 .and. &
           pr%lyapunov + diag%chaos_sigmas * pr%lyapunov_error < 0.0_dp) then
-         discarded = discarded + cfg%record_periods + pr%lyapunov_periods
+         discarded = discarded + cfg%record_periods + pr%lyapunov_periods + pr%lyapunov_lead
          rate = -pr%lyapunov * period
          u = pr%u_end;  v = pr%v_end
          do tries = 1, 8
@@ -231,7 +239,8 @@ contains
       integer :: k, n_rec, p
       logical :: settled
       found = 0
-      after = pr%transient_periods + cfg%record_periods + pr%lyapunov_periods
+      after = pr%transient_periods + cfg%record_periods + pr%lyapunov_periods &
+              + pr%lyapunov_lead
       if (n_periods <= 0 .or. .not. allocated(pr%u_end)) return
       tol = auto_period_tolerance(model, cfg, diag)
       c = cfg
@@ -352,6 +361,8 @@ contains
       pr%u_end = u;  pr%v_end = v
       pr%lyapunov = 0.0_dp;  pr%lyapunov_error = 0.0_dp
       pr%lyapunov_periods = 0;  pr%lyapunov_converged = 0
+      pr%lyapunov_dropped = 0;  pr%lyapunov_rerun = 0;  pr%lyapunov_starts = 0
+      pr%lyapunov_spread = 0.0_dp;  pr%lyapunov_lead = 0
       if (diag%lyapunov_periods > 0) then
          call largest_lyapunov(model, cfg, u, v, diag, lyap, pr%u_end, pr%v_end, err, &
                                pr%period, monitor, cache)
@@ -362,6 +373,9 @@ contains
          pr%lyapunov_running = lyap%running
          pr%lyapunov_periods = lyap%periods
          pr%lyapunov_converged = merge(1, 0, lyap%converged)
+         pr%lyapunov_dropped = lyap%discordant;  pr%lyapunov_rerun = lyap%retried
+         pr%lyapunov_starts = lyap%starts;  pr%lyapunov_spread = lyap%spread
+         pr%lyapunov_lead = lyap%lead
       else
          pr%lyapunov_running = [real(dp) ::]
       end if
@@ -433,7 +447,18 @@ contains
    end function lyapunov_budget
 
    !> Largest Lyapunov exponent from the state (u, v) at a period boundary, averaged until its
-   !> standard error meets the target of `diag` (or its most periods).
+   !> standard error meets the target of `diag` (or its most periods), from
+   !> `diag%lyapunov_starts` independent starts (see combine_starts). Start 1 is the state
+   !> given; start j > 1 begins where the reference of start j - 1 ended, displaced by
+   !> start_displacement of its energy norm in a seeded random direction and run alone until
+   !> the displacement has grown to the attractor's size (decorrelation_periods), so that the
+   !> starts are trajectories of their own, spread along the attractor. Each start averages
+   !> until its own sigma meets sqrt(K) x the target (K starts of N / K periods meet the
+   !> target of one start of N), at most max(lyapunov_periods, the budget / K) periods. Start
+   !> 1 probes: confidently stable (lambda + chaos_sigmas sigma < 0) after its first
+   !> lyapunov_periods, it is what one start would be, and when it ends so the others are
+   !> not run (displaced starts return to the same orbit, and its stretchings repeat, which
+   !> the batch means see whole); otherwise those periods are its lead-in.
    subroutine largest_lyapunov(model, cfg, u, v, diag, lyap, u_end, v_end, err, orbit_period, &
                                monitor, cache)
       type(model_t), intent(in) :: model               !! model
@@ -450,16 +475,12 @@ contains
       type(integrator_cache_t), intent(inout), optional, target :: cache
       type(integrator_cache_t), target :: own
       class(integrator_t), pointer :: integ
-      type(state_t) :: sa, sb
-      type(pair_t) :: pair
-      real(dp), allocatable :: ua(:), va(:), du(:), dv(:), logs(:), strain(:, :)
-      logical, allocatable :: counted(:)
-      real(dp) :: d0, d, period, x_norm, target, sigma, lambda
-      integer :: k, n, n_max, n_next, q, m
-      logical :: rings, confirming
+      type(lyapunov_t), allocatable :: part(:)
+      real(dp), allocatable :: ua(:), va(:), u1(:), v1(:)
+      real(dp) :: period, spread, done, rate
+      integer :: q, n_k, n_decor, j, n_starts, lead
 
       period = 2.0_dp * pi / model%omega
-      n_max = lyapunov_budget(diag)
       q = 1
       if (present(orbit_period)) q = max(1, orbit_period)
       if (present(cache)) then
@@ -468,6 +489,138 @@ contains
          call own%get(model, lyapunov_settings(model, cfg), integ, err)
       end if
       if (allocated(err)) return
+      n_starts = max(1, diag%lyapunov_starts)
+      spread = sqrt(real(n_starts, dp))
+      n_k = lyapunov_budget(diag)
+      if (n_starts > 1) n_k = max(diag%lyapunov_periods, n_k / n_starts)
+      allocate(part(n_starts))
+      done = 0.0_dp
+      lead = 0
+      call one_start(model, integ, u, v, diag, period, q, n_k, spread, lead, part(1), ua, va, &
+                     err, monitor, done, probe=n_starts > 1)
+      if (allocated(err)) return
+      done = done + 2.0_dp * real(lead + part(1)%periods, dp)
+      j = 1
+      n_decor = 0
+      if (part(1)%exponent + diag%chaos_sigmas * part(1)%uncertainty >= 0.0_dp) then
+         ! periods until a displacement of start_displacement has grown by 1 / itself twice
+         ! over at the first start's rate (or its sigma, when lambda is within its noise)
+         rate = max(part(1)%exponent, part(1)%uncertainty) * period
+         n_decor = 4 * diag%lyapunov_periods
+         if (rate > 0.0_dp) n_decor = min(n_decor, max(diag%lyapunov_periods, &
+            ceiling(2.0_dp * log(1.0_dp / start_displacement) / rate)))
+         do j = 2, n_starts
+            u1 = ua;  v1 = va
+            call displace_start(model, diag%random_seed, j, u1, v1)
+            call one_start(model, integ, u1, v1, diag, period, q, n_k, spread, n_decor, &
+                           part(j), ua, va, err, monitor, done)
+            if (allocated(err)) return
+            done = done + 2.0_dp * real(n_decor + part(j)%periods, dp)
+         end do
+         j = n_starts
+      end if
+      call combine_starts(part(1:j), period, lyap)
+      lyap%lead = lead + (j - 1) * n_decor
+      lyap%converged = lyap%uncertainty <= max(diag%lyapunov_abs_error, &
+                                               diag%lyapunov_rel_error * abs(lyap%exponent))
+      if (j == 1) lyap%converged = part(1)%converged
+      u_end = ua;  v_end = va
+   end subroutine largest_lyapunov
+
+   !> The starts' exponents combined: lambda their mean weighted by their periods (the mean
+   !> stretching over all of them); sigma the larger of the standard error from their spread
+   !> (sum n_j (lambda_j - lambda)^2 / ((K - 1) sum n_j): the starts as independent estimates
+   !> whose variances go as 1 / n_j) and the one from their own sigmas (sqrt(sum (n_j
+   !> sigma_j)^2) / sum n_j). The running estimate, the sections and the counts run over the
+   !> starts in order.
+   subroutine combine_starts(part, period, lyap)
+      type(lyapunov_t), intent(in) :: part(:)    !! the starts
+      real(dp), intent(in) :: period             !! forcing period [s]
+      type(lyapunov_t), intent(out) :: lyap      !! combined
+      real(dp), allocatable :: w(:)
+      real(dp) :: within, total
+      integer :: j, n, k
+      if (size(part) == 1) then
+         lyap = part(1)
+         return
+      end if
+      w = real(part%periods, dp)
+      total = sum(w)
+      lyap%starts = size(part)
+      lyap%exponent = sum(w * part%exponent) / total
+      lyap%spread = sqrt(sum(w * (part%exponent - lyap%exponent)**2) &
+                         / (real(size(part) - 1, dp) * total))
+      within = sqrt(sum((w * part%uncertainty)**2)) / total
+      lyap%uncertainty = max(lyap%spread, within)
+      lyap%periods = sum(part%periods)
+      lyap%discordant = sum(part%discordant)
+      lyap%retried = sum(part%retried)
+      allocate(lyap%running(lyap%periods), lyap%section(2, lyap%periods))
+      ! the running estimate over the starts in order: their running sums joined
+      total = 0.0_dp
+      n = 0
+      do j = 1, size(part)
+         do k = 1, part(j)%periods
+            lyap%section(:, n + k) = part(j)%section(:, k)
+            lyap%running(n + k) = (total + part(j)%running(k) * real(k, dp) * period) &
+                                  / (real(n + k, dp) * period)
+         end do
+         n = n + part(j)%periods
+         total = total + part(j)%running(part(j)%periods) * real(part(j)%periods, dp) * period
+      end do
+   end subroutine combine_starts
+
+   !> The state (u, v) displaced by start_displacement of its energy norm in the seeded
+   !> random direction of start j (u and v uniform in [-1, 1), scaled).
+   subroutine displace_start(model, seed, j, u, v)
+      type(model_t), intent(in) :: model               !! model
+      integer, intent(in) :: seed                      !! &diagnostics random_seed
+      integer, intent(in) :: j                         !! the start
+      real(dp), intent(inout) :: u(:), v(:)            !! state
+      real(dp), allocatable :: du(:), dv(:)
+      real(dp) :: x, d
+      du = uniform_numbers(seed, stream_starts + 2 * j, size(u))
+      dv = uniform_numbers(seed, stream_starts + 2 * j + 1, size(v))
+      x = energy_norm(model, u, v)
+      d = energy_norm(model, du, dv)
+      if (x > 0.0_dp .and. d > 0.0_dp) then
+         u = u + du * (start_displacement * x / d);  v = v + dv * (start_displacement * x / d)
+      end if
+   end subroutine displace_start
+
+   !> One start of the exponent from (u, v): Benettin's pair averaged until sigma meets
+   !> `spread` x the target (the target itself while the estimate is confidently stable), at
+   !> most n_max periods, then the record doubled (module header); its first `lead` periods
+   !> are run but not averaged. A `probe` (the first of several starts) decides its lead-in
+   !> after its first lyapunov_periods: confidently stable there, it goes on as a single start
+   !> would (no lead-in, the target itself: a stable orbit gets what one start gives it);
+   !> otherwise those periods become its lead-in (`lead` returned). (ua, va): the reference
+   !> state at the end. The monitor is told done + 2k after period k.
+   subroutine one_start(model, integ, u, v, diag, period, q, n_max, spread, lead, lyap, ua, &
+                        va, err, monitor, done, probe)
+      type(model_t), intent(in) :: model               !! model
+      class(integrator_t), intent(inout) :: integ      !! the exponent's integrator
+      real(dp), intent(in) :: u(:), v(:)               !! state on the attractor
+      type(diagnostics_settings_t), intent(in) :: diag !! periods, targets, perturbation
+      real(dp), intent(in) :: period                   !! forcing period [s]
+      integer, intent(in) :: q                         !! orbit period (1: none)
+      integer, intent(in) :: n_max                     !! most periods
+      real(dp), intent(in) :: spread                   !! target factor (sqrt of the starts)
+      integer, intent(inout) :: lead                   !! periods run first, not averaged
+      type(lyapunov_t), intent(out) :: lyap            !! result of this start
+      real(dp), allocatable, intent(out) :: ua(:), va(:)   !! reference state at the end
+      type(error_t), allocatable, intent(out) :: err   !! solver failure
+      class(monitor_t), intent(inout), optional :: monitor   !! told done + 2k
+      real(dp), intent(in) :: done                     !! work before this start
+      logical, intent(in), optional :: probe           !! decide the lead-in (above)
+      type(state_t) :: sa, sb
+      type(pair_t) :: pair
+      real(dp), allocatable :: du(:), dv(:), logs(:), strain(:, :)
+      logical, allocatable :: counted(:)
+      real(dp) :: d0, d, x_norm, target, sigma, lambda, scale
+      integer :: k, n, n_next, m, room
+      logical :: rings, confirming, deciding
+
       x_norm = energy_norm(model, u, v)
       if (x_norm == 0.0_dp) x_norm = 1.0_dp
       d0 = diag%lyapunov_perturbation * x_norm
@@ -478,51 +631,64 @@ contains
          du = 1.0_dp;  dv = 0.0_dp;  d = energy_norm(model, du, dv)
       end if
       ua = u;  va = v
-      allocate(logs(n_max), strain(2, n_max))
-      allocate(counted(n_max), source=.true.)
+      room = lead + n_max
+      deciding = .false.
+      if (present(probe)) deciding = probe
+      if (deciding) room = diag%lyapunov_periods + n_max
+      scale = spread
+      allocate(logs(room), strain(2, room))
+      allocate(counted(room), source=.true.)
       ! ring supports: whole states carried from period to period (gapbeam_exponent_pair)
       rings = model%n_rings > 0
       if (rings) call pair_start(model, u, v, d0, pair)
       k = 0
       confirming = .false.
-      n = diag%lyapunov_periods
+      n = min(diag%lyapunov_periods, n_max)
       do
-         do while (k < n)
+         do while (k < lead + n)
             k = k + 1
             if (rings) then
                call pair_period(model, integ, period, pair, logs(k), counted(k), err)
                if (allocated(err)) return
                ua = pair%a%u;  va = pair%a%v
-               strain(1, k) = dot_product(model%sys%strain_row, ua)
-               strain(2, k) = dot_product(model%sys%strain_row, va)
-               if (present(monitor)) call monitor%update(real(2 * k, dp))
-               cycle
+            else
+               ! both start each period in equilibrium, so that the acceleration the methods
+               ! carry is the same function of (u, v) in both: the map compared is that of (u, v)
+               call start_state(model, 0.0_dp, ua, va, sa)
+               call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
+               call integ%advance(sa, period, err=err);  if (allocated(err)) return
+               call integ%advance(sb, period, err=err);  if (allocated(err)) return
+               ua = sa%u;  va = sa%v
+               du = sb%u - ua;  dv = sb%v - va
+               d = energy_norm(model, du, dv)
+               if (d == 0.0_dp) then
+                  logs(k) = log(tiny(1.0_dp))
+                  du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
+               else
+                  logs(k) = log(d / d0)
+               end if
             end if
-            ! both start each period in equilibrium, so that the acceleration the methods carry
-            ! is the same function of (u, v) in both: the map compared is that of (u, v)
-            call start_state(model, 0.0_dp, ua, va, sa)
-            call start_state(model, 0.0_dp, ua + du * (d0 / d), va + dv * (d0 / d), sb)
-            call integ%advance(sa, period, err=err);  if (allocated(err)) return
-            call integ%advance(sb, period, err=err);  if (allocated(err)) return
-            ua = sa%u;  va = sa%v
             strain(1, k) = dot_product(model%sys%strain_row, ua)
             strain(2, k) = dot_product(model%sys%strain_row, va)
-            du = sb%u - ua;  dv = sb%v - va
-            d = energy_norm(model, du, dv)
-            if (d == 0.0_dp) then
-               logs(k) = log(tiny(1.0_dp))
-               du = ua;  dv = va;  d = max(energy_norm(model, du, dv), tiny(1.0_dp))
-            else
-               logs(k) = log(d / d0)
-            end if
-            if (present(monitor)) call monitor%update(real(2 * k, dp))
+            if (present(monitor)) call monitor%update(done + real(2 * k, dp))
          end do
-         call exponent_estimate(pack(logs(1:n), counted(1:n)), period, q, lambda, sigma)
+         call exponent_estimate(pack(logs(lead + 1:lead + n), counted(lead + 1:lead + n)), &
+                                period, q, lambda, sigma)
+         if (deciding) then
+            deciding = .false.
+            if (lambda + diag%chaos_sigmas * sigma < 0.0_dp) then
+               scale = 1.0_dp
+            else
+               lead = k
+               cycle
+            end if
+         end if
          if (confirming) exit
          target = max(diag%lyapunov_abs_error, diag%lyapunov_rel_error * abs(lambda))
          lyap%converged = sigma <= target
+         if (.not. (lambda + diag%chaos_sigmas * sigma < 0.0_dp)) target = scale * target
          if (n >= n_max) exit
-         if (lyap%converged) then
+         if (sigma <= target) then
             ! the target met: the record doubled and lambda, sigma taken from the whole of it,
             ! so that a stop on a lucky low sigma (or a high lambda, whose target is larger)
             ! is only half of what is reported
@@ -543,22 +709,21 @@ contains
          n = n_next
       end do
       lyap%periods = n
-      lyap%section = strain(:, 1:n)
+      lyap%section = strain(:, lead + 1:lead + n)
       lyap%uncertainty = sigma
-      lyap%discordant = count(.not. counted(1:n))
+      lyap%discordant = count(.not. counted(1:lead + n))
       lyap%retried = pair%retried
       allocate(lyap%running(n))
       d = 0.0_dp
       m = 0
       do k = 1, n
-         if (counted(k)) then
-            d = d + logs(k);  m = m + 1
+         if (counted(lead + k)) then
+            d = d + logs(lead + k);  m = m + 1
          end if
          lyap%running(k) = d / (real(max(m, 1), dp) * period)
       end do
       lyap%exponent = lambda
-      u_end = ua;  v_end = va
-   end subroutine largest_lyapunov
+   end subroutine one_start
 
    !> The settings of the two trajectories: the method that runs (method 'auto' resolved
    !> first, so that a deck whose 'auto' is the exact integrator gets the exact exponent and

@@ -358,6 +358,9 @@ contains
          end if
          lyap = d%lyapunov_max_periods
          if (lyap == 0) lyap = 20_int64 * d%lyapunov_periods
+         ! independent starts: each at least lyapunov_periods, with a lead-in of up to 4 x
+         if (d%lyapunov_starts > 1) lyap = max(lyap, int(d%lyapunov_starts, int64) &
+            * d%lyapunov_periods) + 4_int64 * d%lyapunov_starts * d%lyapunov_periods
          total = 2_int64 * budget + 17_int64 * s%record_periods + 9_int64 * lyap
          if (total > max_run_periods) then
             call fatal_error(err, 'group &solver: transient_periods = ' &

@@ -251,6 +251,9 @@ contains
          meaning='... or when sigma <= this')
       call v%real('lyapunov_perturbation', d%lyapunov_perturbation, '1', lo=1.0e-14_dp, &
          hi=1.0e-2_dp, meaning='separation of the perturbed trajectory / state norm')
+      call v%int('lyapunov_starts', d%lyapunov_starts, lo=1, hi=64, meaning='independent ' &
+         // 'starts of the exponent, combined: lambda their mean, sigma from their spread ' &
+         // 'and their own (1: one trajectory; not run on a confidently stable orbit)')
       call v%real('chaos_sigmas', d%chaos_sigmas, '1', lo=0.0_dp, hi=100.0_dp, &
          meaning='chaotic: lambda > 0 and lambda > chaos_sigmas x sigma')
       call v%int('settle_windows', d%settle_windows, lo=2, hi=100, zero=.true., &

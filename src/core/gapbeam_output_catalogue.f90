@@ -387,6 +387,16 @@ module gapbeam_output_catalogue
                 // 'Lyapunov exponent'), &
       dataset_t('/diagnostics/lyapunov_converged', '1', '', '1: sigma met its target, 0: ' &
                 // 'stopped at the most periods'), &
+      dataset_t('/diagnostics/lyapunov_dropped', '1', '', 'periods of the exponent''s pair ' &
+                // 'not counted: their two step sequences differed from every side tried ' &
+                // '(ring supports)'), &
+      dataset_t('/diagnostics/lyapunov_rerun', '1', '', 'periods of the exponent''s pair ' &
+                // 'run again from the other side: their step sequences differed (ring ' &
+                // 'supports)'), &
+      dataset_t('/diagnostics/lyapunov_starts', '1', '', 'independent starts combined in the ' &
+                // 'exponent (0: no exponent)'), &
+      dataset_t('/diagnostics/lyapunov_spread', 's-1', '', 'standard error of the exponent ' &
+                // 'from the spread of its starts (0: one start)'), &
       dataset_t('/diagnostics/period_max_tested', '1', '', 'periods 1..this were tried for a ' &
                 // 'period'), &
       dataset_t('/diagnostics/period_tolerance', '1', '', 'period tolerance used' // rel), &
@@ -585,6 +595,14 @@ module gapbeam_output_catalogue
                 // 'Lyapunov exponent'), &
       dataset_t('/sweep/lyapunov_converged', '1', 'm', 'exponent converged: 1 sigma met its ' &
                 // 'target, 0 stopped at the most periods'), &
+      dataset_t('/sweep/lyapunov_dropped', '1', 'm', 'periods of the exponent''s pair not ' &
+                // 'counted: their step sequences differed from every side tried'), &
+      dataset_t('/sweep/lyapunov_rerun', '1', 'm', 'periods of the exponent''s pair run ' &
+                // 'again from the other side'), &
+      dataset_t('/sweep/lyapunov_starts', '1', 'm', 'independent starts combined in the ' &
+                // 'exponent (0: none)'), &
+      dataset_t('/sweep/lyapunov_spread', 's-1', 'm', 'standard error of the exponent from ' &
+                // 'the spread of its starts (0: one start)'), &
       dataset_t('/sweep/period_max_tested', '1', 'm', 'periods 1..this were tried for a ' &
                 // 'period'), &
       dataset_t('/sweep/closest_period', '1', 'm', 'best-repeating candidate period in ' &

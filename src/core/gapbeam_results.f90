@@ -112,6 +112,10 @@ module gapbeam_results
       !> error control; gapbeam_exponent_pair)
       integer :: discordant = 0
       integer :: retried = 0                     !! periods run again from the other side
+      integer :: starts = 1                      !! independent starts combined [-]
+      integer :: lead = 0                        !! periods run but not averaged (lead-ins)
+      !> standard error from the spread of the starts' exponents (0: one start) [1/s]
+      real(dp) :: spread = 0.0_dp
       !> root strain [-] and its rate [1/s] of the reference trajectory at the end of each
       !> period (forcing phase 0): (2, periods)
       real(dp), allocatable :: section(:, :)
@@ -145,6 +149,11 @@ module gapbeam_results
       character(len=:), allocatable :: method        !! the method that ran (resolved)
       integer :: lyapunov_periods = 0                !! periods averaged for lambda [-]
       integer :: lyapunov_converged = 0              !! 1: sigma met its target, 0: stopped at max
+      integer :: lyapunov_dropped = 0                !! periods not counted (step sequences differ)
+      integer :: lyapunov_rerun = 0                  !! periods run again from the other side
+      integer :: lyapunov_starts = 0                 !! independent starts combined (0: none)
+      real(dp) :: lyapunov_spread = 0.0_dp           !! sigma from the starts' spread [1/s]
+      integer :: lyapunov_lead = 0                   !! its periods run, not averaged [-]
       integer :: period_max_tested = 0               !! periods 1..this were tried [-]
       real(dp) :: period_tolerance = 0.0_dp          !! repeat tolerance used [-]
       integer :: closest_period = 0                  !! the period that repeats best [-]

@@ -155,6 +155,10 @@ module gapbeam_settings
       real(dp) :: lyapunov_rel_error = 0.1_dp     !! stop when sigma <= this x |lambda| [-]
       real(dp) :: lyapunov_abs_error = 0.05_dp    !! ... or when sigma <= this [1/s]
       real(dp) :: lyapunov_perturbation = 1.0e-7_dp  !! initial separation / state norm [-]
+      !> independent starts of the exponent (1: one trajectory): each further start begins
+      !> where the previous one's reference ended, displaced and run alone until it has
+      !> diverged; lambda and sigma combine the starts (not run on a confidently stable orbit)
+      integer  :: lyapunov_starts = 1
       real(dp) :: chaos_sigmas = 3.0_dp           !! chaotic: lambda > chaos_sigmas * uncertainty
       integer  :: settle_windows = 2              !! windows of the record compared (0: no test)
       real(dp) :: settle_tolerance = 0.1_dp       !! window statistics agree within this [-]

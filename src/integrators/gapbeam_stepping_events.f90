@@ -84,6 +84,10 @@ contains
             call ring_state_at(md, s0, s1, r, h, 0.0_dp, act0, val0)
             ! opened at a located release, whatever force the law leaves there
             if (s0%mode(r) == ring_open .and. s0%fn(r) <= 0.0_dp) act0 = .false.
+            ! closed at a located onset, whatever the round-off of the penetration there (a
+            ! hair outside would read as an onset at the step's start, which hides every
+            ! later switch of the step: the stick that a damper's force starts ends in it)
+            if (s0%mode(r) /= ring_open .and. s0%fn(r) > 0.0_dp) act0 = .true.
             do m = 1, n_sample
                hi = real(m, dp) / n_sample
                if (hi >= th) exit

@@ -12,8 +12,12 @@
 !>   the node in contact (t.x' for a ring, the other plane's translation for a flat stop of a
 !>   two-plane model);
 !> * sliding distance: the friction slider's travel over the slip pieces, sigma (tau_a(tb) -
-!>   tau_a(ta)) at the contact radius (exact; the stick spring's stretch, at most mu f_n / k_t,
-!>   is not sliding), or int |v_t| dt over the contact time for a support without friction;
+!>   tau_a(ta)) on a flat stop (exact; the stick spring's stretch, at most mu f_n / k_t, is not
+!>   sliding); on a circle at the contact radius rho = g + d, sigma int (rho / g) dtau_a, by
+!>   parts (rho_b / g) (tau_a(tb) - tau_a(ta)) less the quadrature of (tau_a - tau_a(ta)) d' / g
+!>   (the radius changes with the penetration: the mean of its end values was a second-order
+!>   error per piece, which the long steps of rk45 showed); or int |v_t| dt over the contact
+!>   time for a support without friction;
 !> * friction work over a slip piece: int -f_t v_t dt - (E_t(tb) - E_t(ta)) (the work into the
 !>   Jenkins element less the change of its spring energy); nothing in stick;
 !> * wear volume rate = wear_coefficient W_N (Archard with the work-rate form of tube-wear
@@ -159,11 +163,12 @@ contains
       real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
-      real(dp) :: rho_a(self%model%n_rings), rho_b(self%model%n_rings), fq(self%model%n_rings, 3)
+      real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings), tin(self%model%n_rings)
+      real(dp) :: fq(self%model%n_rings, 3)
       integer :: q, r, k, e
       associate (m => self%model)
          h = p%tb - p%ta
-         pw = 0.0_dp
+         pw = 0.0_dp;  sq = 0.0_dp;  tin = 0.0_dp
          ! the ends: stick-spring energy (its change is not dissipated)
          do e = 1, 2
             t = merge(p%ta, p%tb, e == 1)
@@ -176,16 +181,13 @@ contains
                   ea(r) = 0.0_dp
                   if (m%r_mu(r) > 0.0_dp) ea(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
                   ta_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
-                  rho_a(r) = m%r_gap(r) + d
                else
                   eb(r) = 0.0_dp
                   if (m%r_mu(r) > 0.0_dp) eb(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
                   tb_a(r) = ring_anchor_of(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd)
                   rho_b(r) = m%r_gap(r) + d
                end if
-               if (.not. m%r_circular(r)) then      ! flat: no radius, the factor is 1
-                  rho_a(r) = 1.0_dp;  rho_b(r) = 1.0_dp
-               end if
+               if (.not. m%r_circular(r)) rho_b(r) = 1.0_dp   ! flat: no radius, the factor is 1
             end do
          end do
          do q = 1, 3
@@ -199,11 +201,17 @@ contains
                fq(r, q) = fn
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
+               ! the slider's travel at the contact radius rho, int rho dtau_a, by parts:
+               ! rho_b (tau_a(tb) - tau_a(ta)) - int (tau_a - tau_a(ta)) rho' dt (rho' = d')
+               if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp .and. m%r_circular(r)) &
+                  sq(r) = sq(r) + wq * ring_tangent_gap(m, r, ring_anchor_of(m, r, p%r_mode(r), &
+                          p%r_sigma(r), p%r_anchor(r), x, xd), ta_a(r)) * dn
                if (self%energy .and. d > 0.0_dp) then
                   fe = m%laws(m%r_law(r))%law%elastic(m%r_k(r), m%r_c(r), m%r_p(r), d)
                   if (fn /= fe) self%e_damp = self%e_damp + wq * (fn - fe) * dn
                end if
                if (fn <= 0.0_dp) cycle
+               tin(r) = tin(r) + wq
                acc_f(k) = acc_f(k) + wq * fn
                acc_f2(k) = acc_f2(k) + wq * fn**2
                acc_work(k) = acc_work(k) + wq * fn * abs(dn)
@@ -217,13 +225,11 @@ contains
          end do
          do r = 1, m%n_rings
             k = m%r_stop(r)
-            if (p%fn_a(r) > 0.0_dp .and. p%fn_b(r) > 0.0_dp) then
-               tc = h
-            else if (p%fn_a(r) > 0.0_dp .or. p%fn_b(r) > 0.0_dp) then
-               tc = 0.5_dp * h
-            else
-               tc = 0.0_dp
-            end if
+            ! the contact time: the quadrature of the contact's indicator (pieces end at
+            ! located onsets and releases, so a piece is in contact at all its points or none;
+            ! the mean of the ends' counted half of a piece that ends at a release, whose
+            ! normal force is zero on the right)
+            tc = tin(r)
             acc_contact(k) = acc_contact(k) + tc
             self%contact(k) = self%contact(k) + tc
             if (p%r_mode(r) /= ring_slip .and. m%r_mu(r) > 0.0_dp) &
@@ -237,11 +243,9 @@ contains
                ! its share without mu: slip only, the stick spring's motion is not wear
                self%fric(k) = self%fric(k) + pw(r) - (eb(r) - ea(r))
                self%wn(k) = self%wn(k) + (pw(r) - (eb(r) - ea(r))) / m%r_mu(r)
-               ! the slider's travel, at the contact radius
-               tc = 1.0_dp
-               if (m%r_circular(r)) tc = 0.5_dp * (rho_a(r) + rho_b(r)) / m%r_gap(r)
-               self%slide(k) = self%slide(k) + p%r_sigma(r) * ring_tangent_gap(m, r, tb_a(r), &
-                  ta_a(r)) * tc
+               ! the slider's travel, at the contact radius (rho = 1: flat)
+               self%slide(k) = self%slide(k) + p%r_sigma(r) * (rho_b(r) * ring_tangent_gap(m, &
+                  r, tb_a(r), ta_a(r)) - sq(r)) / merge(m%r_gap(r), 1.0_dp, m%r_circular(r))
             end if
          end do
       end associate

@@ -4,7 +4,7 @@
 !>
 !> A record holds one slot of the sweep (a point's start, gapbeam_sweep), indexed by slot.
 !>
-!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-5', the deck
+!> File layout (stream access, native byte order): the text 'GAPBEAM-CHECKPOINT-6', the deck
 !> hash (int64: CRC-32 of the signature), the signature length (int64) and the signature (the
 !> effective deck text and the shard), then records: begin mark (int32), point index (int32),
 !> payload length m (int32), m reals (pack_point), checksum (int64), end mark (int32). The
@@ -34,16 +34,18 @@ module gapbeam_checkpoint
    private
    public :: checkpoint_t, checkpoint_open, checkpoint_append, checkpoint_close
 
-   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-5'
+   character(len=*), parameter :: magic = 'GAPBEAM-CHECKPOINT-6'
    character(len=*), parameter :: magic_1 = 'GAPBEAM-CHECKPOINT-1'   ! older formats: refused
    character(len=*), parameter :: magic_2 = 'GAPBEAM-CHECKPOINT-2'
    character(len=*), parameter :: magic_3 = 'GAPBEAM-CHECKPOINT-3'
    character(len=*), parameter :: magic_4 = 'GAPBEAM-CHECKPOINT-4'
+   character(len=*), parameter :: magic_5 = 'GAPBEAM-CHECKPOINT-5'
    !> What each older format lacks, for the message that refuses it.
-   character(len=*), parameter :: older(4) = [character(len=60) :: 'without checksums', &
+   character(len=*), parameter :: older(5) = [character(len=60) :: 'without checksums', &
       'without the evidence and certificates of the labels', &
       'without the wear outputs of the supports', &
-      'whose record checksums do not cover the deck']
+      'whose record checksums do not cover the deck', &
+      'without the starts and the rerun periods of the exponents']
    integer(int32), parameter :: mark_begin = 1296253778_int32   ! 'RECM' in ASCII
    integer(int32), parameter :: mark_end = 1145980242_int32     ! 'REND'
    integer(int64), parameter :: record_overhead = 24_int64      ! bytes of a record besides its reals
@@ -102,7 +104,7 @@ contains
       inquire(unit=ck%unit, size=fsize)
       head = ''
       read(ck%unit, pos=1, iostat=ios) head, hash, sig_len
-      k = findloc([magic_1, magic_2, magic_3, magic_4], head, dim=1)
+      k = findloc([magic_1, magic_2, magic_3, magic_4, magic_5], head, dim=1)
       if (k > 0) then
          call refuse(ck, 'was written by an older gapbeam, ' // trim(older(k)) // ': remove ' &
             // 'it (its points are then computed again)', err)
@@ -513,8 +515,9 @@ contains
            pr%accuracy_lyapunov, pr%accuracy_lyapunov_error, pr%accuracy_distance, &
            real(pr%perturbed_label, dp), pr%perturbed_lyapunov, pr%perturbed_lyapunov_error, &
            pr%perturbed_distance, pr%seconds_certify, pr%x, pr%y, pr%f1_open_hz, &
-           text_reals(pr%method), text_reals(pr%certificate_reason), &
-           text_reals(pr%accuracy_method), &
+           real(pr%lyapunov_dropped, dp), real(pr%lyapunov_rerun, dp), &
+           real(pr%lyapunov_starts, dp), pr%lyapunov_spread, text_reals(pr%method), &
+           text_reals(pr%certificate_reason), text_reals(pr%accuracy_method), &
            real(size(array_field(pr, 7)), dp), (array_field(pr, k), k = 7, 10)]
       ! statistics over draws (when the point has them): draws, items, outputs, mean, ci
       if (pr%n_draws > 0) x = [x, real(pr%n_draws, dp), real(size(pr%draw_mean, 1), dp), &
@@ -540,7 +543,7 @@ contains
       type(point_result_t), intent(out) :: pr     !! the point
       logical, intent(out) :: ok                  !! record well formed
       integer :: k, m, ns, nr, n, nd, ni, no, j
-      integer, parameter :: n_scalars = 26
+      integer, parameter :: n_scalars = 30
       real(dp) :: s(n_scalars)
       ok = .false.
       if (size(x) < 9) return
@@ -577,6 +580,8 @@ contains
       pr%perturbed_lyapunov = s(20);  pr%perturbed_lyapunov_error = s(21)
       pr%perturbed_distance = s(22);  pr%seconds_certify = s(23)
       pr%x = s(24);  pr%y = s(25);  pr%f1_open_hz = s(26)
+      pr%lyapunov_dropped = nint(s(27));  pr%lyapunov_rerun = nint(s(28))
+      pr%lyapunov_starts = nint(s(29));  pr%lyapunov_spread = s(30)
       call take_text(x, k, pr%method, ok);  if (.not. ok) return
       call take_text(x, k, pr%certificate_reason, ok);  if (.not. ok) return
       call take_text(x, k, pr%accuracy_method, ok);  if (.not. ok) return

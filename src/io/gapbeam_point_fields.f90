@@ -14,17 +14,17 @@ module gapbeam_point_fields
       array_late, array_field, set_array_field
 
    !> Integer fields per point (see point_result_t), /sweep/<name> and /diagnostics/<name>.
-   character(len=*), parameter :: int_names(14) = [character(len=20) :: 'period', 'label', &
+   character(len=*), parameter :: int_names(17) = [character(len=20) :: 'period', 'label', &
       'status', 'certificate', 'lyapunov_periods', 'lyapunov_converged', 'period_max_tested', &
       'closest_period', 'transient_periods', 'settle_windows', 'settled', 'accuracy_label', &
-      'perturbed_label', 'n_attractors']
+      'perturbed_label', 'n_attractors', 'lyapunov_dropped', 'lyapunov_rerun', 'lyapunov_starts']
    !> Real fields per point, /sweep/<name> and /diagnostics/<name>.
-   character(len=*), parameter :: real_names(18) = [character(len=24) :: 'lyapunov', &
+   character(len=*), parameter :: real_names(19) = [character(len=24) :: 'lyapunov', &
       'lyapunov_error', 'seconds', 'steps', 'f1_open_hz', 'period_tolerance', &
       'repeat_distance', 'window_difference', 'strain_range', 'strain_rate_range', &
       'seconds_label', 'seconds_certify', 'accuracy_lyapunov', 'accuracy_lyapunov_error', &
       'accuracy_distance', 'perturbed_lyapunov', 'perturbed_lyapunov_error', &
-      'perturbed_distance']
+      'perturbed_distance', 'lyapunov_spread']
    !> Texts per point, /sweep/<name> and /diagnostics/<name>.
    character(len=*), parameter :: text_names(4) = [character(len=20) :: 'method', &
       'certificate_reason', 'accuracy_method', 'message']
@@ -57,7 +57,8 @@ contains
       v = [pr%period, pr%label, pr%status, pr%certificate, pr%lyapunov_periods, &
            pr%lyapunov_converged, pr%period_max_tested, pr%closest_period, &
            pr%transient_periods, pr%settle_windows, pr%settled, pr%accuracy_label, &
-           pr%perturbed_label, pr%n_attractors]
+           pr%perturbed_label, pr%n_attractors, pr%lyapunov_dropped, pr%lyapunov_rerun, &
+           pr%lyapunov_starts]
    end function int_fields
 
    !> Set the integer fields of a point (int_names order).
@@ -68,7 +69,8 @@ contains
       pr%lyapunov_periods = v(5);  pr%lyapunov_converged = v(6)
       pr%period_max_tested = v(7);  pr%closest_period = v(8);  pr%transient_periods = v(9)
       pr%settle_windows = v(10);  pr%settled = v(11);  pr%accuracy_label = v(12)
-      pr%perturbed_label = v(13);  pr%n_attractors = v(14)
+      pr%perturbed_label = v(13);  pr%n_attractors = v(14);  pr%lyapunov_dropped = v(15)
+      pr%lyapunov_rerun = v(16);  pr%lyapunov_starts = v(17)
    end subroutine set_int_fields
 
    !> The real fields of a point, in the order of real_names.
@@ -79,7 +81,7 @@ contains
            pr%period_tolerance, pr%repeat_distance, pr%window_difference, pr%strain_range, &
            pr%strain_rate_range, pr%seconds_label, pr%seconds_certify, pr%accuracy_lyapunov, &
            pr%accuracy_lyapunov_error, pr%accuracy_distance, pr%perturbed_lyapunov, &
-           pr%perturbed_lyapunov_error, pr%perturbed_distance]
+           pr%perturbed_lyapunov_error, pr%perturbed_distance, pr%lyapunov_spread]
    end function real_fields
 
    !> Set the real fields of a point (real_names order).
@@ -93,6 +95,7 @@ contains
       pr%accuracy_lyapunov = v(13);  pr%accuracy_lyapunov_error = v(14)
       pr%accuracy_distance = v(15);  pr%perturbed_lyapunov = v(16)
       pr%perturbed_lyapunov_error = v(17);  pr%perturbed_distance = v(18)
+      pr%lyapunov_spread = v(19)
    end subroutine set_real_fields
 
    !> Text field j (text_names) of a point ('' when unset).

@@ -468,12 +468,15 @@ contains
       n = size(sf%points)
       aligned = size(xv) == n .and. size(yv) == n
       allocate(iv(n, size(int_names)), rv(n, size(real_names)))
+      iv = 0;  rv = 0.0_dp   ! fields added later are zero in files written before them
       do k = 1, size(int_names)
+         if (.not. h5%exists('/sweep/' // trim(int_names(k)))) cycle
          call h5%read('/sweep/' // trim(int_names(k)), ione)
          aligned = aligned .and. size(ione) == n
          if (aligned) iv(:, k) = ione
       end do
       do k = 1, size(real_names)
+         if (.not. h5%exists('/sweep/' // trim(real_names(k)))) cycle
          call h5%read('/sweep/' // trim(real_names(k)), one)
          aligned = aligned .and. size(one) == n
          if (aligned) rv(:, k) = one

@@ -397,6 +397,12 @@ contains
             // ' periods)'
          lambda = 'lambda ' // trim(merge('met its target     ', 'stopped at its most', &
             diag%lyapunov_converged == 1)) // ' (' // str(diag%lyapunov_periods) // ' periods)'
+         if (diag%lyapunov_starts > 1) lambda = lambda // ' from ' &
+            // str(diag%lyapunov_starts) // ' independent starts (their spread: sigma ' &
+            // str(diag%lyapunov_spread) // ' 1/s)'
+         if (diag%lyapunov_rerun + diag%lyapunov_dropped > 0) lambda = lambda // ', ' &
+            // str(diag%lyapunov_rerun) // ' periods rerun and ' // str(diag%lyapunov_dropped) &
+            // ' dropped (the pair''s step sequences differed)'
       end if
       write(output_unit, '(a)') 'evidence: periods 1..' // str(diag%period_max_tested) &
          // ' tried at tolerance ' // str(diag%period_tolerance) // ' (closest: period ' &

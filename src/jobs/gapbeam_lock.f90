@@ -17,6 +17,10 @@
 !> another host, may hold) the lock; any other failure (permission, a full disk, a name too
 !> long) is an error of this run, reported with the system's reason in words.
 !>
+!> A run creates the file, takes the `flock`, then writes its line: a newcomer refused in
+!> between reads the holder once the line is there (`holder_record`), so that the message
+!> names it.
+!>
 !> After the `flock` the file is checked to still be the one under PREFIX.lock (a run that
 !> ends deletes it, and a newcomer may hold the deleted file): if not, the lock is taken again.
 !> Linux values of the C constants (`O_*`, `LOCK_*`, `errno`) are used.
@@ -103,6 +107,13 @@ module gapbeam_lock
          integer(c_int) :: status
       end function c_fsync
 
+      !> POSIX `usleep`: pause for `microseconds` (less than a second); 0 on success.
+      function c_usleep(microseconds) bind(c, name='usleep') result(status)
+         import :: c_int
+         integer(c_int), value, intent(in) :: microseconds
+         integer(c_int) :: status
+      end function c_usleep
+
       !> POSIX `kill`; signal 0 only tests whether the process exists.
       function c_kill(pid, sig) bind(c, name='kill') result(status)
          import :: c_int
@@ -155,6 +166,8 @@ contains
          if (.not. have_flock) then
             code = errno()
             if (code == e_again) then
+               before = holder_record(fd)     ! as the holder writes it after its flock
+               call parse_holder(before, holder_pid, holder_host)
                code = c_close(fd)
                lock%busy = .true.
                call fatal_error(err, 'output ' // q(trim(prefix)) // ' is in use by another ' &
@@ -220,6 +233,27 @@ contains
       lock%fd = -1
    end subroutine release_lock
 
+   !> Content of the lock file `fd` whose lock another run holds, read once the holder has
+   !> named itself in it: a run that has just created the file holds its `flock` a moment
+   !> before it writes its line (up to wait_ms, then what the file holds: a file written by
+   !> something else, or a holder that stopped between the two, gives 'holder unknown').
+   function holder_record(fd) result(text)
+      integer(c_int), intent(in) :: fd                 !! open lock file, held by another run
+      character(len=:), allocatable :: text
+      integer, parameter :: wait_ms = 2000, pause_ms = 2
+      integer :: k, pid
+      integer(c_int) :: status
+      character(len=:), allocatable :: host
+      do k = 0, wait_ms / pause_ms
+         text = read_fd(fd)
+         call parse_holder(text, pid, host)
+         if (pid > 0 .and. len(host) > 0) then       ! (pid > 0: the text is not empty)
+            if (text(len(text):) == new_line('a')) return
+         end if
+         status = c_usleep(int(1000 * pause_ms, c_int))
+      end do
+   end function holder_record
+
    !> Whether a lock file's holder is gone: a process id that no longer exists on this host.
    logical function is_stale(pid, host)
       integer, intent(in) :: pid                       !! holder's process id (0: unknown)
@@ -260,8 +294,9 @@ contains
       host = trim(host)
    end subroutine parse_holder
 
-   !> Replace the content of the open file `fd` by `text`, synced; false on failure, with the
-   !> C `errno` in `code` (ENOSPC for a short write).
+   !> Replace the content of the open file `fd` by `text`, synced (written over the old
+   !> content, then cut to its length: the file never reads empty in between); false on
+   !> failure, with the C `errno` in `code` (ENOSPC for a short write).
    logical function write_fd(fd, text, code)
       integer(c_int), intent(in) :: fd                 !! open file
       character(len=*), intent(in) :: text             !! new content
@@ -274,14 +309,14 @@ contains
       do i = 1, len(text)
          buf(i) = text(i:i)
       end do
-      if (c_ftruncate(fd, 0_c_long) /= 0) then
-         code = errno();  return
-      end if
       n = c_pwrite(fd, buf, int(len(text), c_size_t), 0_c_long)
       if (n < 0) then
          code = errno();  return
       else if (n /= len(text)) then
          code = e_nospc;  return
+      end if
+      if (c_ftruncate(fd, int(len(text), c_long)) /= 0) then   ! cut what a longer line left
+         code = errno();  return
       end if
       if (c_fsync(fd) /= 0) then
          code = errno();  return
