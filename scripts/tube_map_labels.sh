@@ -21,7 +21,7 @@
 #   METHOD=exponential (default) | rk45 | newmark;  GAPBEAM=/path/to/gapbeam;
 #   LOCK=/tmp/gapbeam-cpu.lock (each run holds this lock when given); OMP_NUM_THREADS (default 2).
 # Prints the summary (also OUTDIR/summary.txt). Cost (release, 2 threads, exponential): the
-# row about 6 CPU minutes (most of it the Newmark row), the map 5, persistence 1.
+# row about 6.5 CPU minutes (5.6 of them the Newmark row), the map 4, persistence 3.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
