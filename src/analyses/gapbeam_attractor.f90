@@ -396,7 +396,8 @@ contains
 
    !> Period tolerance: the deck's, or from the accuracy of the method that runs: 1e-6 for an
    !> exact integrator and for fixed steps (a periodic orbit of a deterministic map repeats to
-   !> round-off), 10 x the tolerance for error control (rk_rtol for an embedded pair, rk45),
+   !> round-off), 10 x the tolerance for error control (every error-controlled method, rk45 and
+   !> the exponential method too: their steps are controlled at `tolerance`, as Newmark's),
    !> 1e-3 for the paper's half-step residual rule (not an accuracy); within [1e-6, 1e-2].
    real(dp) function auto_period_tolerance(model, cfg, diag) result(tol)
       type(model_t), intent(in) :: model                 !! model (its stop laws)
@@ -415,8 +416,6 @@ contains
          tol = 1.0e-6_dp
       else if (eff%step_control == 'half_step') then
          tol = 1.0e-3_dp
-      else if (c%estimator == 'embedded') then
-         tol = 10.0_dp * eff%rk_rtol
       else
          tol = 10.0_dp * eff%tolerance
       end if
