@@ -1,6 +1,8 @@
 !> The wear and energy meter of a transient run: what a support sees beyond the impacts (normal
 !> work rate, sliding, friction work, Archard wear), the ring contacts' share of the impact
-!> statistics, the orbits at the supports, and the energy balance of the record.
+!> statistics, the flat stops' impact statistics for the integrators that do not give them
+!> exactly (force integrals, work, contact time, the peak located inside each piece), the orbits
+!> at the supports, and the energy balance of the record.
 !>
 !> The recorder (gapbeam_recorder) owns one and hands it the recorded pieces. Each piece is
 !> integrated with 3-point Gauss-Legendre quadrature on its dense output (pieces end at every
