@@ -26,6 +26,9 @@ program test_stop_statistics
 
    call run('exact reference', "&solver method = 'exact' /", rr, ok)
    if (ok) then
+      call note('exact: peak ' // str(rr%peak_force(1)) // ' N, rms ' // str(rr%rms_force(1)) &
+         // ' N, impulse ' // str(rr%impulse_per_period(1)) // ' N s, work rate ' &
+         // str(rr%work_rate(1)) // ' W, contact fraction ' // str(rr%contact_fraction(1)))
       call compare('rk45', 1.0e-6_dp, "&solver method = 'rk45', rk_rtol = 1e-6 /")
       call compare('rk45', 1.0e-8_dp, "&solver method = 'rk45', rk_rtol = 1e-8 /")
       call compare('newmark', 1.0e-5_dp, "&solver method = 'newmark', step_control = " &
