@@ -308,7 +308,7 @@ contains
       real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
       real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
       real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings), tin(self%model%n_rings)
-      real(dp) :: fq(self%model%n_rings, 3)
+      real(dp) :: fq(3, self%model%n_rings)
       integer :: q, r, k, e
       associate (m => self%model)
          h = p%tb - p%ta
@@ -342,7 +342,7 @@ contains
                k = m%r_stop(r)
                x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
-               fq(r, q) = fn
+               fq(q, r) = fn
                call ring_geometry(m, r, x, d, n, tg, tau, gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
                ! the slider's travel at the contact radius rho, int rho dtau_a, by parts:
@@ -380,8 +380,8 @@ contains
                self%stick(k) = self%stick(k) + tc
             if (p%r_onset(r)) n_impacts(k) = n_impacts(k) + 1
             peak(k) = max(peak(k), p%fn_b(r))
-            if (maxval(fq(r, :)) > max(p%fn_a(r), p%fn_b(r))) &
-               peak(k) = max(peak(k), self%located_peak(p, r, .true., fq(r, :)))
+            if (maxval(fq(:, r)) > max(p%fn_a(r), p%fn_b(r))) &
+               peak(k) = max(peak(k), self%located_peak(p, r, .true., fq(:, r)))
             if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp) then
                ! the slider's dissipation mu int f_n |d tau_a / dt| dt; the normal work rate is
                ! its share without mu: slip only, the stick spring's motion is not wear
