@@ -16,7 +16,9 @@
 !>   contact fraction, impulse per period, work rate (1/T) int f |v| dt at the contact dof,
 !>   the first contact time (from t = 0), and the root strain and rate ranges. A piece with
 !>   exact statistics (the exact integrator: integrals in closed form, certified extrema) is
-!>   taken as it is; otherwise the trapezoidal rule on the piece's end values is used.
+!>   taken as it is; otherwise the wear meter integrates the piece's interpolant by 3-point
+!>   Gauss-Legendre quadrature (f, f^2, f |v| and the contact indicator: pieces end at located
+!>   onsets and releases) and locates the peak force inside it by golden-section search.
 module gapbeam_recorder
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
@@ -249,39 +251,23 @@ contains
          + int(i - 1, int64) * (self%nf / self%spp)
    end function history_filter_index
 
-   !> Impact statistics of a recorded piece, per stop.
+   !> Impact statistics of a recorded piece, per stop: the integrator's exact ones, else the
+   !> wear meter's quadratures on the piece's interpolant (and the peak located on it).
    subroutine accumulate(self, piece)
       class(recorder_t), intent(inout) :: self          !! recorder
       class(piece_t), intent(in) :: piece               !! the piece
-      real(dp) :: h, fa, fb
       integer :: c, k
-      h = piece%tb - piece%ta
       call self%wear%piece(piece, self%acc_f, self%acc_f2, self%acc_work, self%acc_contact, &
                            self%res%n_impacts, self%res%peak_force)
       do c = 1, size(self%c_stop)
          k = self%c_stop(c)
-         if (piece%exact_statistics) then
-            self%acc_f(k) = self%acc_f(k) + piece%int_f(c)
-            self%acc_f2(k) = self%acc_f2(k) + piece%int_f2(c)
-            self%acc_work(k) = self%acc_work(k) + piece%int_work(c)
-            self%acc_contact(k) = self%acc_contact(k) + piece%t_contact(c)
-            if (piece%onset(c)) self%res%n_impacts(k) = self%res%n_impacts(k) + 1
-            self%res%peak_force(k) = max(self%res%peak_force(k), piece%peak(c))
-            cycle
-         end if
-         fa = piece%f_a(c);  fb = piece%f_b(c)
-         if (fa == 0.0_dp .and. fb == 0.0_dp) cycle
-         self%acc_f2(k) = self%acc_f2(k) + 0.5_dp * h * (fa**2 + fb**2)
-         self%acc_f(k) = self%acc_f(k) + 0.5_dp * h * (fa + fb)
-         self%acc_work(k) = self%acc_work(k) + 0.5_dp * h * (fa * piece%vabs_a(c) &
-                            + fb * piece%vabs_b(c))
-         if (fa > 0.0_dp .and. fb > 0.0_dp) then
-            self%acc_contact(k) = self%acc_contact(k) + h
-         else
-            self%acc_contact(k) = self%acc_contact(k) + 0.5_dp * h
-         end if
          if (piece%onset(c)) self%res%n_impacts(k) = self%res%n_impacts(k) + 1
-         self%res%peak_force(k) = max(self%res%peak_force(k), fb)
+         if (.not. piece%exact_statistics) cycle
+         self%acc_f(k) = self%acc_f(k) + piece%int_f(c)
+         self%acc_f2(k) = self%acc_f2(k) + piece%int_f2(c)
+         self%acc_work(k) = self%acc_work(k) + piece%int_work(c)
+         self%acc_contact(k) = self%acc_contact(k) + piece%t_contact(c)
+         self%res%peak_force(k) = max(self%res%peak_force(k), piece%peak(c))
       end do
    end subroutine accumulate
 

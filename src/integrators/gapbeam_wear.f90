@@ -1,6 +1,8 @@
 !> The wear and energy meter of a transient run: what a support sees beyond the impacts (normal
 !> work rate, sliding, friction work, Archard wear), the ring contacts' share of the impact
-!> statistics, the orbits at the supports, and the energy balance of the record.
+!> statistics, the flat stops' impact statistics for the integrators that do not give them
+!> exactly (force integrals, work, contact time, the peak located inside each piece), the orbits
+!> at the supports, and the energy balance of the record.
 !>
 !> The recorder (gapbeam_recorder) owns one and hands it the recorded pieces. Each piece is
 !> integrated with 3-point Gauss-Legendre quadrature on its dense output (pieces end at every
@@ -47,18 +49,24 @@ module gapbeam_wear
    type :: wear_meter_t
       logical :: active = .false.          !! the model has two planes or ring contacts
       logical :: energy = .false.          !! energy balance asked
+      logical :: flat = .false.            !! the model has flat contacts (their statistics)
       type(model_t) :: model               !! the model (a copy, when active or energy)
       real(dp), allocatable :: wn(:), slide(:), fric(:), stick(:), contact(:)   !! per stop
       real(dp) :: e_in = 0.0_dp, e_ray = 0.0_dp, e_damp = 0.0_dp, e_fric = 0.0_dp
       real(dp) :: e_start = 0.0_dp, e_end = 0.0_dp   !! stored energy [J]
       logical :: started = .false.         !! the first recorded piece was seen
       real(dp), allocatable :: u(:), v(:), w(:), y(:)   !! workspaces (n)
+      !> flat contacts: force and penetration rate at the Gauss points of a piece, its time
+      !> in contact and its work int f |d'| dt
+      real(dp), allocatable :: fq(:, :), dq(:, :), tin(:), wk(:)
+      logical, allocatable :: busy(:)              !! flat contacts loaded at an end of a piece
    contains
       procedure :: init => meter_init
       procedure :: piece => meter_piece
       procedure :: sample => meter_sample
       procedure :: finish => meter_finish
-      procedure, private :: energy_at, ring_piece_stats, scalar_point, located_peak
+      procedure, private :: energy_at, ring_piece_stats, scalar_point, located_peak, &
+         flat_point, flat_piece_end, flat_work, flat_at
    end type wear_meter_t
 
 contains
@@ -71,16 +79,21 @@ contains
       logical, intent(in) :: energy                !! energy balance asked
       self%active = has_tube_physics(model)
       self%energy = energy
+      self%flat = model%n_contacts > 0
       allocate(self%wn(ns), self%slide(ns), self%fric(ns), self%stick(ns), self%contact(ns), &
                source=0.0_dp)
-      if (.not. (self%active .or. self%energy)) return
+      allocate(self%fq(3, model%n_contacts), self%dq(3, model%n_contacts), &
+               self%tin(model%n_contacts), self%wk(model%n_contacts), source=0.0_dp)
+      allocate(self%busy(model%n_contacts), source=.false.)
+      if (.not. (self%active .or. self%energy .or. self%flat)) return
       self%model = model
       allocate(self%u(model%n), self%v(model%n), self%w(model%n), self%y(model%n), &
                source=0.0_dp)
    end subroutine meter_init
 
-   !> A recorded piece: wear integrals, the rings' impact statistics (added to the recorder's
-   !> per-stop accumulators), the energy terms.
+   !> A recorded piece: wear integrals, the impact statistics of the rings and (unless the
+   !> integrator gives them exactly) of the flat contacts, added to the recorder's per-stop
+   !> accumulators, the energy terms.
    subroutine meter_piece(self, p, acc_f, acc_f2, acc_work, acc_contact, n_impacts, peak)
       class(wear_meter_t), intent(inout) :: self       !! meter
       class(piece_t), intent(in) :: p                  !! the piece
@@ -88,8 +101,14 @@ contains
       integer, intent(inout) :: n_impacts(:)           !! per stop
       real(dp), intent(inout) :: peak(:)               !! per stop [N]
       real(dp) :: h, wq, t, pv, ray
+      logical :: flat
       integer :: q
-      if (.not. (self%active .or. self%energy)) return
+      flat = .false.
+      if (self%flat .and. .not. p%exact_statistics) then
+         self%busy = p%f_a /= 0.0_dp .or. p%f_b /= 0.0_dp
+         flat = any(self%busy)
+      end if
+      if (.not. (self%active .or. self%energy .or. flat)) return
       associate (m => self%model)
          h = p%tb - p%ta
          if (self%energy .and. .not. self%started) then
@@ -112,16 +131,141 @@ contains
                self%e_in = self%e_in + wq * pv
                self%e_ray = self%e_ray + wq * ray
             end if
-            call self%scalar_point(wq)
+            if (self%active .or. self%energy) call self%scalar_point(wq)
+            if (flat) call self%flat_point(q, wq, acc_f, acc_f2)
          end do
-         if (m%n_rings > 0) call self%ring_piece_stats(p, acc_f, acc_f2, acc_work, acc_contact, &
-                                                       n_impacts, peak)
+         if (flat) call self%flat_piece_end(p, acc_work, acc_contact, peak)
+         if (m%n_rings > 0 .and. (self%active .or. self%energy)) &
+            call self%ring_piece_stats(p, acc_f, acc_f2, acc_work, acc_contact, n_impacts, peak)
          if (self%energy) then
             call p%state_at(p%tb, self%u, self%v)
             self%e_end = self%energy_at(p, self%u, self%v)
          end if
       end associate
    end subroutine meter_piece
+
+   !> The flat contacts loaded at an end of the piece, at its Gauss point q (state in u, v):
+   !> the quadratures of f, f^2, f |d'| and of the contact indicator (pieces end at located
+   !> onsets and releases, where the force may jump: the integrands are smooth inside one).
+   subroutine flat_point(self, q, wq, acc_f, acc_f2)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      integer, intent(in) :: q                         !! Gauss point
+      real(dp), intent(in) :: wq                       !! its weight times the piece [s]
+      real(dp), intent(inout) :: acc_f(:), acc_f2(:)   !! per stop
+      integer :: c, k
+      real(dp) :: f
+      do c = 1, self%model%n_contacts
+         self%fq(q, c) = 0.0_dp;  self%dq(q, c) = 0.0_dp
+         if (q == 1) then
+            self%tin(c) = 0.0_dp;  self%wk(c) = 0.0_dp
+         end if
+         if (.not. self%busy(c)) cycle
+         k = self%model%c_stop(c)
+         call self%flat_at(c, f, self%dq(q, c))
+         self%fq(q, c) = f
+         if (f <= 0.0_dp) cycle
+         self%tin(c) = self%tin(c) + wq
+         acc_f(k) = acc_f(k) + wq * f
+         acc_f2(k) = acc_f2(k) + wq * f**2
+         self%wk(c) = self%wk(c) + wq * f * abs(self%dq(q, c))
+      end do
+   end subroutine flat_point
+
+   !> Force and penetration rate of flat contact c at the state in u, v.
+   subroutine flat_at(self, c, f, dd)
+      class(wear_meter_t), intent(in) :: self          !! meter
+      integer, intent(in) :: c                         !! contact
+      real(dp), intent(out) :: f, dd                   !! force [N], penetration rate [m/s]
+      integer :: i
+      associate (m => self%model)
+         i = m%c_dof(c)
+         dd = m%c_sign(c) * self%v(i)
+         f = contact_force(m, c, m%c_sign(c) * self%u(i) - m%c_gap(c), dd)
+      end associate
+   end subroutine flat_at
+
+   !> The flat contacts after the Gauss points of a piece: the work, the contact time, and the
+   !> peak force (the ends', or located on the interpolant when a Gauss point's force exceeds
+   !> them).
+   subroutine flat_piece_end(self, p, acc_work, acc_contact, peak)
+      class(wear_meter_t), intent(inout) :: self       !! meter
+      class(piece_t), intent(in) :: p                  !! the piece
+      real(dp), intent(inout) :: acc_work(:)           !! per stop [J]
+      real(dp), intent(inout) :: acc_contact(:)        !! per stop [s]
+      real(dp), intent(inout) :: peak(:)               !! per stop [N]
+      integer :: c, k
+      do c = 1, self%model%n_contacts
+         if (.not. self%busy(c)) cycle
+         k = self%model%c_stop(c)
+         acc_contact(k) = acc_contact(k) + self%tin(c)
+         acc_work(k) = acc_work(k) + self%flat_work(p, c)
+         peak(k) = max(peak(k), p%f_a(c), p%f_b(c))
+         if (maxval(self%fq(:, c)) > max(p%f_a(c), p%f_b(c))) &
+            peak(k) = max(peak(k), self%located_peak(p, c, .false., self%fq(:, c)))
+      end do
+   end subroutine flat_piece_end
+
+   !> The work int f |d'| dt of flat contact c over a piece. |d'| has a kink where the
+   !> penetration turns (inside the piece of an impact's deepest point): where d' changes sign
+   !> between the ends and the Gauss points, the piece is split at its zeros (located on the
+   !> interpolant by the Illinois rule) and each part integrated by 3-point Gauss; else the
+   !> piece's own quadrature stands.
+   real(dp) function flat_work(self, p, c) result(w)
+      class(wear_meter_t), intent(inout) :: self   !! meter
+      class(piece_t), intent(in) :: p              !! the piece
+      integer, intent(in) :: c                     !! flat contact
+      real(dp) :: sn(5), dn(5), cut(6), f, dd, h, a, b, fa, fb, s, fs, t
+      integer :: j, nc, it, q, side
+      h = p%tb - p%ta
+      sn = [0.0_dp, gx(1), gx(2), gx(3), 1.0_dp]
+      dn(2:4) = self%dq(:, c)
+      call p%state_at(p%ta, self%u, self%v)
+      call self%flat_at(c, f, dn(1))
+      call p%state_at(p%tb, self%u, self%v)
+      call self%flat_at(c, f, dn(5))
+      nc = 1;  cut(1) = 0.0_dp
+      do j = 1, 4
+         if (.not. (dn(j) * dn(j + 1) < 0.0_dp)) cycle
+         a = sn(j);  b = sn(j + 1);  fa = dn(j);  fb = dn(j + 1);  side = 0
+         s = a
+         do it = 1, 60
+            s = (a * fb - b * fa) / (fb - fa)
+            fs = rate_at(s)
+            if (fs * fb > 0.0_dp) then
+               b = s;  fb = fs
+               if (side == -1) fa = 0.5_dp * fa
+               side = -1
+            else
+               a = s;  fa = fs
+               if (side == 1) fb = 0.5_dp * fb
+               side = 1
+            end if
+            if (b - a <= 1.0e-12_dp .or. fs == 0.0_dp) exit
+         end do
+         nc = nc + 1;  cut(nc) = s
+      end do
+      if (nc == 1) then
+         w = self%wk(c)
+         return
+      end if
+      nc = nc + 1;  cut(nc) = 1.0_dp
+      w = 0.0_dp
+      do j = 1, nc - 1
+         do q = 1, 3
+            t = p%ta + h * (cut(j) + gx(q) * (cut(j + 1) - cut(j)))
+            call p%state_at(t, self%u, self%v)
+            call self%flat_at(c, f, dd)
+            if (f > 0.0_dp) w = w + gw(q) * h * (cut(j + 1) - cut(j)) * f * abs(dd)
+         end do
+      end do
+   contains
+      real(dp) function rate_at(x) result(r)
+         real(dp), intent(in) :: x
+         real(dp) :: fx
+         call p%state_at(p%ta + x * h, self%u, self%v)
+         call self%flat_at(c, fx, r)
+      end function rate_at
+   end function flat_work
 
    !> The scalar contacts at one quadrature point (state in u, v): normal work rate and
    !> sliding along the other plane, contact-damper dissipation.
@@ -237,7 +381,7 @@ contains
             if (p%r_onset(r)) n_impacts(k) = n_impacts(k) + 1
             peak(k) = max(peak(k), p%fn_b(r))
             if (maxval(fq(:, r)) > max(p%fn_a(r), p%fn_b(r))) &
-               peak(k) = max(peak(k), self%located_peak(p, r, fq(:, r)))
+               peak(k) = max(peak(k), self%located_peak(p, r, .true., fq(:, r)))
             if (p%r_mode(r) == ring_slip .and. m%r_mu(r) > 0.0_dp) then
                ! the slider's dissipation mu int f_n |d tau_a / dt| dt; the normal work rate is
                ! its share without mu: slip only, the stick spring's motion is not wear
@@ -251,22 +395,23 @@ contains
       end associate
    end subroutine ring_piece_stats
 
-   !> The largest normal force of ring r inside a piece whose Gauss points' forces fq exceed
-   !> both ends': golden-section search on the piece's interpolant between the neighbours of
+   !> The largest normal force of ring j (ring) or flat contact j inside a piece whose Gauss
+   !> points' forces fq exceed both ends': golden-section search on the piece's interpolant between the neighbours of
    !> the largest sample (the peak of an impact located, not the largest value at a step's
    !> end).
-   real(dp) function located_peak(self, p, r, fq) result(fmax)
+   real(dp) function located_peak(self, p, j, ring, fq) result(fmax)
       class(wear_meter_t), intent(inout) :: self   !! meter
       class(piece_t), intent(in) :: p              !! the piece
-      integer, intent(in) :: r                     !! ring
+      integer, intent(in) :: j                     !! ring or flat contact
+      logical, intent(in) :: ring                  !! j is a ring (else a flat contact)
       real(dp), intent(in) :: fq(3)                !! normal force at the Gauss points [N]
       real(dp), parameter :: gr = 0.5_dp * (sqrt(5.0_dp) - 1.0_dp)
       real(dp) :: sn(5), a, b, c, d, fc, fd
-      integer :: j, it
+      integer :: jq, it
       sn = [0.0_dp, gx(1), gx(2), gx(3), 1.0_dp]
-      j = 1 + maxloc(fq, 1)
-      fmax = fq(j - 1)
-      a = sn(j - 1);  b = sn(j + 1)
+      jq = 1 + maxloc(fq, 1)
+      fmax = fq(jq - 1)
+      a = sn(jq - 1);  b = sn(jq + 1)
       c = b - gr * (b - a);  d = a + gr * (b - a)
       fc = force_at(c);  fd = force_at(d)
       do it = 1, 40
@@ -284,10 +429,17 @@ contains
       real(dp) function force_at(s) result(fn)
          real(dp), intent(in) :: s
          real(dp) :: pr(2), ft
+         integer :: i
          call p%state_at(p%ta + s * (p%tb - p%ta), self%u, self%v)
          associate (m => self%model)
-            call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
-                            self%u(m%r_dof(:, r)), self%v(m%r_dof(:, r)), pr, fn, ft)
+            if (ring) then
+               call ring_force(m, j, p%r_mode(j), p%r_sigma(j), p%r_anchor(j), &
+                               self%u(m%r_dof(:, j)), self%v(m%r_dof(:, j)), pr, fn, ft)
+            else
+               i = m%c_dof(j)
+               fn = contact_force(m, j, m%c_sign(j) * self%u(i) - m%c_gap(j), &
+                                  m%c_sign(j) * self%v(i))
+            end if
          end associate
       end function force_at
    end function located_peak
