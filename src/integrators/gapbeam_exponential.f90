@@ -12,11 +12,15 @@
 !> at the nodes 0, h/2 and h (Lobatto collocation), and the oscillators are solved exactly under
 !> that polynomial forcing (its particular polynomial, or, when omega h < 1, the Taylor series
 !> of the forced solution, free of cancellation). The nodes' values come from Picard sweeps:
-!> N at the start held constant, then three sweeps through the quadratic (stage error h^2, h^3,
-!> h^4; the end h^5: order 4). The embedded estimate is the difference of the last two sweeps
-!> (an h^4 estimate of the third sweep's error: the controller's order 3), plus the error of the
-!> cubic Hermite interpolant of the step (the dense output that events and the recorder read)
-!> at its midpoint against the method's own midpoint.
+!> N at the start held constant, then four sweeps through the quadratic (stage error h^2, h^3,
+!> h^4, h^5; the end h^5: order 4, the collocation's own). The embedded estimate is the
+!> difference of the last two sweeps: an h^5 estimate of the third sweep's error, of the order
+!> of the method's (the controller's order 4; the fourth sweep's end is kept). With three
+!> sweeps the estimate was that of an h^4 error, and the controller's order 3 took about twice
+!> the steps the error needed. The error of the cubic Hermite interpolant of the step (the
+!> dense output that events, samples and the wear statistics read) at its midpoint against the
+!> method's own midpoint is returned apart (dense_error): the integrator controls it per step,
+!> since the next step starts from the method's end state, not from the interpolant.
 !>
 !> The step is taken in increment form: the oscillators give the change of each modal
 !> coordinate over the step (c - 1 by expm1, the harmonic terms' change by the product formulas
@@ -46,8 +50,10 @@ module gapbeam_exponential
    private
    public :: exponential_t, oscillator_propagator, oscillator_cm1, expm1
 
-   integer, parameter :: n_sweeps = 3          ! Picard sweeps after the constant predictor
+   integer, parameter :: n_sweeps = 4          ! Picard sweeps after the constant predictor
    real(dp), parameter :: taylor_below = 1.0_dp   ! omega h (and 2 zeta omega h) below: Taylor
+   !> the nodes' fractions of the step: the collocation's h/2 and h, and the check node h/4
+   real(dp), parameter :: node_s(3) = [0.5_dp, 1.0_dp, 0.25_dp]
 
    !> The modal exponential stepper (see the module's description).
    type, extends(stepper_t) :: exponential_t
@@ -71,22 +77,27 @@ module gapbeam_exponential
       integer, allocatable :: ia(:)            !! position of a dof in act (0: none)
       real(dp), allocatable :: phia(:, :)      !! Phi(act, :)
       logical :: dense_n = .false.             !! N needs a whole load vector
-      real(dp), allocatable :: cn(:, :), sn(:, :)   !! propagator at h/2, h: c(tau), s(tau)
-      real(dp), allocatable :: cm1(:, :)            !! c(tau) - 1 at h/2, h (no cancellation)
+      real(dp), allocatable :: cn(:, :), sn(:, :)   !! propagator at h/2, h, h/4: c, s(tau)
+      real(dp), allocatable :: cm1(:, :)            !! c(tau) - 1 there (no cancellation)
       !> responses from rest to the forcing s^j (s = tau / h), j = 0..2, at the nodes h/2, h:
-      !> displacement and velocity (n, 0:2, 2)
+      !> displacement and velocity (n, 0:2, 3); node 3 is the check node h/4
       real(dp), allocatable :: rx(:, :, :), ry(:, :, :)
-      real(dp), allocatable :: x(:, :), y(:, :)     !! node states (n, 0:2)
-      real(dp), allocatable :: dx(:, :), dy(:, :)   !! their changes from the start (n, 0:2)
+      real(dp), allocatable :: x(:, :), y(:, :)     !! node states (n, 0:3)
+      real(dp), allocatable :: dx(:, :), dy(:, :)   !! their changes from the start (n, 0:3)
       real(dp), allocatable :: g(:, :)         !! N at the nodes (n, 0:2)
       real(dp), allocatable :: z0(:), zd0(:), ua(:), va(:), ra(:), r(:)
       real(dp), allocatable :: ua0(:), va0(:)  !! the start's displacement, velocity at act
       real(dp), allocatable :: eu(:), ev(:)    !! embedded errors of the last step
+      real(dp), allocatable :: iu(:), iv(:)    !! its interpolant's errors at the midpoint
+      !> the response from rest at h to the forcing s (s - 1/2) (s - 1) (the quadratic's error
+      !> shape through the nodes): displacement and velocity
+      real(dp), allocatable :: ex(:), ey(:)
       real(dp), allocatable :: fn(:), ft(:)    !! ring forces of the last evaluation [N]
    contains
       procedure :: prepare => ex_prepare
       procedure :: step => ex_step
       procedure :: local_error => ex_local_error
+      procedure :: dense_error => ex_dense_error
    end type exponential_t
 
 contains
@@ -243,11 +254,13 @@ contains
                      (.not. self%harmonic .and. (any(self%ls /= 0.0_dp) .or. &
                      any(self%lc /= 0.0_dp)))
       k = size(self%act)
-      allocate(self%cn(n, 2), self%sn(n, 2), self%cm1(n, 2), self%rx(n, 0:2, 2), &
-               self%ry(n, 0:2, 2), self%x(n, 0:2), self%y(n, 0:2), self%dx(n, 0:2), &
-               self%dy(n, 0:2), self%ua0(k), self%va0(k), &
+      allocate(self%cn(n, 3), self%sn(n, 3), self%cm1(n, 3), self%rx(n, 0:2, 3), &
+               self%ry(n, 0:2, 3), self%x(n, 0:3), self%y(n, 0:3), self%dx(n, 0:3), &
+               self%dy(n, 0:3), self%ua0(k), self%va0(k), &
                self%g(n, 0:2), self%z0(n), self%zd0(n), self%ua(k), self%va(k), self%ra(k), &
-               self%r(n), self%eu(n), self%ev(n), self%fn(model%n_rings), &
+               self%r(n), self%eu(n), self%ev(n), self%iu(n), self%iv(n), self%ex(n), &
+               self%ey(n), &
+               self%fn(model%n_rings), &
                self%ft(model%n_rings))
       self%built = .true.
    contains
@@ -271,26 +284,30 @@ contains
          call build(self, model, cfg, err)
          if (allocated(err)) return
       end if
-      do k = 1, 2
-         call oscillator_propagator(self%w2, self%ad, 0.5_dp * k * dt, self%cn(:, k), &
+      do k = 1, 3
+         call oscillator_propagator(self%w2, self%ad, node_s(k) * dt, self%cn(:, k), &
                                     self%sn(:, k))
-         self%cm1(:, k) = oscillator_cm1(self%w2, self%ad, 0.5_dp * k * dt)
+         self%cm1(:, k) = oscillator_cm1(self%w2, self%ad, node_s(k) * dt)
       end do
-      do k = 1, 2
+      do k = 1, 3
          do j = 1, self%n
-            call forced_response(self%w2(j), self%ad(j), dt, 0.5_dp * k, 1.0_dp, 0.0_dp, &
+            call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 1.0_dp, 0.0_dp, &
                                  0.0_dp, self%rx(j, 0, k), self%ry(j, 0, k))
-            call forced_response(self%w2(j), self%ad(j), dt, 0.5_dp * k, 0.0_dp, 1.0_dp, &
+            call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 1.0_dp, &
                                  0.0_dp, self%rx(j, 1, k), self%ry(j, 1, k))
-            call forced_response(self%w2(j), self%ad(j), dt, 0.5_dp * k, 0.0_dp, 0.0_dp, &
+            call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 0.0_dp, &
                                  1.0_dp, self%rx(j, 2, k), self%ry(j, 2, k))
          end do
+      end do
+      do j = 1, self%n
+         call forced_response(self%w2(j), self%ad(j), dt, 1.0_dp, 0.0_dp, 0.5_dp, -1.5_dp, &
+                              self%ex(j), self%ey(j), g3=1.0_dp)
       end do
       self%dt = dt
       self%ready = .true.
    end subroutine ex_prepare
 
-   !> N(t, x, x') in modal coordinates at the node k (0, 1, 2) of the step: the contact and
+   !> N(t, x, x') in modal coordinates at the node k (0, 1, 2; 3: h/4) of the step: the contact and
    !> ring forces (rings in the regimes of s0; `hold` > 0 held open) at the start's
    !> displacements plus the node's changes, turbulence, harmonic loads when not exact,
    !> -D_off x'. Contact forces into f, ring forces into self%fn, self%ft.
@@ -345,14 +362,15 @@ contains
    !> from the start into dx, dy (the harmonic solution's change by sin a - sin b =
    !> 2 cos((a + b) / 2) sin((a - b) / 2), c - 1 from cm1: no cancellation, so a change is
    !> exact to the round-off of its own size), and the nodes' states x, y, at columns 1 and 2.
-   subroutine propagate(self, t0, g0, g1, g2)
+   subroutine propagate(self, t0, g0, g1, g2, k_from, k_to)
       class(exponential_t), intent(inout) :: self
       real(dp), intent(in) :: t0
       real(dp), intent(in) :: g0(:), g1(:), g2(:)
+      integer, intent(in) :: k_from, k_to          !! the nodes (1: h/2, 2: h, 3: h/4)
       real(dp) :: tau, sh, ds, dc
       integer :: k
-      do k = 1, 2
-         tau = 0.5_dp * k * self%dt
+      do k = k_from, k_to
+         tau = node_s(k) * self%dt
          sh = 2.0_dp * sin(0.5_dp * self%wf * tau)
          ds = sh * cos(self%wf * (t0 + 0.5_dp * tau))      ! sin(wf (t0 + tau)) - sin(wf t0)
          dc = -sh * sin(self%wf * (t0 + 0.5_dp * tau))     ! cos(wf (t0 + tau)) - cos(wf t0)
@@ -373,40 +391,47 @@ contains
    !> The response from rest of x'' + 2 a x' + w2 x = g0 + g1 s + g2 s^2 (s = tau / h) at s:
    !> by the Taylor series in s when omega h and 2 a h are below 1 (no cancellation between the
    !> homogeneous and the particular parts), else by the particular polynomial.
-   pure subroutine forced_response(w2, a, h, s, g0, g1, g2, x, v)
+   pure subroutine forced_response(w2, a, h, s, g0, g1, g2, x, v, g3)
       real(dp), intent(in) :: w2, a, h, s, g0, g1, g2
       real(dp), intent(out) :: x, v
-      real(dp) :: c0, c1, c2, c, sn, tau
+      real(dp), intent(in), optional :: g3     !! a cubic term g3 s^3
+      real(dp) :: c0, c1, c2, c3, c, sn, tau, q3
+      q3 = 0.0_dp
+      if (present(g3)) q3 = g3
       if (sqrt(w2) * h < taylor_below .and. 2.0_dp * a * h < taylor_below) then
-         call taylor_node(w2, a, h, s, 0.0_dp, 0.0_dp, g0, g1, g2, x, v)
+         call taylor_node(w2, a, h, s, 0.0_dp, 0.0_dp, g0, g1, g2, x, v, q3)
          return
       end if
       tau = s * h
-      c2 = g2 / h**2 / w2
-      c1 = (g1 / h - 4.0_dp * a * c2) / w2
+      c3 = q3 / h**3 / w2
+      c2 = (g2 / h**2 - 6.0_dp * a * c3) / w2
+      c1 = (g1 / h - 4.0_dp * a * c2 - 6.0_dp * c3) / w2
       c0 = (g0 - 2.0_dp * a * c1 - 2.0_dp * c2) / w2
       call oscillator_propagator(w2, a, tau, c, sn)
-      x = -c0 * (c + a * sn) - c1 * sn + c0 + tau * (c1 + tau * c2)
-      v = -c1 * (c - a * sn) + w2 * c0 * sn + c1 + 2.0_dp * tau * c2
+      x = -c0 * (c + a * sn) - c1 * sn + c0 + tau * (c1 + tau * (c2 + tau * c3))
+      v = -c1 * (c - a * sn) + w2 * c0 * sn + c1 + tau * (2.0_dp * c2 + 3.0_dp * tau * c3)
    end subroutine forced_response
 
    !> The forced oscillator x'' + 2 a x' + w2 x = g0 + g1 s + g2 s^2 (s = tau / h) at s by its
    !> Taylor series in s (omega h < 1: no cancellation between the homogeneous and the
    !> particular parts).
-   pure subroutine taylor_node(w2, a, h, s, x0, v0, g0, g1, g2, x, v)
+   pure subroutine taylor_node(w2, a, h, s, x0, v0, g0, g1, g2, x, v, g3)
       real(dp), intent(in) :: w2, a, h, s, x0, v0, g0, g1, g2
       real(dp), intent(out) :: x, v
+      real(dp), intent(in), optional :: g3     !! a cubic term g3 s^3
       real(dp) :: xk(0:80), gk, scale, sp
       integer :: k
       xk(0) = x0;  xk(1) = h * v0
       x = xk(0) + s * xk(1);  v = xk(1)
       scale = max(abs(xk(0)), abs(xk(1)), abs(g0 * h * h), abs(g1 * h * h), abs(g2 * h * h))
+      if (present(g3)) scale = max(scale, abs(g3 * h * h))
       sp = s
       do k = 0, 78
          gk = 0.0_dp
          if (k == 0) gk = g0
          if (k == 1) gk = g1
          if (k == 2) gk = g2
+         if (k == 3 .and. present(g3)) gk = g3
          xk(k + 2) = (gk * h * h - 2.0_dp * a * h * (k + 1) * xk(k + 1) - w2 * h * h * xk(k)) &
                      / real((k + 1) * (k + 2), dp)
          v = v + (k + 2) * xk(k + 2) * sp
@@ -429,7 +454,8 @@ contains
       integer, intent(in) :: open_contact                !! contact held open (0: none)
       real(dp) :: h, t0, t1, sk, tk, sc, dph
       real(dp) :: dxe(self%n), dye(self%n), ge(self%n), g1(self%n), g2(self%n), zero(self%n)
-      real(dp) :: w2c(self%n, 2), w7(self%n, 7), p7(self%n, 7)
+      real(dp) :: w2c(self%n, 2), w7(self%n, 9), p7(self%n, 9), c1(self%n), c2(self%n)
+      real(dp) :: gq(self%n)
       integer :: sweep, i
       ! (the node arrays are named through self: an associate name of a component that a
       ! called procedure redefines may be a copy)
@@ -449,18 +475,28 @@ contains
       call nonlinear(self, model, s0, t0, 0, open_contact, ge, s1%f)
       self%g(:, 0) = ge
       zero = 0.0_dp
-      call propagate(self, t0, ge, zero, zero)
+      call propagate(self, t0, ge, zero, zero, 1, 2)
       do sweep = 1, n_sweeps
          dxe = self%dx(:, 2);  dye = self%dy(:, 2)
          call nonlinear(self, model, s0, t0 + 0.5_dp * h, 1, open_contact, g1, s1%f)
          call nonlinear(self, model, s0, t1, 2, open_contact, g2, s1%f)
          self%g(:, 1) = g1;  self%g(:, 2) = g2
-         call propagate(self, t0, ge, 4.0_dp * g1 - 3.0_dp * ge - g2, &
-                        2.0_dp * (g2 - 2.0_dp * g1 + ge))
+         c1 = 4.0_dp * g1 - 3.0_dp * ge - g2;  c2 = 2.0_dp * (g2 - 2.0_dp * g1 + ge)
+         call propagate(self, t0, ge, c1, c2, 1, 2)
       end do
+      ! the collocation's own error: N at the check node h/4 of the converged step against the
+      ! quadratic there, d = N - Q = C3 s (s - 1/2) (s - 1) at s = 1/4 (C3 = 64 d / 3: the
+      ! leading, h^3 N''', term of the quadratic's error), and its effect on the end: the
+      ! oscillators' response to that cubic (ex, ey). The sweeps' difference alone measures
+      ! only how far the sweeps have converged, not how well a quadratic follows the forces.
+      call propagate(self, t0, ge, c1, c2, 3, 3)
+      call nonlinear(self, model, s0, t0 + 0.25_dp * h, 3, open_contact, gq, s1%f)
+      gq = gq - (ge + 0.25_dp * c1 + 0.0625_dp * c2)
       ! dxe, dye: the end of the previous sweep; the end state from the start plus its change
       w7(:, 1) = self%dx(:, 2);  w7(:, 2) = self%dy(:, 2)
       w7(:, 3) = self%dx(:, 2) - dxe;  w7(:, 4) = self%dy(:, 2) - dye
+      w7(:, 8) = (64.0_dp / 3.0_dp) * gq * self%ex
+      w7(:, 9) = (64.0_dp / 3.0_dp) * gq * self%ey
       ! forces and acceleration at the end (no contact held: as rk45's last stage)
       call nonlinear(self, model, s0, t1, 2, 0, ge, s1%f)
       if (self%harmonic) ge = ge + sin(self%wf * t1) * self%fs + cos(self%wf * t1) * self%fc
@@ -474,7 +510,8 @@ contains
                  - 1.5_dp * self%dx(:, 2) / h
       p7 = matmul(self%phi, w7)
       s1%u = s0%u + p7(:, 1);  s1%v = s0%v + p7(:, 2)
-      self%eu = p7(:, 3);  self%ev = p7(:, 4)
+      self%eu = sign(abs(p7(:, 3)) + abs(p7(:, 8)), p7(:, 3))
+      self%ev = sign(abs(p7(:, 4)) + abs(p7(:, 9)), p7(:, 4))
       s1%a = p7(:, 5)
       w2c(:, 1) = abs(self%x(:, 0)) + abs(self%x(:, 2))
       w2c(:, 2) = abs(self%y(:, 0)) + abs(self%y(:, 2))
@@ -494,12 +531,14 @@ contains
          if (abs(self%ev(i)) <= 16.0_dp * epsilon(1.0_dp) * rv(i)) self%ev(i) = 0.0_dp
          if (abs(um(i)) <= 16.0_dp * epsilon(1.0_dp) * ru(i)) um(i) = 0.0_dp
          if (abs(vm(i)) <= 16.0_dp * epsilon(1.0_dp) * rv(i) + dph * self%vh(i)) vm(i) = 0.0_dp
-         self%eu(i) = sign(abs(self%eu(i)) + abs(um(i)), self%eu(i))
-         self%ev(i) = sign(abs(self%ev(i)) + abs(vm(i)), self%ev(i))
+         self%iu(i) = um(i);  self%iv(i) = vm(i)
          sc = self%atol + self%rtol * max(abs(s0%u(i)), abs(s1%u(i)))
          ratio = max(ratio, abs(self%eu(i)) / sc)
          sc = self%atol + self%rtol * max(abs(s0%v(i)), abs(s1%v(i)))
          ratio = max(ratio, abs(self%ev(i)) / sc)
+         ratio = max(ratio, abs(self%iv(i)) / sc)
+         sc = self%atol + self%rtol * max(abs(s0%u(i)), abs(s1%u(i)))
+         ratio = max(ratio, abs(self%iu(i)) / sc)
       end do
       end associate
       if (model%n_rings > 0) then
@@ -521,4 +560,15 @@ contains
       coef = [1.0_dp, -1.0_dp, 0.0_dp]
       fda = self%eu / self%dt**2;  ev = self%ev
    end subroutine ex_local_error
+
+   !> The error of the step's cubic Hermite interpolant at its midpoint (see
+   !> stepper_t%dense_error).
+   subroutine ex_dense_error(self, eu, ev, has)
+      class(exponential_t), intent(inout) :: self      !! stepper
+      real(dp), intent(out) :: eu(:)                   !! displacement error at the midpoint
+      real(dp), intent(out) :: ev(:)                   !! velocity error at the midpoint
+      logical, intent(out) :: has                      !! always
+      has = .true.
+      eu = self%iu;  ev = self%iv
+   end subroutine ex_dense_error
 end module gapbeam_exponential

@@ -68,6 +68,7 @@ module gapbeam_integrator
       procedure(prepare_interface), deferred :: prepare   !! factorise / precompute for dt
       procedure(step_interface), deferred :: step         !! advance one step of size dt
       procedure :: local_error => no_local_error          !! error estimate of the last step
+      procedure :: dense_error => no_dense_error          !! its interpolant's own error
    end type stepper_t
 
    !> A method of the registry: what it can do (gapbeam_capabilities) and, for a one-step
@@ -355,6 +356,23 @@ contains
       fda = 0.0_dp;  ev = 0.0_dp;  coef = 0.0_dp
       has = .false.
    end subroutine no_local_error
+
+   !> The default: the step's interpolant has no error estimate of its own (what local_error
+   !> estimates covers it, or nothing is known).
+   !>
+   !> A method that has one returns the error of the cubic Hermite interpolant of the step
+   !> (the dense output that events, samples and the wear statistics read) at its midpoint, in
+   !> displacement (eu) and velocity (ev). The integrator controls it per step, not per unit
+   !> time: it is not carried into the next step (which starts from the method's end state),
+   !> so it does not add up along the trajectory.
+   subroutine no_dense_error(self, eu, ev, has)
+      class(stepper_t), intent(inout) :: self         !! stepper
+      real(dp), intent(out) :: eu(:)                  !! displacement error at the midpoint
+      real(dp), intent(out) :: ev(:)                  !! velocity error at the midpoint
+      logical, intent(out) :: has                     !! false: none
+      eu = 0.0_dp;  ev = 0.0_dp
+      has = .false.
+   end subroutine no_dense_error
 
    !> The counters to zero: what a record reports is then the work of that record (an
    !> integrator reused for the next run of the same model keeps its factorisations).

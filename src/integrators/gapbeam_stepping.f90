@@ -86,6 +86,7 @@ module gapbeam_stepping
       !> then root strain rate and the out_dof velocities
       real(dp), allocatable :: out_lo(:), out_hi(:), out_floor(:)
       real(dp), allocatable :: fda(:), ev(:), eu(:)   !! local error data of a step (n)
+      real(dp), allocatable :: eu_d(:), ev_d(:)       !! its interpolant's error (dense_error)
       real(dp), allocatable :: fda_prev(:)            !! fda of the previous accepted step
       real(dp) :: h_prev = 0.0_dp                     !! its length (0: none usable) [s]
       integer :: order = 2                            !! order of the method

@@ -36,6 +36,7 @@ contains
          self%h_lev(c) = self%h_max * 2.0_dp**(-0.5_dp * c)
       end do
       allocate(self%fda(model%n), self%ev(model%n), self%eu(model%n), self%fda_prev(model%n), &
+               self%eu_d(model%n), self%ev_d(model%n), &
                source=0.0_dp)
       self%out_dof = [integer ::]
       if (model%sys%tip_dof > 0) self%out_dof = [model%sys%tip_dof]
@@ -149,9 +150,9 @@ contains
       real(dp), intent(in) :: t_stop                        !! do not step beyond [s]
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
-      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp
-      logical :: ok, event, clipped
-      integer :: worst, dl, switches
+      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd
+      logical :: ok, event, clipped, dense
+      integer :: worst, dl, switches, level_d, r_worst
       t0 = self%sub(self%ix(0))%t
       switches = 0
       do
@@ -204,9 +205,11 @@ contains
             if (event .or. h < self%h_lev(level) * (1.0_dp - 1.0e-9_dp)) then
                call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+               call self%scratch%dense_error(self%eu_d, self%ev_d, dense)
             else
                call self%ops(level)%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
+               call self%ops(level)%dense_error(self%eu_d, self%ev_d, dense)
             end if
             if (.not. ok) then
                call fatal_error(err, "gapbeam_stepping: method '" // self%method // "' has " &
@@ -221,11 +224,19 @@ contains
                if (allocated(err)) return
                q = max(q, r)
             end if
+            ! the interpolant's own error: per step, against the share of the tolerance that
+            ! a period's propagated error has (it is not carried into the next step)
+            qd = 0.0_dp
+            if (dense) then
+               self%eu = self%eu_d;  self%ev = self%ev_d
+               qd = self%output_ratio(r_worst) / (budget_scale * self%tolerance)
+               if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
+            end if
          else
-            q = huge(1.0_dp);  worst = 0
+            q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp
          end if
          ! one step may not spend more than the budget of a whole block
-         ratio = q / (block_fraction * budget_scale * self%tolerance)
+         ratio = max(q / (block_fraction * budget_scale * self%tolerance), qd)
          if (ratio <= 1.0_dp) exit
          ! reject: smaller steps (the local error scales as h^3)
          self%steps_rejected = self%steps_rejected + 1
@@ -246,6 +257,13 @@ contains
       self%fda_prev = self%fda
       self%h_prev = merge(0.0_dp, h, event)
       self%block_sum = self%block_sum + q
+      level_d = 0
+      if (qd > 0.0_dp) then
+         ! the largest step whose interpolant keeps within its share (aiming at half of it;
+         ! the cubic's error scales as h^4)
+         level_d = min(self%n_levels - 1, max(0, level + nint(log(qd / 0.5_dp) &
+                                                         / log(2.0_dp**(0.5_dp * 4)))))
+      end if
       if (self%caps%linear_exact .and. .not. event) then
          ! the linear part exact (free flight without error): the next step from this one's
          ! error per unit time against the budget's (aiming at half of it; the rate scales as
@@ -268,6 +286,7 @@ contains
          end if
          self%block_start = t1;  self%block_sum = 0.0_dp
       end if
+      if (.not. event) level = max(level, level_d)
    end subroutine controlled_step
 
    !> The local error of a step relative to the watched outputs' ranges: the largest of
