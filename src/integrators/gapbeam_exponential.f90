@@ -84,6 +84,7 @@ module gapbeam_exponential
       real(dp), allocatable :: rx(:, :, :), ry(:, :, :)
       real(dp), allocatable :: x(:, :), y(:, :)     !! node states (n, 0:3)
       real(dp), allocatable :: dx(:, :), dy(:, :)   !! their changes from the start (n, 0:3)
+      real(dp), allocatable :: fx(:, :), fy(:, :)   !! the changes without N (n, 3)
       real(dp), allocatable :: g(:, :)         !! N at the nodes (n, 0:2)
       real(dp), allocatable :: z0(:), zd0(:), ua(:), va(:), ra(:), r(:)
       real(dp), allocatable :: ua0(:), va0(:)  !! the start's displacement, velocity at act
@@ -256,7 +257,7 @@ contains
       k = size(self%act)
       allocate(self%cn(n, 3), self%sn(n, 3), self%cm1(n, 3), self%rx(n, 0:2, 3), &
                self%ry(n, 0:2, 3), self%x(n, 0:3), self%y(n, 0:3), self%dx(n, 0:3), &
-               self%dy(n, 0:3), self%ua0(k), self%va0(k), &
+               self%dy(n, 0:3), self%fx(n, 3), self%fy(n, 3), self%ua0(k), self%va0(k), &
                self%g(n, 0:2), self%z0(n), self%zd0(n), self%ua(k), self%va(k), self%ra(k), &
                self%r(n), self%eu(n), self%ev(n), self%iu(n), self%iv(n), self%ex(n), &
                self%ey(n), &
@@ -358,35 +359,48 @@ contains
    end subroutine nonlinear
 
    !> The oscillators from the start's deviation (z0, zd0) from the harmonic solution, forced by
-   !> the quadratic G0 + G1 s + G2 s^2 (s = tau / h), at the nodes s = 1/2 and 1: their changes
-   !> from the start into dx, dy (the harmonic solution's change by sin a - sin b =
-   !> 2 cos((a + b) / 2) sin((a - b) / 2), c - 1 from cm1: no cancellation, so a change is
-   !> exact to the round-off of its own size), and the nodes' states x, y, at columns 1 and 2.
-   subroutine propagate(self, t0, g0, g1, g2, k_from, k_to)
+   !> the quadratic G0 + G1 s + G2 s^2 (s = tau / h), at the nodes k_from..k_to (s = 1/2, 1,
+   !> 1/4): their changes from the start into dx, dy (the part without N from free_changes:
+   !> the harmonic solution's change by sin a - sin b = 2 cos((a + b) / 2) sin((a - b) / 2),
+   !> c - 1 from cm1: no cancellation, so a change is exact to the round-off of its own size),
+   !> and the nodes' states x, y.
+   subroutine propagate(self, g0, g1, g2, k_from, k_to)
       class(exponential_t), intent(inout) :: self
-      real(dp), intent(in) :: t0
       real(dp), intent(in) :: g0(:), g1(:), g2(:)
       integer, intent(in) :: k_from, k_to          !! the nodes (1: h/2, 2: h, 3: h/4)
-      real(dp) :: tau, sh, ds, dc
       integer :: k
       do k = k_from, k_to
-         tau = node_s(k) * self%dt
-         sh = 2.0_dp * sin(0.5_dp * self%wf * tau)
-         ds = sh * cos(self%wf * (t0 + 0.5_dp * tau))      ! sin(wf (t0 + tau)) - sin(wf t0)
-         dc = -sh * sin(self%wf * (t0 + 0.5_dp * tau))     ! cos(wf (t0 + tau)) - cos(wf t0)
          ! (an associate name of a section has lower bounds 1: the responses' j = 0..2 are 1..3)
-         associate (cm1 => self%cm1(:, k), s => self%sn(:, k), a => self%ad, &
-                    rx => self%rx(:, :, k), ry => self%ry(:, :, k))
-            self%dx(:, k) = self%z0 * (cm1 + a * s) + self%zd0 * s + g0 * rx(:, 1) &
-                            + g1 * rx(:, 2) + g2 * rx(:, 3) + self%hs * ds + self%hc * dc
-            self%dy(:, k) = self%zd0 * (cm1 - a * s) - self%w2 * self%z0 * s + g0 * ry(:, 1) &
-                            + g1 * ry(:, 2) + g2 * ry(:, 3) + self%wf * (self%hs * dc &
-                            - self%hc * ds)
+         associate (rx => self%rx(:, :, k), ry => self%ry(:, :, k))
+            self%dx(:, k) = self%fx(:, k) + g0 * rx(:, 1) + g1 * rx(:, 2) + g2 * rx(:, 3)
+            self%dy(:, k) = self%fy(:, k) + g0 * ry(:, 1) + g1 * ry(:, 2) + g2 * ry(:, 3)
          end associate
          self%x(:, k) = self%x(:, 0) + self%dx(:, k)
          self%y(:, k) = self%y(:, 0) + self%dy(:, k)
       end do
    end subroutine propagate
+
+   !> The changes at the nodes without N: the oscillators from the start's deviation (z0, zd0)
+   !> from the harmonic solution, and that solution's own change (once per step; propagate
+   !> adds the response to N's quadratic).
+   subroutine free_changes(self, t0)
+      class(exponential_t), intent(inout) :: self
+      real(dp), intent(in) :: t0
+      real(dp) :: tau, sh, ds, dc
+      integer :: k
+      do k = 1, 3
+         tau = node_s(k) * self%dt
+         sh = 2.0_dp * sin(0.5_dp * self%wf * tau)
+         ds = sh * cos(self%wf * (t0 + 0.5_dp * tau))      ! sin(wf (t0 + tau)) - sin(wf t0)
+         dc = -sh * sin(self%wf * (t0 + 0.5_dp * tau))     ! cos(wf (t0 + tau)) - cos(wf t0)
+         associate (cm1 => self%cm1(:, k), s => self%sn(:, k), a => self%ad)
+            self%fx(:, k) = self%z0 * (cm1 + a * s) + self%zd0 * s + self%hs * ds &
+                            + self%hc * dc
+            self%fy(:, k) = self%zd0 * (cm1 - a * s) - self%w2 * self%z0 * s &
+                            + self%wf * (self%hs * dc - self%hc * ds)
+         end associate
+      end do
+   end subroutine free_changes
 
    !> The response from rest of x'' + 2 a x' + w2 x = g0 + g1 s + g2 s^2 (s = tau / h) at s:
    !> by the Taylor series in s when omega h and 2 a h are below 1 (no cancellation between the
@@ -475,21 +489,22 @@ contains
       call nonlinear(self, model, s0, t0, 0, open_contact, ge, s1%f)
       self%g(:, 0) = ge
       zero = 0.0_dp
-      call propagate(self, t0, ge, zero, zero, 1, 2)
+      call free_changes(self, t0)
+      call propagate(self, ge, zero, zero, 1, 2)
       do sweep = 1, n_sweeps
          dxe = self%dx(:, 2);  dye = self%dy(:, 2)
          call nonlinear(self, model, s0, t0 + 0.5_dp * h, 1, open_contact, g1, s1%f)
          call nonlinear(self, model, s0, t1, 2, open_contact, g2, s1%f)
          self%g(:, 1) = g1;  self%g(:, 2) = g2
          c1 = 4.0_dp * g1 - 3.0_dp * ge - g2;  c2 = 2.0_dp * (g2 - 2.0_dp * g1 + ge)
-         call propagate(self, t0, ge, c1, c2, 1, 2)
+         call propagate(self, ge, c1, c2, 1, 2)
       end do
       ! the collocation's own error: N at the check node h/4 of the converged step against the
       ! quadratic there, d = N - Q = C3 s (s - 1/2) (s - 1) at s = 1/4 (C3 = 64 d / 3: the
       ! leading, h^3 N''', term of the quadratic's error), and its effect on the end: the
       ! oscillators' response to that cubic (ex, ey). The sweeps' difference alone measures
       ! only how far the sweeps have converged, not how well a quadratic follows the forces.
-      call propagate(self, t0, ge, c1, c2, 3, 3)
+      call propagate(self, ge, c1, c2, 3, 3)
       call nonlinear(self, model, s0, t0 + 0.25_dp * h, 3, open_contact, gq, s1%f)
       gq = gq - (ge + 0.25_dp * c1 + 0.0625_dp * c2)
       ! dxe, dye: the end of the previous sweep; the end state from the start plus its change

@@ -151,7 +151,7 @@ contains
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
       real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd
-      logical :: ok, event, clipped, dense
+      logical :: ok, event, clipped, dense, on_scratch
       integer :: worst, dl, switches, level_d, r_worst
       t0 = self%sub(self%ix(0))%t
       switches = 0
@@ -164,7 +164,9 @@ contains
             if (allocated(err)) return
             self%factorizations = self%factorizations + 1
             call self%one_step(self%scratch, 0, 0, ok, r)
+            on_scratch = .true.
          else
+            on_scratch = .false.
             if (.not. self%ops(level)%ready) then
                call self%ops(level)%prepare(self%model, self%cfg, h, err)
                if (allocated(err)) return
@@ -198,11 +200,14 @@ contains
                h = theta * h
                call next_time(t0, h, self%t_comp, .false., t1, comp)
                self%sub(self%ix(1))%t = t1
-               event = .true.
+               event = .true.;  on_scratch = .true.
             end if
          end if
          if (ok) then
-            if (event .or. h < self%h_lev(level) * (1.0_dp - 1.0e-9_dp)) then
+            ! (the stepper that took the step: a step clipped to t_stop within 1e-9 of the
+            ! level's size was taken by the scratch stepper, and the level's holds another
+            ! step's estimate, or none)
+            if (on_scratch) then
                call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
                call self%scratch%dense_error(self%eu_d, self%ev_d, dense)
