@@ -290,8 +290,15 @@ contains
                                     self%sn(:, k))
          self%cm1(:, k) = oscillator_cm1(self%w2, self%ad, node_s(k) * dt)
       end do
-      do k = 1, 3
-         do j = 1, self%n
+      do j = 1, self%n
+         if (sqrt(self%w2(j)) * dt < taylor_below .and. 2.0_dp * self%ad(j) * dt &
+             < taylor_below) then
+            ! one Taylor series per forcing, summed at the three nodes (as forced_response's
+            ! taylor_node, term for term: the same sums)
+            call taylor_nodes(self%w2(j), self%ad(j), dt, self%rx(j, :, :), self%ry(j, :, :))
+            cycle
+         end if
+         do k = 1, 3
             call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 1.0_dp, 0.0_dp, &
                                  0.0_dp, self%rx(j, 0, k), self%ry(j, 0, k))
             call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 1.0_dp, &
@@ -456,6 +463,34 @@ contains
       end do
       v = v / h
    end subroutine taylor_node
+
+   !> The responses from rest to the forcings 1, s, s^2 at the nodes (node_s) by their Taylor
+   !> series in s (omega h < 1), each series once for the three nodes (taylor_node's recursion
+   !> and stopping rule: the same sums).
+   pure subroutine taylor_nodes(w2, a, h, x, v)
+      real(dp), intent(in) :: w2, a, h
+      real(dp), intent(out) :: x(0:2, 3), v(0:2, 3)   !! (forcing s^j, node)
+      real(dp) :: xk(0:80), gk, scale, sp(3)
+      integer :: k, j
+      do j = 0, 2
+         xk(0) = 0.0_dp;  xk(1) = 0.0_dp
+         x(j, :) = 0.0_dp;  v(j, :) = 0.0_dp
+         scale = abs(h * h)
+         sp = node_s
+         do k = 0, 78
+            gk = 0.0_dp
+            if (k == j) gk = 1.0_dp
+            xk(k + 2) = (gk * h * h - 2.0_dp * a * h * (k + 1) * xk(k + 1) - w2 * h * h &
+                         * xk(k)) / real((k + 1) * (k + 2), dp)
+            v(j, :) = v(j, :) + (k + 2) * xk(k + 2) * sp
+            sp = sp * node_s
+            x(j, :) = x(j, :) + xk(k + 2) * sp
+            scale = max(scale, abs(xk(k + 2)))
+            if (k >= 3 .and. abs(xk(k + 2)) + abs(xk(k + 1)) <= 1.0e-18_dp * scale) exit
+         end do
+         v(j, :) = v(j, :) / h
+      end do
+   end subroutine taylor_nodes
 
    !> One step (see stepper_t%step).
    subroutine ex_step(self, model, s0, s1, ok, ratio, open_contact)
