@@ -151,7 +151,7 @@ contains
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
       real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd
-      logical :: ok, event, clipped, dense, on_scratch
+      logical :: ok, event, clipped, on_scratch
       integer :: worst, dl, switches, level_d, r_worst
       t0 = self%sub(self%ix(0))%t
       switches = 0
@@ -210,11 +210,11 @@ contains
             if (on_scratch) then
                call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
-               call self%scratch%dense_error(self%eu_d, self%ev_d, dense)
+               qd = dense_ratio(self, self%scratch, r_worst)
             else
                call self%ops(level)%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
-               call self%ops(level)%dense_error(self%eu_d, self%ev_d, dense)
+               qd = dense_ratio(self, self%ops(level), r_worst)
             end if
             if (.not. ok) then
                call fatal_error(err, "gapbeam_stepping: method '" // self%method // "' has " &
@@ -229,19 +229,7 @@ contains
                if (allocated(err)) return
                q = max(q, r)
             end if
-            ! the interpolant's own error: per step (it is not carried into the next step),
-            ! against the cap of one step's propagated error (a block's budget). Held only to
-            ! a period's budget (5 x more) it let the full tube at 1e-4 locate 5 releases too
-            ! early (5 extra impacts of 120 at a sliding baffle), the reduced one 2 at 1e-3.
-            ! Besides the watched outputs, the normal force of each ring in contact (the peak
-            ! force is located on the interpolant; a penetration is far below its dof's range)
-            qd = 0.0_dp
-            if (dense) then
-               self%eu = self%eu_d;  self%ev = self%ev_d
-               qd = max(self%output_ratio(r_worst), normal_force_ratio(self)) &
-                    / (block_fraction * budget_scale * self%tolerance)
-               if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
-            end if
+            if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
          else
             q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp
          end if
@@ -397,6 +385,26 @@ contains
          end do
       end associate
    end function wear_ratio
+
+   !> The interpolant's own error of the step just taken by `st` (its dense_error; 0 when it
+   !> has none), relative to the watched outputs' ranges and each ring's normal force, over
+   !> the cap of one step's propagated error (a block's budget). It is held per step, since it
+   !> is not carried into the next step (which starts from the method's end state). Held only
+   !> to a period's budget (5 x more) it let the full tube at 1e-4 locate 5 releases too early
+   !> (5 extra impacts of 120 at a sliding baffle), the reduced one 2 at 1e-3. The state's
+   !> error arrays eu, ev are overwritten. `worst`: the output of the largest (output_ratio).
+   real(dp) function dense_ratio(self, st, worst) result(qd)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      class(stepper_t), intent(inout) :: st                 !! the stepper that took the step
+      integer, intent(out) :: worst                         !! output of the largest ratio
+      logical :: has
+      qd = 0.0_dp;  worst = 0
+      call st%dense_error(self%eu_d, self%ev_d, has)
+      if (.not. has) return
+      self%eu = self%eu_d;  self%ev = self%ev_d
+      qd = max(self%output_ratio(worst), normal_force_ratio(self)) &
+           / (block_fraction * budget_scale * self%tolerance)
+   end function dense_ratio
 
    !> The interpolant's error of the normal force of each ring in contact at either end of the
    !> step (the law's change over the errors held in eu, ev at the ring's dofs, along the
