@@ -210,11 +210,9 @@ contains
             if (on_scratch) then
                call self%scratch%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
-               qd = dense_ratio(self, self%scratch, r_worst)
             else
                call self%ops(level)%local_error(self%model, self%sub(self%ix(0)), &
                   self%sub(self%ix(1)), self%fda, self%ev, coef, ok)
-               qd = dense_ratio(self, self%ops(level), r_worst)
             end if
             if (.not. ok) then
                call fatal_error(err, "gapbeam_stepping: method '" // self%method // "' has " &
@@ -228,6 +226,12 @@ contains
                call self%richardson(level, h, event, r, worst, err)
                if (allocated(err)) return
                q = max(q, r)
+            end if
+            ! (after error_ratio: it overwrites the error arrays that error_ratio reads)
+            if (on_scratch) then
+               qd = dense_ratio(self, self%scratch, r_worst)
+            else
+               qd = dense_ratio(self, self%ops(level), r_worst)
             end if
             if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
          else
