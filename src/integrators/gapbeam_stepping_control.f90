@@ -180,6 +180,14 @@ contains
          event = .false.
          if (ok .and. self%cfg%locate_events .and. self%model%n_contacts &
              + self%model%n_rings > 0) then
+            ! events are located on this trial step's interpolant: one that fails its own
+            ! check (dense_error) places none; a smaller step first (the cubic's error ~ h^4)
+            qd = dense_of(self, on_scratch, level, r_worst)
+            if (qd > 1.0_dp .and. level < self%n_levels - 1) then
+               self%steps_rejected = self%steps_rejected + 1
+               level = min(self%n_levels - 1, level + max(1, ceiling(log(qd) / log(4.0_dp))))
+               cycle
+            end if
             theta = self%first_event(0, h)
             if (theta <= min_split .and. self%ev_friction .and. switches < 4) then
                ! a stick-slip switch at the very start: the regime changes there
@@ -228,11 +236,7 @@ contains
                q = max(q, r)
             end if
             ! (after error_ratio: it overwrites the error arrays that error_ratio reads)
-            if (on_scratch) then
-               qd = dense_ratio(self, self%scratch, r_worst)
-            else
-               qd = dense_ratio(self, self%ops(level), r_worst)
-            end if
+            qd = dense_of(self, on_scratch, level, r_worst)
             if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
          else
             q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp
@@ -409,6 +413,20 @@ contains
       qd = max(self%output_ratio(worst), normal_force_ratio(self)) &
            / (block_fraction * budget_scale * self%tolerance)
    end function dense_ratio
+
+   !> dense_ratio of the stepper that took the step (`on_scratch`: the scratch stepper, else
+   !> the level's).
+   real(dp) function dense_of(self, on_scratch, level, worst) result(qd)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      logical, intent(in) :: on_scratch                     !! the scratch stepper took it
+      integer, intent(in) :: level                          !! else the level's
+      integer, intent(out) :: worst                         !! output of the largest ratio
+      if (on_scratch) then
+         qd = dense_ratio(self, self%scratch, worst)
+      else
+         qd = dense_ratio(self, self%ops(level), worst)
+      end if
+   end function dense_of
 
    !> The interpolant's error of the normal force of each ring in contact at either end of the
    !> step (the law's change over the errors held in eu, ev at the ring's dofs, along the
