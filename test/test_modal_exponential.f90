@@ -219,7 +219,7 @@ contains
       ! (the balance is integrated on the cubic Hermite pieces, whose accuracy the controller
       ! watches at the outputs only: the Rayleigh dissipation of the high modes is not. It was
       ! 1.45e-4 when the interpolant's check was the only measure of the collocation's error,
-      ! and the bound 2e-4; with the collocation's own estimate it is 3.5e-5)
+      ! and the bound 2e-4; with the collocation's own estimate it is 3.8e-5)
       call check_le('tube: energy balance closes to 1e-4 of the input work', abs(ee), 1.0e-4_dp)
    end subroutine tube_against_rk45
 
