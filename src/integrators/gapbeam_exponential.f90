@@ -280,6 +280,7 @@ contains
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j
+      real(dp) :: tx(0:2, 3), ty(0:2, 3)
       self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
       if (.not. self%built) then
          call build(self, model, cfg, err)
@@ -295,7 +296,8 @@ contains
              < taylor_below) then
             ! one Taylor series per forcing, summed at the three nodes (as forced_response's
             ! taylor_node, term for term: the same sums)
-            call taylor_nodes(self%w2(j), self%ad(j), dt, self%rx(j, :, :), self%ry(j, :, :))
+            call taylor_nodes(self%w2(j), self%ad(j), dt, tx, ty)
+            self%rx(j, :, :) = tx;  self%ry(j, :, :) = ty
             cycle
          end if
          do k = 1, 3

@@ -428,8 +428,8 @@ contains
       end if
    end function dense_of
 
-   !> The interpolant's error of the normal force of each ring in contact at either end of the
-   !> step (the law's change over the errors held in eu, ev at the ring's dofs, along the
+   !> The interpolant's error of the normal force of each flat stop and ring in contact at
+   !> either end of the step (the law's change over the errors held in eu, ev at the ring's dofs, along the
    !> contact normal), relative to the largest normal force of that ring so far: the peak
    !> force is located on the interpolant, and the penetration is far below the range of the
    !> ring's dofs that output_ratio measures it against (0.5 um under 1 N on a 2e6 N/m baffle
@@ -438,9 +438,22 @@ contains
    real(dp) function normal_force_ratio(self) result(ratio)
       class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
       real(dp) :: x(2), xd(2), d, n(2), t(2), tau, gt, dn, dd, ddn, dfn, fs
-      integer :: rg
+      integer :: rg, c, i
       ratio = 0.0_dp
       associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
+         ! flat stops in contact at either end, against the larger end force (a trial step
+         ! that enters a stop has its penetration's force at its end): the onset located on
+         ! the interpolant is within the tolerance of the force
+         do c = 1, m%n_contacts
+            fs = max(abs(s0%f(c)), abs(s1%f(c)))
+            if (fs <= 0.0_dp) cycle
+            i = m%c_dof(c)
+            d = max(m%c_sign(c) * s1%u(i) - m%c_gap(c), 0.0_dp)
+            dn = m%c_sign(c) * s1%v(i)
+            dfn = contact_force(m, c, d + abs(self%eu(i)), dn + m%c_sign(c) * self%ev(i)) &
+                  - contact_force(m, c, d, dn)
+            ratio = max(ratio, abs(dfn) / fs)
+         end do
          do rg = 1, m%n_rings
             if (max(s0%fn(rg), s1%fn(rg)) <= 0.0_dp) cycle
             x = s1%u(m%r_dof(:, rg));  xd = s1%v(m%r_dof(:, rg))
