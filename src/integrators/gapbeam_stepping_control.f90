@@ -438,16 +438,21 @@ contains
    real(dp) function normal_force_ratio(self) result(ratio)
       class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
       real(dp) :: x(2), xd(2), d, n(2), t(2), tau, gt, dn, dd, ddn, dfn, fs
-      integer :: rg, c, i
+      integer :: rg, c, i, q
       ratio = 0.0_dp
       associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
          ! flat stops in contact at either end, against the larger end force (a trial step
-         ! that enters a stop has its penetration's force at its end): the onset located on
-         ! the interpolant is within the tolerance of the force
+         ! that enters a stop has its penetration's force at its end), and no less than the
+         ! force at 1e-3 of the stop dof's quasi-static floor (a stop touched at rest carries
+         ! no force to measure against): the onset located on the interpolant is within the
+         ! tolerance of the force
          do c = 1, m%n_contacts
-            fs = max(abs(s0%f(c)), abs(s1%f(c)))
-            if (fs <= 0.0_dp) cycle
+            if (max(abs(s0%f(c)), abs(s1%f(c))) <= 0.0_dp) cycle
             i = m%c_dof(c)
+            q = findloc(self%out_dof, i, dim=1)
+            fs = max(abs(s0%f(c)), abs(s1%f(c)), tiny(1.0_dp))
+            if (q > 0) fs = max(fs, abs(contact_force(m, c, 1.0e-3_dp * self%out_floor(1 + q), &
+                                                      0.0_dp)))
             d = max(m%c_sign(c) * s1%u(i) - m%c_gap(c), 0.0_dp)
             dn = m%c_sign(c) * s1%v(i)
             dfn = contact_force(m, c, d + abs(self%eu(i)), dn + m%c_sign(c) * self%ev(i)) &
