@@ -345,8 +345,8 @@ contains
          e_est(k) = maxval(abs(fda)) * h**2 / scale
          deallocate(st, sf)
       end do
-      call note('tube sliding on ring ' // str(rg) // ' at t = ' // str(s0%t) // ' s, one step of ' &
-         // 'T/100, T/200, T/400: true local error ' // str(e_true(1)) // ', ' &
+      call note('tube sliding on ring ' // str(rg) // ' at t = ' // str(s0%t) // ' s, one ' &
+         // 'step of T/100, T/200, T/400: true local error ' // str(e_true(1)) // ', ' &
          // str(e_true(2)) // ', ' // str(e_true(3)) // '; estimate ' // str(e_est(1)) // ', ' &
          // str(e_est(2)) // ', ' // str(e_est(3)) // ' (of the ring''s displacement); ' &
          // 'observed local orders ' // str(log(e_true(1) / e_true(2)) / log(2.0_dp)) // ', ' &

@@ -395,7 +395,7 @@ contains
    end function wear_ratio
 
    !> The interpolant's own error of the step just taken by `st` (its dense_error; 0 when it
-   !> has none), relative to the watched outputs' ranges and each ring's normal force, over
+   !> has none), relative to the watched outputs' ranges and the stops' forces, over
    !> the cap of one step's propagated error (a block's budget). It is held per step, since it
    !> is not carried into the next step (which starts from the method's end state). Held only
    !> to a period's budget (5 x more) it let the full tube at 1e-4 locate 5 releases too early
@@ -429,12 +429,12 @@ contains
    end function dense_of
 
    !> The interpolant's error of the normal force of each flat stop and ring in contact at
-   !> either end of the step (the law's change over the errors held in eu, ev at the ring's dofs, along the
-   !> contact normal), relative to the largest normal force of that ring so far: the peak
-   !> force is located on the interpolant, and the penetration is far below the range of the
-   !> ring's dofs that output_ratio measures it against (0.5 um under 1 N on a 2e6 N/m baffle
-   !> against 100 um): with outputs alone the multispan tube's peak force at 7 Hz / 0.05 mm
-   !> came 1.8 % low at tolerance 1e-4 and 1.4 % at 1e-6.
+   !> either end of the step: the law's change over the errors held in eu, ev at its dofs
+   !> (along the contact normal of a ring), relative to the ring's largest normal force so
+   !> far (a flat stop: see below). The peak force is located on the interpolant, and the
+   !> penetration is far below the range of the dofs that output_ratio measures it against
+   !> (0.5 um under 1 N on a 2e6 N/m baffle against 100 um): with outputs alone the multispan
+   !> tube's peak force at 7 Hz / 0.05 mm came 1.8 % low at tolerance 1e-4 and 1.4 % at 1e-6.
    real(dp) function normal_force_ratio(self) result(ratio)
       class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
       real(dp) :: x(2), xd(2), d, n(2), t(2), tau, gt, dn, dd, ddn, dfn, fs
