@@ -280,7 +280,8 @@ contains
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j
-      real(dp) :: tx(0:2, 3), ty(0:2, 3)
+      real(dp) :: tx(3), ty(3), gu(0:3)
+      integer :: i
       self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
       if (.not. self%built) then
          call build(self, model, cfg, err)
@@ -294,10 +295,12 @@ contains
       do j = 1, self%n
          if (sqrt(self%w2(j)) * dt < taylor_below .and. 2.0_dp * self%ad(j) * dt &
              < taylor_below) then
-            ! one Taylor series per forcing, summed at the three nodes (as forced_response's
-            ! taylor_node, term for term: the same sums)
-            call taylor_nodes(self%w2(j), self%ad(j), dt, tx, ty)
-            self%rx(j, :, :) = tx;  self%ry(j, :, :) = ty
+            ! one Taylor series per forcing s^i, summed at the three nodes at once
+            do i = 0, 2
+               gu = 0.0_dp;  gu(i) = 1.0_dp
+               call taylor_series(self%w2(j), self%ad(j), dt, gu, node_s, tx, ty)
+               self%rx(j, i, :) = tx;  self%ry(j, i, :) = ty
+            end do
             cycle
          end if
          do k = 1, 3
@@ -418,11 +421,12 @@ contains
       real(dp), intent(in) :: w2, a, h, s, g0, g1, g2
       real(dp), intent(out) :: x, v
       real(dp), intent(in), optional :: g3     !! a cubic term g3 s^3
-      real(dp) :: c0, c1, c2, c3, c, sn, tau, q3
+      real(dp) :: c0, c1, c2, c3, c, sn, tau, q3, xs(1), vs(1)
       q3 = 0.0_dp
       if (present(g3)) q3 = g3
       if (sqrt(w2) * h < taylor_below .and. 2.0_dp * a * h < taylor_below) then
-         call taylor_node(w2, a, h, s, 0.0_dp, 0.0_dp, g0, g1, g2, x, v, q3)
+         call taylor_series(w2, a, h, [g0, g1, g2, q3], [s], xs, vs)
+         x = xs(1);  v = vs(1)
          return
       end if
       tau = s * h
@@ -435,26 +439,22 @@ contains
       v = -c1 * (c - a * sn) + w2 * c0 * sn + c1 + tau * (2.0_dp * c2 + 3.0_dp * tau * c3)
    end subroutine forced_response
 
-   !> The forced oscillator x'' + 2 a x' + w2 x = g0 + g1 s + g2 s^2 (s = tau / h) at s by its
-   !> Taylor series in s (omega h < 1: no cancellation between the homogeneous and the
-   !> particular parts).
-   pure subroutine taylor_node(w2, a, h, s, x0, v0, g0, g1, g2, x, v, g3)
-      real(dp), intent(in) :: w2, a, h, s, x0, v0, g0, g1, g2
-      real(dp), intent(out) :: x, v
-      real(dp), intent(in), optional :: g3     !! a cubic term g3 s^3
-      real(dp) :: xk(0:80), gk, scale, sp
+   !> The forced oscillator x'' + 2 a x' + w2 x = g(0) + g(1) s + g(2) s^2 + g(3) s^3
+   !> (s = tau / h) from rest, at the fractions s(:) of the step, by its Taylor series in s
+   !> (omega h < 1: no cancellation between the homogeneous and the particular parts); one
+   !> series for every fraction.
+   pure subroutine taylor_series(w2, a, h, g, s, x, v)
+      real(dp), intent(in) :: w2, a, h, g(0:3), s(:)
+      real(dp), intent(out) :: x(:), v(:)
+      real(dp) :: xk(0:80), gk, scale, sp(size(s))
       integer :: k
-      xk(0) = x0;  xk(1) = h * v0
-      x = xk(0) + s * xk(1);  v = xk(1)
-      scale = max(abs(xk(0)), abs(xk(1)), abs(g0 * h * h), abs(g1 * h * h), abs(g2 * h * h))
-      if (present(g3)) scale = max(scale, abs(g3 * h * h))
+      xk(0) = 0.0_dp;  xk(1) = 0.0_dp
+      x = 0.0_dp;  v = 0.0_dp
+      scale = maxval(abs(g * h * h))
       sp = s
       do k = 0, 78
          gk = 0.0_dp
-         if (k == 0) gk = g0
-         if (k == 1) gk = g1
-         if (k == 2) gk = g2
-         if (k == 3 .and. present(g3)) gk = g3
+         if (k <= 3) gk = g(k)
          xk(k + 2) = (gk * h * h - 2.0_dp * a * h * (k + 1) * xk(k + 1) - w2 * h * h * xk(k)) &
                      / real((k + 1) * (k + 2), dp)
          v = v + (k + 2) * xk(k + 2) * sp
@@ -464,35 +464,7 @@ contains
          if (k >= 3 .and. abs(xk(k + 2)) + abs(xk(k + 1)) <= 1.0e-18_dp * scale) exit
       end do
       v = v / h
-   end subroutine taylor_node
-
-   !> The responses from rest to the forcings 1, s, s^2 at the nodes (node_s) by their Taylor
-   !> series in s (omega h < 1), each series once for the three nodes (taylor_node's recursion
-   !> and stopping rule: the same sums).
-   pure subroutine taylor_nodes(w2, a, h, x, v)
-      real(dp), intent(in) :: w2, a, h
-      real(dp), intent(out) :: x(0:2, 3), v(0:2, 3)   !! (forcing s^j, node)
-      real(dp) :: xk(0:80), gk, scale, sp(3)
-      integer :: k, j
-      do j = 0, 2
-         xk(0) = 0.0_dp;  xk(1) = 0.0_dp
-         x(j, :) = 0.0_dp;  v(j, :) = 0.0_dp
-         scale = abs(h * h)
-         sp = node_s
-         do k = 0, 78
-            gk = 0.0_dp
-            if (k == j) gk = 1.0_dp
-            xk(k + 2) = (gk * h * h - 2.0_dp * a * h * (k + 1) * xk(k + 1) - w2 * h * h &
-                         * xk(k)) / real((k + 1) * (k + 2), dp)
-            v(j, :) = v(j, :) + (k + 2) * xk(k + 2) * sp
-            sp = sp * node_s
-            x(j, :) = x(j, :) + xk(k + 2) * sp
-            scale = max(scale, abs(xk(k + 2)))
-            if (k >= 3 .and. abs(xk(k + 2)) + abs(xk(k + 1)) <= 1.0e-18_dp * scale) exit
-         end do
-         v(j, :) = v(j, :) / h
-      end do
-   end subroutine taylor_nodes
+   end subroutine taylor_series
 
    !> One step (see stepper_t%step).
    subroutine ex_step(self, model, s0, s1, ok, ratio, open_contact)
