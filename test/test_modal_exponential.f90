@@ -5,7 +5,8 @@
 !> with rk45 at a tight tolerance on a reduced tube with rings and friction; the energy balance;
 !> an error estimate that falls to the round-off of the state's change (not of the state over
 !> the step) as the step shrinks, late in a forced run; an estimate that bounds the true local
-!> error of a step in sliding contact, of the method's order.
+!> error of a step in sliding contact, of the method's order; method 'auto' runs it on a
+!> reduced model that the exact integrator cannot take, at no looser than its tolerance 1e-4.
 program test_modal_exponential
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
@@ -32,6 +33,7 @@ program test_modal_exponential
    call tube_against_rk45()
    call tiny_steps_estimate()
    call estimate_bounds_error()
+   call auto_on_reduced_models()
    call finish(prog)
 
 contains
@@ -362,6 +364,61 @@ contains
    end subroutine estimate_bounds_error
 
    !> Energy imbalance of a run relative to its input work.
+   !> Method 'auto' (gapbeam_integrator: choose_auto): on the reduced tube (rings, friction) the
+   !> modal exponential integrator, at the deck's tolerance when it is 1e-4 or tighter, else at
+   !> 1e-4 (its registry's loosest_tolerance), bit for bit the run that asks for it; on the
+   !> full tube Newmark; on the reduced flat-stop beam (piecewise linear) the exact integrator.
+   subroutine auto_on_reduced_models()
+      type(model_t) :: model
+      type(transient_result_t) :: ra, rx, rf
+      type(error_t), allocatable :: err
+      character(len=200) :: base
+      base = '&solver transient_periods = 1, record_periods = 1 /'
+      call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
+                    "&solver method = 'auto', tolerance = 1.0e-3 /"], model, ra, err)
+      if (allocated(err)) then
+         call check("auto, reduced tube", .false., err%message);  return
+      end if
+      call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
+                    "&solver method = 'exponential', tolerance = 1.0e-4 /"], model, rx, err)
+      if (allocated(err)) then
+         call check("exponential at 1e-4, reduced tube", .false., err%message);  return
+      end if
+      call note("reduced tube at 1e-3: " // ra%method_reason)
+      call check("method 'auto' on the reduced tube runs the exponential integrator", &
+                 ra%method == 'exponential', ra%method)
+      call check("method 'auto' says why: the model is reduced, and at what tolerance", &
+                 index(ra%method_reason, 'reduced') > 0 .and. &
+                 index(ra%method_reason, 'loosest') > 0, ra%method_reason)
+      call check("method 'auto' at 1e-3 runs it at 1e-4: the same steps and work rates", &
+                 ra%steps_accepted == rx%steps_accepted .and. &
+                 all(ra%normal_work_rate == rx%normal_work_rate), &
+                 str(int(ra%steps_accepted)) // ' / ' // str(int(rx%steps_accepted)))
+      call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
+                    "&solver method = 'auto', tolerance = 1.0e-6 /"], model, ra, err)
+      if (allocated(err)) then
+         call check("auto at 1e-6, reduced tube", .false., err%message);  return
+      end if
+      call check("method 'auto' at 1e-6 on the reduced tube: the exponential integrator at " &
+                 // "the deck's tolerance", ra%method == 'exponential' .and. &
+                 index(ra%method_reason, 'loosest') == 0, ra%method_reason)
+      call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'none' /", &
+                    "&solver method = 'auto', tolerance = 1.0e-3 /"], model, rf, err)
+      if (allocated(err)) then
+         call check("auto, full tube", .false., err%message);  return
+      end if
+      call check("method 'auto' on the full tube runs Newmark", rf%method == 'newmark', &
+                 rf%method)
+      call run_deck(beam, [character(len=200) :: base, &
+                    "&reduction kind = 'modal', n_modes = 4 / &solver method = 'auto' /"], &
+                    model, rf, err)
+      if (allocated(err)) then
+         call check("auto, reduced flat-stop beam", .false., err%message);  return
+      end if
+      call check("method 'auto' on the reduced flat-stop beam runs the exact integrator", &
+                 rf%method == 'exact', rf%method)
+   end subroutine auto_on_reduced_models
+
    real(dp) function imbalance(r)
       type(transient_result_t), intent(in) :: r
       imbalance = (r%input_work - r%rayleigh_dissipation - r%contact_damping_dissipation &

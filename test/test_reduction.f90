@@ -333,11 +333,13 @@ contains
       character(len=48), parameter :: decks(3) = [character(len=48) :: cantilever, whirl, slide]
       character(len=160) :: ov(3, 2)
       ov = ''
-      ov(1, 1) = '&solver tolerance = 1.0e-6, transient_periods = 0, record_periods = 2 /'
+      ! (one method for both: 'auto' runs the exponential integrator on the reduced model)
+      ov(1, 1) = '&solver tolerance = 1.0e-6, transient_periods = 0, record_periods = 2, ' &
+                 // "method = 'newmark' /"
       ov(1, 2) = '&output history_periods = 2 /'
-      ov(2, 1) = '&solver tolerance = 1.0e-6, transient_periods = 0, record_periods = 2 /'
+      ov(2, 1) = ov(1, 1)
       ov(2, 2) = '&output history_periods = 2 / &stops friction = 0.3 /'
-      ov(3, 1) = '&solver tolerance = 1.0e-4 /'
+      ov(3, 1) = "&solver tolerance = 1.0e-4, method = 'newmark' /"
       do j = 1, 3
          nov = merge(1, 2, j == 3)
          call run_reduced(trim(decks(j)), ov(j, :nov), 'none', 0.0_dp, 0, mf, rf, okf)
@@ -392,7 +394,9 @@ contains
               // '0.03e-3, 0.0 /'
       ov(2) = '&point_forces node = 7, 7 / &forcing amplitude_pp = 2.0e-4, direction_deg = ' &
               // '30.0, phase_v_deg = 90.0 /'
-      ov(3) = '&solver tolerance = 1.0e-6, transient_periods = 1, record_periods = 2 /'
+      ! (one method for both: 'auto' runs the exponential integrator on the reduced model)
+      ov(3) = '&solver tolerance = 1.0e-6, transient_periods = 1, record_periods = 2, ' &
+              // "method = 'newmark' /"
       ov(4) = '&output history_periods = 2 /'
       call run_reduced(tube, ov, 'none', 0.0_dp, 0, mf, rf, ok)
       if (.not. ok) return
@@ -441,8 +445,27 @@ contains
          call check('multispan tube, auto basis: the same impacts as the full model at its ' &
                     // 'tolerance, support ' // str(k), ra%n_impacts(k) == rf4%n_impacts(k))
       end do
-      call check_le('multispan tube, auto basis: energy imbalance below 1e-4 of the input', &
-                    abs(ea), 1.0e-4_dp)
+      call check("multispan tube, auto basis: method 'auto' runs the exponential integrator", &
+                 ra%method == 'exponential', ra%method)
+      ! The balance is integrated on the steps' cubic Hermite pieces. Under the exponential
+      ! integrator at 1e-4 a ring's friction with a contact damper (mu f_n with f_n = k d +
+      ! c d') closes it to 9.9e-4 of the input (without the damper 8.9e-6, without friction
+      ! 7.6e-6; Newmark on the same basis 1.8e-6): the interpolant's velocity, which the
+      ! damper's force follows, is held per step, and its error adds up over the record. At
+      ! 1e-5 it closes to 7.8e-7 (docs/tubes.md).
+      call check_le('multispan tube, auto basis (exponential, 1e-4): energy imbalance below ' &
+                    // '2e-3 of the input', abs(ea), 2.0e-3_dp)
+      ov(3) = '&solver tolerance = 1.0e-5, transient_periods = 1, record_periods = 2 /'
+      call run_reduced(tube, ov, 'auto', 0.0_dp, 0, ma, ra, ok)
+      if (.not. ok) return
+      call check_le('multispan tube, auto basis (exponential, 1e-5): energy imbalance below ' &
+                    // '1e-5 of the input', abs(imbalance(ra)), 1.0e-5_dp)
+      ov(3) = "&solver tolerance = 1.0e-4, transient_periods = 1, record_periods = 2, method " &
+              // "= 'newmark' /"
+      call run_reduced(tube, ov, 'auto', 0.0_dp, 0, ma, ra, ok)
+      if (.not. ok) return
+      call check_le('multispan tube, auto basis (Newmark, 1e-4): energy imbalance below 1e-4 ' &
+                    // 'of the input', abs(imbalance(ra)), 1.0e-4_dp)
    end subroutine reduced_multispan_tube
 
    !> Energy imbalance of a run relative to its input work.

@@ -60,9 +60,13 @@ module gapbeam_capabilities
       character(len=24) :: stability_with = ''
       logical :: jacobian = .false.            !! exact Jacobian of the flow (continuation)
       !> what 'auto' may choose it for: 'exact' (first choice when it can integrate the
-      !> model), 'fine' (tolerances below Newmark's floor, when estimated cheaper),
-      !> 'default' (otherwise), '' (never)
+      !> model), 'modal' (a reduced model, &reduction, that the exact one cannot integrate),
+      !> 'fine' (tolerances below Newmark's floor, when estimated cheaper), 'default'
+      !> (otherwise), '' (never)
       character(len=8) :: auto_role = ''
+      !> the loosest tolerance at which 'auto' runs it (0: the deck's): a looser deck
+      !> tolerance is tightened to it (where its labels were measured to hold)
+      real(dp) :: loosest_tolerance = 0.0_dp
       real(dp) :: newmark_delta = -1.0_dp      !! preset delta of a variant (< 0: the deck's)
       real(dp) :: newmark_alpha = -1.0_dp      !! preset alpha of a variant (< 0: the deck's)
       !> the smallest tolerance its error control reaches in double precision (0: none
@@ -148,8 +152,8 @@ contains
          implicit=.false., order=4, estimator='embedded', control_order=4, linear_exact=.true., &
          controls="'auto', 'error', 'embedded'", auto_control='error', two_planes=.true., &
          point_forces=.true., rings=.true., massless=.false., carries_acceleration=.false., &
-         stages=11, lyapunov_with='newmark', title='the modal exponential integrator', &
-         parameters='rtol=rk_rtol atol=rk_atol'), &
+         stages=11, lyapunov_with='newmark', auto_role='modal', loosest_tolerance=1.0e-4_dp, &
+         title='the modal exponential integrator', parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exact', family='exact', summary='event-driven closed form of the ' &
          // 'piecewise-linear model: the accuracy reference', exact=.true., order=0, &
          controls=all_controls, nonlinear_laws=.false., jacobian=.true., &

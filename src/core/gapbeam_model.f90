@@ -103,6 +103,8 @@ module gapbeam_model
       !> a mechanism: rigid modes (omega = 0) that only the stops hold (a pinned root, a free
       !> tip, no spring in a plane)
       logical :: mechanism = .false.
+      !> a reduced model (&reduction): modal and static-mode coordinates, not nodal dofs
+      logical :: reduced = .false.
       !> the contact laws, indexed by c_law and r_law (gapbeam_laws: the built-in ones, in the
       !> order of their codes)
       type(law_slot_t), allocatable :: laws(:)

@@ -185,6 +185,12 @@ contains
       reason = "method '" // trim(cfg%method) // "' as the deck asks"
       if (cfg%method == 'auto') call choose_auto(model, cfg, t, eff%method, reason)
       c = method_caps(eff%method, t)
+      if (cfg%method == 'auto' .and. c%loosest_tolerance > 0.0_dp .and. &
+          eff%tolerance > c%loosest_tolerance) then
+         eff%tolerance = c%loosest_tolerance
+         reason = reason // ' at tolerance ' // str(c%loosest_tolerance) // " (the loosest " &
+            // "'auto' runs it at; the deck asks " // str(cfg%tolerance) // ')'
+      end if
       if (c%newmark_delta >= 0.0_dp) eff%newmark_delta = c%newmark_delta
       if (c%newmark_alpha >= 0.0_dp) eff%newmark_alpha = c%newmark_alpha
       select case (eff%step_control)
@@ -196,9 +202,11 @@ contains
    end subroutine resolve_method
 
    !> What method 'auto' runs, from the registry's roles: the 'exact' method when it can
-   !> integrate the model; else the 'default' one (Newmark with error control at the
-   !> tolerance), unless the tolerance is below the default's accuracy floor and a 'fine'
-   !> method can integrate the model at an estimated lower cost. A deck that asks for the
+   !> integrate the model; else, on a reduced model (&reduction), the 'modal' one (the modal
+   !> exponential integrator, exact on the retained modes) when it can integrate it; else the
+   !> 'default' one (Newmark with error control at the tolerance), unless the tolerance is
+   !> below the default's accuracy floor and a 'fine' method can integrate the model at an
+   !> estimated lower cost. A deck that asks for the
    !> default's stepping options (step_control 'half_step' or 'fixed', stop_solution
    !> 'fixed_point': written before 'auto' existed, when Newmark was the default) keeps it.
    subroutine choose_auto(model, cfg, t, method, reason)
@@ -208,11 +216,12 @@ contains
       character(len=*), intent(inout) :: method            !! 'auto' in, the choice out
       character(len=:), allocatable, intent(inout) :: reason !! why
       type(needs_t) :: nd
-      integer :: j, i_exact, i_fine, i_default
-      i_exact = 0;  i_fine = 0;  i_default = 0
+      integer :: j, i_exact, i_modal, i_fine, i_default
+      i_exact = 0;  i_modal = 0;  i_fine = 0;  i_default = 0
       do j = size(t), 1, -1
          select case (t(j)%auto_role)
          case ('exact');  i_exact = j
+         case ('modal');  i_modal = j
          case ('fine');  i_fine = j
          case ('default');  i_default = j
          end select
@@ -230,6 +239,15 @@ contains
          reason = "method 'auto': the beam is a mechanism (rigid modes that only its stops " &
             // 'hold), which the exact integrator cannot integrate yet, so ' &
             // trim(t(i_default)%title) // ' with error control at the tolerance'
+      else if (model%reduced .and. .not. can_run(i_exact) .and. can_run(i_modal)) then
+         method = t(i_modal)%name
+         if (len(needs_text(nd)) > 0) then
+            reason = "method 'auto': the model is reduced (&reduction) and has " &
+               // needs_text(nd) // ', so ' // trim(t(i_modal)%title)
+         else
+            reason = "method 'auto': the model is reduced (&reduction) and a stop is not " &
+               // 'piecewise linear (' // law_title() // '), so ' // trim(t(i_modal)%title)
+         end if
       else if (len(needs_text(nd)) > 0 .and. .not. can_run(i_exact)) then
          reason = "method 'auto': it has " // needs_text(nd) // ', so ' &
             // trim(t(i_default)%title) // ' with error control at the tolerance'

@@ -364,6 +364,7 @@ contains
       integer :: r, info
       r = size(basis, 2)
       red = full
+      red%reduced = .true.
       red%n = r
       red%sys%n_dof = r
       red%sys%n_node = 0
