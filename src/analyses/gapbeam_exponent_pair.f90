@@ -42,7 +42,7 @@
 module gapbeam_exponent_pair
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t
-   use gapbeam_model, only: model_t
+   use gapbeam_model, only: model_t, ring_xy
    use gapbeam_state, only: state_t
    use gapbeam_observer, only: observer_t, piece_t
    use gapbeam_integrator, only: integrator_t, start_state, equilibrium_acceleration, &
@@ -158,8 +158,8 @@ contains
       do r = 1, model%n_rings
          if (model%r_mu(r) <= 0.0_dp) cycle
          if (a%mode(r) /= ring_stick .or. b%mode(r) /= ring_stick) cycle
-         call ring_geometry(model, r, a%u(model%r_dof(:, r)), g, n, t, ta, gt)
-         call ring_geometry(model, r, b%u(model%r_dof(:, r)), g, n, t, tb, gt)
+         call ring_geometry(model, r, ring_xy(model, r, a%u), g, n, t, ta, gt)
+         call ring_geometry(model, r, ring_xy(model, r, b%u), g, n, t, tb, gt)
          e = e + model%r_kt(r) * (ring_tangent_gap(model, r, tb, b%anchor(r)) &
                                   - ring_tangent_gap(model, r, ta, a%anchor(r)))**2
       end do

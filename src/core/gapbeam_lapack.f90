@@ -5,7 +5,7 @@ module gapbeam_lapack
    implicit none
    private
    public :: dsygv, dsbgv, dpotrf, dpotrs, dpbtrf, dpbtrs, dgesv, dgeev
-   public :: zgesv, dsyevd, dsygst, dtrtrs, dgbtrf, dgbtrs, zgemm
+   public :: zgesv, dsyevd, dsygst, dtrtrs, dgbtrf, dgbtrs, zgemm, dgemm
 
    interface
       !> Generalized symmetric-definite eigenproblem A x = lambda B x.
@@ -155,5 +155,14 @@ module gapbeam_lapack
          complex(dp), intent(in)    :: alpha, beta, a(lda, *), b(ldb, *)
          complex(dp), intent(inout) :: c(ldc, *)
       end subroutine zgemm
+
+      !> Real matrix product C = alpha op(A) op(B) + beta C (BLAS).
+      subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+         import :: dp
+         character,   intent(in)    :: transa, transb
+         integer,     intent(in)    :: m, n, k, lda, ldb, ldc
+         real(dp),    intent(in)    :: alpha, beta, a(lda, *), b(ldb, *)
+         real(dp),    intent(inout) :: c(ldc, *)
+      end subroutine dgemm
    end interface
 end module gapbeam_lapack

@@ -14,7 +14,7 @@ module gapbeam_model
    use gapbeam_law, only: law_slot_t
    implicit none
    private
-   public :: system_t, model_t, load_factor, global_dof, energy_norm, add_extra_load, &
+   public :: system_t, model_t, ring_xy, load_factor, global_dof, energy_norm, add_extra_load, &
       has_tube_physics, has_modal_damping
 
    integer, parameter :: band_kd = 3   !! semi-bandwidth of the beam matrices
@@ -134,6 +134,17 @@ contains
          + cos(model%omega * t) * model%p_cos
       call add_random_load(model%turbulence, t, p)
    end subroutine add_extra_load
+
+   !> The (w, v) values of ring r in the vector u (a state's u, v or a): a fixed-size result,
+   !> so that passing them on makes no temporary array on the heap, as u(model%r_dof(:, r))
+   !> does.
+   pure function ring_xy(model, r, u) result(x)
+      type(model_t), intent(in) :: model   !! model
+      integer, intent(in) :: r             !! ring
+      real(dp), intent(in) :: u(:)         !! vector over the dofs
+      real(dp) :: x(2)
+      x(1) = u(model%r_dof(1, r));  x(2) = u(model%r_dof(2, r))
+   end function ring_xy
 
    !> Does the model need what only some integrators handle: two planes, extra loads, ring
    !> contacts (circular clearances, friction)?

@@ -17,7 +17,7 @@ module gapbeam_integrator
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, str
-   use gapbeam_model, only: model_t, load_factor, add_extra_load
+   use gapbeam_model, only: model_t, load_factor, add_extra_load, ring_xy
    use gapbeam_description, only: dof_name
    use gapbeam_law, only: law_caps_t
    use gapbeam_capabilities, only: method_caps_t, needs_t, method_table, method_caps, &
@@ -441,14 +441,14 @@ contains
       allocate(state%mode(model%n_rings), source=ring_open)
       state%sigma = 1.0_dp
       do r = 1, model%n_rings
-         call ring_geometry(model, r, state%u(model%r_dof(:, r)), d, n, tg, tau, gt)
+         call ring_geometry(model, r, ring_xy(model, r, state%u), d, n, tg, tau, gt)
          state%anchor(r) = tau
       end do
       call update_ring_modes(model, state%u, state%v, spread(0.0_dp, 1, model%n), state%mode, &
                              state%sigma, state%anchor, 0)
       do r = 1, model%n_rings
-         if (state%mode(r) /= ring_open) call onset_regime(model, r, state%u(model%r_dof(:, r)), &
-            state%v(model%r_dof(:, r)), state%mode(r), state%sigma(r), state%anchor(r))
+         if (state%mode(r) /= ring_open) call onset_regime(model, r, ring_xy(model, r, state%u), &
+            ring_xy(model, r, state%v), state%mode(r), state%sigma(r), state%anchor(r))
       end do
       pr = ring_load(model, state)
       call equilibrium_acceleration(model, t, state%u, state%v, state%f, state%a, pr)

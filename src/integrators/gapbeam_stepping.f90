@@ -18,7 +18,7 @@ module gapbeam_stepping
    use, intrinsic :: iso_fortran_env, only: int64
    use gapbeam_kinds, only: dp, pi
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_model, only: model_t, has_tube_physics
+   use gapbeam_model, only: model_t, has_tube_physics, ring_xy
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
    use gapbeam_capabilities, only: method_caps
@@ -622,8 +622,8 @@ contains
       do r = 1, model%n_rings
          p%r_onset(r) = sb%fn(r) > 0.0_dp .and. .not. sa%fn(r) > 0.0_dp
          if (.not. p%r_onset(r)) cycle
-         call ring_geometry(model, r, sa%u(model%r_dof(:, r)), da, n, t, tau, gt)
-         call ring_geometry(model, r, sb%u(model%r_dof(:, r)), db, n, t, tau, gt)
+         call ring_geometry(model, r, ring_xy(model, r, sa%u), da, n, t, tau, gt)
+         call ring_geometry(model, r, ring_xy(model, r, sb%u), db, n, t, tau, gt)
          if (da <= 0.0_dp .and. db > da) then
             p%r_onset_time(r) = p%ta + (p%tb - p%ta) * (-da) / (db - da)
          else

@@ -135,7 +135,7 @@ contains
                if (self%ev_friction) forced = r
                if (self%ev_onset) then
                   ! closes here: stick at the contact point or slip at once
-                  call onset_regime(md, r, s%u(md%r_dof(:, r)), s%v(md%r_dof(:, r)), &
+                  call onset_regime(md, r, ring_xy(md, r, s%u), ring_xy(md, r, s%v), &
                                     s%mode(r), s%sigma(r), s%anchor(r))
                   onset_mode = s%mode(r);  onset_sigma = s%sigma(r)
                end if
@@ -150,14 +150,14 @@ contains
          if (r > 0 .and. self%ev_onset) then
             ! round-off may put the onset a hair outside: it touches
             s%mode(r) = onset_mode;  s%sigma(r) = onset_sigma
-            call ring_geometry(md, r, s%u(md%r_dof(:, r)), d, n, t, tau, gt)
+            call ring_geometry(md, r, ring_xy(md, r, s%u), d, n, t, tau, gt)
             s%anchor(r) = tau
          else if (r > 0 .and. .not. self%ev_friction) then
             ! a located release: the step redone to the event may end a hair before it, with
             ! a vanishing normal force; it opens here (held in its regime over the next step,
             ! the wear meter would count the free flight as sliding or stick)
             s%mode(r) = ring_open
-            call ring_geometry(md, r, s%u(md%r_dof(:, r)), d, n, t, tau, gt)
+            call ring_geometry(md, r, ring_xy(md, r, s%u), d, n, t, tau, gt)
             s%anchor(r) = tau
          end if
          if (jump) then
@@ -252,8 +252,8 @@ contains
       integer :: r
       pr = 0.0_dp
       do r = 1, model%n_rings
-         call ring_force(model, r, s%mode(r), s%sigma(r), s%anchor(r), s%u(model%r_dof(:, r)), &
-                         s%v(model%r_dof(:, r)), pp, s%fn(r), s%ft(r), &
+         call ring_force(model, r, s%mode(r), s%sigma(r), s%anchor(r), ring_xy(model, r, s%u), &
+                         ring_xy(model, r, s%v), pp, s%fn(r), s%ft(r), &
                          touching=(r == re .and. onset))
          if (r == re .and. .not. onset) then
             ! released here: no force on the right

@@ -29,7 +29,7 @@
 !>   contact springs, stick springs) between the start and the end of the record.
 module gapbeam_wear
    use gapbeam_kinds, only: dp
-   use gapbeam_model, only: model_t, load_factor, add_extra_load, has_tube_physics, &
+   use gapbeam_model, only: model_t, ring_xy, load_factor, add_extra_load, has_tube_physics, &
       has_modal_damping
    use gapbeam_contact_law, only: contact_force, contact_elastic, contact_energy
    use gapbeam_ring_contact, only: ring_force, ring_geometry, ring_stored_energy, ring_slip, &
@@ -60,6 +60,9 @@ module gapbeam_wear
       !> in contact and its work int f |d'| dt
       real(dp), allocatable :: fq(:, :), dq(:, :), tin(:), wk(:)
       logical, allocatable :: busy(:)              !! flat contacts loaded at an end of a piece
+      !> rings: ring_piece_stats' workspace (allocated once: gfortran puts automatic arrays on
+      !> the heap), (n_rings, 8) and the normal forces at the Gauss points (3, n_rings)
+      real(dp), allocatable :: rw(:, :), rfq(:, :)
    contains
       procedure :: init => meter_init
       procedure :: piece => meter_piece
@@ -85,6 +88,7 @@ contains
       allocate(self%fq(3, model%n_contacts), self%dq(3, model%n_contacts), &
                self%tin(model%n_contacts), self%wk(model%n_contacts), source=0.0_dp)
       allocate(self%busy(model%n_contacts), source=.false.)
+      allocate(self%rw(model%n_rings, 8), self%rfq(3, model%n_rings), source=0.0_dp)
       if (.not. (self%active .or. self%energy .or. self%flat)) return
       self%model = model
       allocate(self%u(model%n), self%v(model%n), self%w(model%n), self%y(model%n), &
@@ -305,12 +309,12 @@ contains
       integer, intent(inout) :: n_impacts(:)           !! per stop
       real(dp), intent(inout) :: peak(:)               !! per stop [N]
       real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
-      real(dp) :: pw(self%model%n_rings), ea(self%model%n_rings), eb(self%model%n_rings)
-      real(dp) :: tc, ta_a(self%model%n_rings), tb_a(self%model%n_rings)
-      real(dp) :: rho_b(self%model%n_rings), sq(self%model%n_rings), tin(self%model%n_rings)
-      real(dp) :: fq(3, self%model%n_rings)
+      real(dp) :: tc
       integer :: q, r, k, e
-      associate (m => self%model)
+      associate (m => self%model, pw => self%rw(:, 1), ea => self%rw(:, 2), &
+                 eb => self%rw(:, 3), ta_a => self%rw(:, 4), tb_a => self%rw(:, 5), &
+                 rho_b => self%rw(:, 6), sq => self%rw(:, 7), tin => self%rw(:, 8), &
+                 fq => self%rfq)
          h = p%tb - p%ta
          pw = 0.0_dp;  sq = 0.0_dp;  tin = 0.0_dp
          ! the ends: stick-spring energy (its change is not dissipated)
@@ -434,7 +438,7 @@ contains
          associate (m => self%model)
             if (ring) then
                call ring_force(m, j, p%r_mode(j), p%r_sigma(j), p%r_anchor(j), &
-                               self%u(m%r_dof(:, j)), self%v(m%r_dof(:, j)), pr, fn, ft)
+                               ring_xy(m, j, self%u), ring_xy(m, j, self%v), pr, fn, ft)
             else
                i = m%c_dof(j)
                fn = contact_force(m, j, m%c_sign(j) * self%u(i) - m%c_gap(j), &
@@ -462,7 +466,7 @@ contains
          end do
          do r = 1, m%n_rings
             e = e + ring_stored_energy(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
-                                       u(m%r_dof(:, r)), v(m%r_dof(:, r)))
+                                       ring_xy(m, r, u), ring_xy(m, r, v))
          end do
       end associate
    end function energy_at
@@ -502,7 +506,7 @@ contains
          res%tangential_force(ih, :) = 0.0_dp
          do r = 1, m%n_rings
             call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
-                            self%u(m%r_dof(:, r)), self%v(m%r_dof(:, r)), pr, fn, ft)
+                            ring_xy(m, r, self%u), ring_xy(m, r, self%v), pr, fn, ft)
             k = m%r_stop(r)
             res%stop_force(ih, k) = res%stop_force(ih, k) + fn
             res%tangential_force(ih, k) = res%tangential_force(ih, k) + ft

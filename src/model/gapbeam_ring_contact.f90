@@ -30,7 +30,7 @@
 !> a strictly convex function). Several contacts: Gauss-Seidel over contacts (scalar and ring).
 module gapbeam_ring_contact
    use gapbeam_kinds, only: dp, pi
-   use gapbeam_model, only: model_t
+   use gapbeam_model, only: model_t, ring_xy
    use gapbeam_contact_law, only: contact_solve
    implicit none
    private
@@ -451,8 +451,8 @@ contains
       integer :: r
       real(dp) :: pr(2)
       do r = 1, model%n_rings
-         call ring_force(model, r, mode(r), sigma(r), anchor(r), u(model%r_dof(:, r)), &
-                         v(model%r_dof(:, r)), pr, fn(r), ft(r))
+         call ring_force(model, r, mode(r), sigma(r), anchor(r), ring_xy(model, r, u), &
+                         ring_xy(model, r, v), pr, fn(r), ft(r))
          if (present(p)) p(model%r_dof(:, r)) = p(model%r_dof(:, r)) + pr
       end do
    end subroutine ring_forces_at
