@@ -71,8 +71,9 @@ contains
       type(solver_settings_t), intent(inout) :: s
       call v%begin_group('solver', 'time integration')
       call v%word('method', s%method, method_words, meaning="integrator; 'auto': the exact " &
-         // "integrator for piecewise-linear stops, else on a reduced model 'exponential' " &
-         // "(tolerance at most 1e-4), else 'newmark' with error control (docs/methods.md)")
+         // "integrator for piecewise-linear stops, else on a reduced model with such laws " &
+         // "'exponential' (tolerance at most 1e-4), else 'newmark' with error control " &
+         // '(docs/methods.md)')
       call v%real('tolerance', s%tolerance, '1', lo=1.0e-12_dp, hi=0.5_dp, meaning='accuracy ' &
          // 'asked of every error-controlled method (local error per period, relative)', &
          note="with method = 'rk45' and no tolerance, rk_rtol stands in for it")
