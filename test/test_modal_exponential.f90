@@ -19,7 +19,8 @@ program test_modal_exponential
       start_state
    use gapbeam_results, only: transient_result_t
    use gapbeam_transient, only: integrate
-   use gapbeam_test_runs, only: load_or_stop, run_deck
+   use gapbeam_test_runs, only: load_or_stop, run_deck, load_deck
+   use gapbeam_attractor, only: auto_period_tolerance
    use gapbeam_expm_reference, only: expm_run
    use gapbeam_ring_contact, only: ring_slip
    implicit none
@@ -374,6 +375,8 @@ contains
       type(model_t) :: model
       type(transient_result_t) :: ra, rx, rf
       type(error_t), allocatable :: err
+      type(deck_t) :: deck
+      real(dp), allocatable :: u0(:), v0(:)
       character(len=200) :: base
       base = '&solver transient_periods = 1, record_periods = 1 /'
       call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
@@ -396,6 +399,20 @@ contains
                  ra%steps_accepted == rx%steps_accepted .and. &
                  all(ra%normal_work_rate == rx%normal_work_rate), &
                  str(int(ra%steps_accepted)) // ' / ' // str(int(rx%steps_accepted)))
+      ! the labels' repeat tolerance is that of the deck's tolerance (10 x 1e-3), not of the
+      ! tightened one: a run more accurate than asked must not find fewer periods
+      call load_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
+                     "&solver method = 'auto', tolerance = 1.0e-3 /"], deck, model, u0, v0, err)
+      if (allocated(err)) then
+         call check("auto, reduced tube, deck", .false., err%message);  return
+      end if
+      call check_close("method 'auto' at 1e-3 on the reduced tube: period tolerance 10 x the " &
+                       // "deck's tolerance", auto_period_tolerance(model, deck%solver, &
+                       deck%diagnostics), 1.0e-2_dp, 1.0e-12_dp)
+      deck%solver%method = 'exponential';  deck%solver%tolerance = 1.0e-4_dp
+      call check_close("method 'exponential' at 1e-4: period tolerance 1e-3", &
+                       auto_period_tolerance(model, deck%solver, deck%diagnostics), 1.0e-3_dp, &
+                       1.0e-12_dp)
       call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
                     "&solver method = 'auto', tolerance = 1.0e-6 /"], model, ra, err)
       if (allocated(err)) then
