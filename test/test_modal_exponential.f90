@@ -14,13 +14,14 @@ program test_modal_exponential
    use gapbeam_deck, only: deck_t
    use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
-   use gapbeam_settings, only: solver_settings_t
+   use gapbeam_settings, only: solver_settings_t, diagnostics_settings_t
    use gapbeam_integrator, only: integrator_t, stepper_t, make_integrator, make_stepper, &
       start_state
    use gapbeam_results, only: transient_result_t
    use gapbeam_transient, only: integrate
    use gapbeam_test_runs, only: load_or_stop, run_deck, load_deck
    use gapbeam_attractor, only: auto_period_tolerance
+   use gapbeam_certify, only: accuracy_settings, check_diagnostics
    use gapbeam_expm_reference, only: expm_run
    use gapbeam_ring_contact, only: ring_slip
    implicit none
@@ -377,6 +378,10 @@ contains
       type(error_t), allocatable :: err
       type(deck_t) :: deck
       real(dp), allocatable :: u0(:), v0(:)
+      type(solver_settings_t) :: tight
+      type(diagnostics_settings_t) :: dg
+      character(len=:), allocatable :: what
+      logical :: needed
       character(len=200) :: base
       base = '&solver transient_periods = 1, record_periods = 1 /'
       call run_deck(tube, [character(len=200) :: base, "&reduction kind = 'auto' /", &
@@ -409,6 +414,16 @@ contains
       call check_close("method 'auto' at 1e-3 on the reduced tube: period tolerance 10 x the " &
                        // "deck's tolerance", auto_period_tolerance(model, deck%solver, &
                        deck%diagnostics), 1.0e-2_dp, 1.0e-12_dp)
+      ! the accuracy check of a certificate (the exponential integrator at 1e-5) judges its
+      ! orbit at 10 x the deck's tolerance / 10, as a Newmark run's check was: 1e-3, not 1e-4
+      call accuracy_settings(model, deck%solver, deck%diagnostics%certify_ratio, tight, what, &
+                             needed)
+      dg = check_diagnostics(model, deck%solver, deck%diagnostics, tight)
+      call check("certificate of 'auto' at 1e-3: the check runs the exponential integrator at " &
+                 // '1e-5', needed .and. tight%method == 'exponential' .and. &
+                 abs(tight%tolerance - 1.0e-5_dp) < 1.0e-18_dp, what)
+      call check_close("certificate of 'auto' at 1e-3: the check's period tolerance 1e-3", &
+                       auto_period_tolerance(model, tight, dg), 1.0e-3_dp, 1.0e-12_dp)
       deck%solver%method = 'exponential';  deck%solver%tolerance = 1.0e-4_dp
       call check_close("method 'exponential' at 1e-4: period tolerance 1e-3", &
                        auto_period_tolerance(model, deck%solver, deck%diagnostics), 1.0e-3_dp, &

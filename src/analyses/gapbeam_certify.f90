@@ -29,13 +29,13 @@ module gapbeam_certify
       label_chaotic, certificate_certified, certificate_disputed
    use gapbeam_capabilities, only: method_caps_t, method_table, is_exact
    use gapbeam_integrator, only: resolve_method, refusal
-   use gapbeam_attractor, only: diagnose, persistence
+   use gapbeam_attractor, only: diagnose, persistence, auto_period_tolerance
    use gapbeam_transient, only: integrator_cache_t
    use gapbeam_starts, only: uniform_numbers, attractor_distance
    use gapbeam_clock, only: thread_cpu_seconds
    implicit none
    private
-   public :: certify_point, contradiction
+   public :: certify_point, contradiction, accuracy_settings, check_diagnostics
 
    integer, parameter :: stream_perturbation = 1000   !! generator stream offset of the checks
 
@@ -67,14 +67,16 @@ contains
       call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed)
       pr%accuracy_method = ''
       if (needed) then
-         call diagnose(model, tight, out, diag, u0, v0, res, chk, err, cache=cache)
+         call diagnose(model, tight, out, check_diagnostics(model, cfg, diag, tight), u0, v0, &
+                       res, chk, err, cache=cache)
          if (allocated(err) .and. is_exact(tight%method)) then
             ! the exact integrator refused this model: tighten the run's own method instead
             call accuracy_settings(model, cfg, diag%certify_ratio, tight, what, needed, &
                                    no_exact=.true.)
             deallocate(err)
             chk = point_result_t()
-            call diagnose(model, tight, out, diag, u0, v0, res, chk, err, cache=cache)
+            call diagnose(model, tight, out, check_diagnostics(model, cfg, diag, tight), u0, v0, &
+                          res, chk, err, cache=cache)
          end if
          pr%accuracy_method = what
          call record_check(pr, chk, err, 'accuracy', what, diag, reason)
@@ -118,6 +120,7 @@ contains
          pr%certificate_reason = 'disputed: ' // reason
       end if
       pr%seconds_certify = thread_cpu_seconds() - cpu0
+
    end subroutine certify_point
 
    !> The persistence check of a chaotic point: its run continued for certify_persistence x
@@ -256,6 +259,28 @@ contains
       what = trim(eff%method) // ' (' // trim(eff%step_control) // ' step control) ' &
          // num(ratio) // ' x tighter'
    end subroutine accuracy_settings
+
+   !> The accuracy check's diagnostics settings: the run's, with the automatic period
+   !> tolerance of the deck's tolerance tightened by the ratio, and no stricter than the check's
+   !> own; not the check's own alone, which method 'auto' may have tightened further (the
+   !> modal exponential integrator runs a deck at 1e-3 at 1e-4 and its check at 1e-5: the
+   !> check's orbit is judged at 10 x 1e-4, as a Newmark run's check at 1e-4 was, not at
+   !> 10 x 1e-5, where an orbit the run found periodic came out undecided). The exact
+   !> integrator keeps its own (1e-6); a deck's period_tolerance stays.
+   function check_diagnostics(model, cfg, diag, tight) result(d)
+      type(model_t), intent(in) :: model                 !! model of the point
+      type(solver_settings_t), intent(in) :: cfg         !! the run's settings (the deck's)
+      type(diagnostics_settings_t), intent(in) :: diag   !! the run's diagnostics settings
+      type(solver_settings_t), intent(in) :: tight       !! the check's settings
+      type(diagnostics_settings_t) :: d
+      type(solver_settings_t) :: ref
+      d = diag
+      if (d%period_tolerance > 0.0_dp .or. is_exact(tight%method)) return
+      ref = cfg
+      ref%tolerance = cfg%tolerance / diag%certify_ratio
+      d%period_tolerance = max(auto_period_tolerance(model, ref, diag), &
+                               auto_period_tolerance(model, tight, diag))
+   end function check_diagnostics
 
    !> A number in 3 significant digits.
    pure function num(x) result(t)
