@@ -120,7 +120,6 @@ contains
          pr%certificate_reason = 'disputed: ' // reason
       end if
       pr%seconds_certify = thread_cpu_seconds() - cpu0
-
    end subroutine certify_point
 
    !> The persistence check of a chaotic point: its run continued for certify_persistence x
