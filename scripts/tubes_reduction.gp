@@ -25,7 +25,8 @@ set logscale xy
 set format y '10^{%L}'
 set xlabel 'CPU per simulated second [s/s]'
 set ylabel 'largest relative error of the normal work rate over the baffles'
-set key bottom left box opaque
+# (top right, where neither panel has points: bottom left hid the tightest tolerances')
+set key top right box opaque samplen 2
 set grid
 sel(c, k) = (strcol(1) eq c && strcol(2) eq k)
 pos(x) = (x > 0 ? x : 1e-7)
@@ -33,13 +34,13 @@ do for [c in cases] {
    set title (c eq 'periodic' ? \
       'periodic case: 7 Hz, 0.05 mm (reference: full model at tolerance 1e-6)' : \
       'the deck: 8 Hz, 0.2 mm, not periodic (reference: full model at 1e-6, the same record)')
-   plot datafile u (sel(c, 'full') ? $7 : NaN):(pos($8)) w lp pt 7 lw 2 t 'full model, tolerance 1e-3..1e-5', \
-        datafile u (sel(c, 'auto') ? $7 : NaN):(pos($8)) w lp pt 5 lw 2 t "reduced, kind = 'auto', Newmark, tolerance 1e-3..1e-5", \
-        datafile u (sel(c, 'auto_rk45') ? $7 : NaN):(pos($8)) w lp pt 13 lw 2 t "reduced, kind = 'auto', rk45, tolerance 1e-3..1e-5", \
-        datafile u (sel(c, 'auto_exp') ? $7 : NaN):(pos($8)) w lp pt 11 lw 2 t "reduced, kind = 'auto', exponential, tolerance 1e-3..1e-6", \
-        datafile u (sel(c, 'full_exp') ? $7 : NaN):(pos($8)) w p pt 15 ps 1.8 t 'full model, exponential, tolerance 1e-4', \
-        datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)) w p pt 9 ps 1.5 t 'reduced, cut-off [Hz] (label)', \
-        datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)) w p pt 8 ps 1.5 t 'reduced, cut-off [Hz], exponential', \
+   plot datafile u (sel(c, 'full') ? $7 : NaN):(pos($8)) w lp pt 7 lw 2 t 'full, Newmark, tol. 1e-3..1e-5', \
+        datafile u (sel(c, 'auto') ? $7 : NaN):(pos($8)) w lp pt 5 lw 2 t "'auto' basis, Newmark, tol. 1e-3..1e-5", \
+        datafile u (sel(c, 'auto_rk45') ? $7 : NaN):(pos($8)) w lp pt 13 lw 2 t "'auto' basis, rk45, tol. 1e-3..1e-5", \
+        datafile u (sel(c, 'auto_exp') ? $7 : NaN):(pos($8)) w lp pt 11 lw 2 t "'auto' basis, exponential (the default), tol. 1e-3..1e-6", \
+        datafile u (sel(c, 'full_exp') ? $7 : NaN):(pos($8)) w p pt 15 ps 1.8 t 'full, exponential, tol. 1e-4', \
+        datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)) w p pt 9 ps 1.5 t 'cut-off [Hz] (label), Newmark', \
+        datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)) w p pt 8 ps 1.5 t 'cut-off [Hz], exponential', \
         datafile u (sel(c, 'modal_exp') ? $7 : NaN):(pos($8)):(sprintf('%g', $4)) w labels offset 2.5,-0.5 notitle, \
         datafile u (sel(c, 'modal') ? $7 : NaN):(pos($8)):(sprintf('%g', $4)) w labels offset 2.5,0.5 notitle, \
         datafile u (sel(c, 'full') || sel(c, 'auto') || sel(c, 'auto_rk45') || sel(c, 'auto_exp') ? $7 : NaN):(pos($8)):(sprintf('%.0e', $5)) w labels offset 0,-1 tc rgb 'gray40' notitle
