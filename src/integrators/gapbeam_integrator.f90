@@ -379,17 +379,21 @@ contains
    !> The default: the step's interpolant has no error estimate of its own (what local_error
    !> estimates covers it, or nothing is known).
    !>
-   !> A method that has one returns the error of the cubic Hermite interpolant of the step
-   !> (the dense output that events, samples and the wear statistics read) at its midpoint, in
-   !> displacement (eu) and velocity (ev). The integrator controls it per step, not per unit
-   !> time: it is not carried into the next step (which starts from the method's end state),
-   !> so it does not add up along the trajectory.
-   subroutine no_dense_error(self, eu, ev, has)
+   !> A method that has one returns the errors of the step's Hermite interpolants at its
+   !> midpoint, in displacement and velocity: of the cubic from u, v at both ends, on which
+   !> events are located (eu, ev), and of the quintic from u, v, a, which samples, states and
+   !> the wear statistics read (eq, evq, when asked for). The integrator controls them per
+   !> step, not per unit time: they are not carried into the next step (which starts from the
+   !> method's end state), so they do not add up along the trajectory.
+   subroutine no_dense_error(self, eu, ev, has, eq, evq)
       class(stepper_t), intent(inout) :: self         !! stepper
-      real(dp), intent(out) :: eu(:)                  !! displacement error at the midpoint
-      real(dp), intent(out) :: ev(:)                  !! velocity error at the midpoint
+      real(dp), intent(out) :: eu(:)                  !! cubic's displacement error at the midpoint
+      real(dp), intent(out) :: ev(:)                  !! cubic's velocity error at the midpoint
       logical, intent(out) :: has                     !! false: none
+      real(dp), intent(out), optional :: eq(:), evq(:) !! the quintic's
       eu = 0.0_dp;  ev = 0.0_dp
+      if (present(eq)) eq = 0.0_dp
+      if (present(evq)) evq = 0.0_dp
       has = .false.
    end subroutine no_dense_error
 

@@ -36,7 +36,7 @@ contains
          self%h_lev(c) = self%h_max * 2.0_dp**(-0.5_dp * c)
       end do
       allocate(self%fda(model%n), self%ev(model%n), self%eu(model%n), self%fda_prev(model%n), &
-               self%eu_d(model%n), self%ev_d(model%n), &
+               self%eu_d(model%n), self%ev_d(model%n), self%eu_q(model%n), self%ev_q(model%n), &
                source=0.0_dp)
       self%out_dof = [integer ::]
       if (model%sys%tip_dof > 0) self%out_dof = [model%sys%tip_dof]
@@ -116,7 +116,7 @@ contains
       else
          level = min(max(state%level, 0), self%n_levels - 1)
       end if
-      self%t_begin = state%t;  self%n_since = 0
+      self%t_begin = state%t;  self%n_since = 0;  self%t_checked = state%t
       self%energy_ref = 0.5_dp * dot_product(state%u, matmul(self%model%sys%k, state%u)) &
                         + 0.5_dp * dot_product(state%v, matmul(self%model%sys%m, state%v))
       self%block_start = state%t;  self%block_sum = 0.0_dp
@@ -150,11 +150,12 @@ contains
       real(dp), intent(in) :: t_stop                        !! do not step beyond [s]
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
-      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd
+      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd, ql, cap
       logical :: ok, event, clipped, on_scratch
-      integer :: worst, dl, switches, level_d, r_worst
+      integer :: worst, dl, switches, level_d, r_worst, level_l
       t0 = self%sub(self%ix(0))%t
       switches = 0
+      cap = block_fraction * budget_scale * self%tolerance   ! one step's share of the budget
       do
          r = 0.0_dp
          h = self%h_lev(level)
@@ -185,7 +186,7 @@ contains
             qd = dense_of(self, on_scratch, level, r_worst)
             if (qd > 1.0_dp .and. level < self%n_levels - 1) then
                self%steps_rejected = self%steps_rejected + 1
-               level = min(self%n_levels - 1, level + max(1, ceiling(log(qd) / log(4.0_dp))))
+               level = min(self%n_levels - 1, level + levels_down(qd, 4))
                cycle
             end if
             theta = self%first_event(0, h)
@@ -228,21 +229,25 @@ contains
                return
             end if
             q = self%error_ratio(h, coef, worst)
+            ! the wear watch's part held per step (wear_ratio), against a step's cap
+            ql = self%wear_local / cap
+            if (ql > q / cap) worst = 2 * (1 + size(self%out_dof)) + self%wear_local_ring
             if (self%h_prev == 0.0_dp .and. coef(2) >= 0.0_dp .and. coef(3) /= 0.0_dp) then
                ! the first step from a start or a contact event has no previous step to
                ! estimate a'' from: its velocity error is measured by two half steps
                call self%richardson(level, h, event, r, worst, err)
                if (allocated(err)) return
                q = max(q, r)
+               ql = max(ql, self%wear_local / cap)
             end if
             ! (after error_ratio: it overwrites the error arrays that error_ratio reads)
             qd = dense_of(self, on_scratch, level, r_worst)
-            if (qd > q / (block_fraction * budget_scale * self%tolerance)) worst = r_worst
+            if (qd > max(ql, q / cap)) worst = r_worst
          else
-            q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp
+            q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp;  ql = 0.0_dp
          end if
          ! one step may not spend more than the budget of a whole block
-         ratio = max(q / (block_fraction * budget_scale * self%tolerance), qd)
+         ratio = max(q / cap, qd, ql)
          if (ratio <= 1.0_dp) exit
          ! reject: smaller steps (the local error scales as h^3)
          self%steps_rejected = self%steps_rejected + 1
@@ -250,10 +255,7 @@ contains
             call controlled_failure(self, t0, h, ratio, worst, ok, err)
             return
          end if
-         dl = 1
-         if (ratio < huge(1.0_dp)) dl = max(1, ceiling(log(ratio) / log(2.0_dp**(0.5_dp &
-                                                 * (self%order + 1)))))
-         level = min(self%n_levels - 1, level + dl)
+         level = min(self%n_levels - 1, level + levels_down(ratio, self%order + 1))
       end do
       ! accept
       self%t_comp = comp
@@ -263,13 +265,11 @@ contains
       self%fda_prev = self%fda
       self%h_prev = merge(0.0_dp, h, event)
       self%block_sum = self%block_sum + q
-      level_d = 0
-      if (qd > 0.0_dp) then
-         ! the largest step whose interpolant keeps within its share (aiming at half of it;
-         ! the cubic's error scales as h^4)
-         level_d = min(self%n_levels - 1, max(0, level + nint(log(qd / 0.5_dp) &
-                                                         / log(2.0_dp**(0.5_dp * 4)))))
-      end if
+      ! the largest steps whose interpolants, and the wear watch's local part, keep within
+      ! their share (aiming at half of it; the cubic's error scales as h^4, a local error as
+      ! h^(order + 1))
+      level_d = share_level(self, level, qd, 4)
+      level_l = share_level(self, level, ql, self%order + 1)
       if (self%caps%linear_exact .and. .not. event) then
          ! the linear part exact (free flight without error): the next step from this one's
          ! error per unit time against the budget's (aiming at half of it; the rate scales as
@@ -292,8 +292,29 @@ contains
          end if
          self%block_start = t1;  self%block_sum = 0.0_dp
       end if
-      if (.not. event) level = max(level, level_d)
+      if (.not. event) level = max(level, level_d, level_l)
    end subroutine controlled_step
+
+   !> Levels (steps h_max 2^(-L/2)) to go down after a rejected step whose estimate, scaling
+   !> as h^power, is `ratio` of its share: at least one (one when there is no estimate).
+   pure integer function levels_down(ratio, power) result(dl)
+      real(dp), intent(in) :: ratio                      !! estimate over its share (> 1)
+      integer, intent(in) :: power                       !! the estimate's power of h
+      dl = 1
+      if (ratio < huge(1.0_dp)) dl = max(1, ceiling(log(ratio) / log(2.0_dp**(0.5_dp * power))))
+   end function levels_down
+
+   !> The level (step h_max 2^(-L/2)) whose estimate, `ratio` of its share at `level` and
+   !> scaling as h^power, is half its share (0 when there is no estimate).
+   pure integer function share_level(self, level, ratio, power) result(lv)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator (its ladder)
+      integer, intent(in) :: level, power                !! the step's level, the power
+      real(dp), intent(in) :: ratio                      !! its estimate over its share
+      lv = 0
+      if (ratio <= 0.0_dp) return
+      lv = min(self%n_levels - 1, max(0, level + nint(log(ratio / 0.5_dp) &
+                                                      / log(2.0_dp**(0.5_dp * power)))))
+   end function share_level
 
    !> The local error of a step relative to the watched outputs' ranges: the largest of
    !> |l' e_u| / max(range, floor) over the root strain and the tip and contact displacements,
@@ -317,15 +338,25 @@ contains
 
    !> max over the watched outputs of |l' e| / max(range, floor) for the errors held in
    !> self%eu (displacement outputs) and self%ev (rates); `worst` as in error_ratio.
-   real(dp) module function output_ratio(self, worst) result(ratio)
+   !> `events_only`: the outputs that event location reads only (the contact dofs and the wear
+   !> watch; not the root strain, nor a tip that is not a contact dof).
+   real(dp) module function output_ratio(self, worst, events_only) result(ratio)
       class(stepping_integrator_t), intent(inout) :: self   !! integrator
       integer, intent(out) :: worst                      !! output of the largest ratio
-      real(dp) :: es, r
-      integer :: i, q, no
+      logical, intent(in), optional :: events_only       !! the contact dofs' outputs only
+      real(dp) :: es, r, wl
+      integer :: i, q, no, wr
+      logical :: ev_only
+      ev_only = .false.
+      if (present(events_only)) ev_only = events_only
       no = 1 + size(self%out_dof)
       ratio = 0.0_dp;  worst = 1
       do i = 1, 2 * no
          if (i == no + 1 .and. .not. self%watch_rate) cycle
+         if (ev_only) then
+            if (i == 1 .or. i == no + 1) cycle
+            if (.not. any(self%model%slot_dof == self%out_dof(mod(i - 2, no) + 1))) cycle
+         end if
          if (i == 1 .or. i == no + 1) then
             es = 0.0_dp
             do q = 1, size(self%si)
@@ -342,8 +373,10 @@ contains
             ratio = r;  worst = i
          end if
       end do
+      self%wear_local = 0.0_dp;  self%wear_local_ring = 0
       if (self%model%n_rings > 0) then
-         r = wear_ratio(self, q)
+         r = wear_ratio(self, q, wl, wr)
+         self%wear_local = wl;  self%wear_local_ring = wr
          if (r > ratio) then
             ratio = r;  worst = 2 * no + q
          end if
@@ -354,15 +387,24 @@ contains
    !> step and sliding over it (in slip; any contact without friction), the local error of the
    !> tangential velocity v_t = t.x' relative to its range (the sliding distance integrates
    !> |v_t|) and that of the work integrand f_n v_t relative to (the largest f_n) x (the range
-   !> of v_t) (the normal work rate and friction work integrate it; the error of f_n is the law's
-   !> change over the error of the penetration). Nothing in stick: it wears nothing. Returns
-   !> the largest ratio and its ring (0: none).
-   real(dp) function wear_ratio(self, worst) result(ratio)
+   !> of v_t) (the normal work rate and friction work integrate it). Nothing in stick: it wears
+   !> nothing. The integrand's error has two parts. f_n dv_t is summed with the other outputs'
+   !> errors: an error of the sliding motion stays in the trajectory. v_t df_n, with df_n the
+   !> law's change over the error of the penetration, is returned apart (`local`) and held per
+   !> step, as the interpolant's error is: the penetration under a stiff contact is the
+   !> contact mode's (2e6 N/m on the tube: 1.6 kHz, its damper's 5 %), whose error rings
+   !> down in milliseconds and integrates to nothing over its cycles; an error of the force that
+   !> lasts comes from the structure's motion, which the displacement outputs watch. (Summed,
+   !> it bounded half of the tube deck's steps under the exponential integrator.) Returns the
+   !> largest summed ratio and its ring (0: none).
+   real(dp) function wear_ratio(self, worst, local, local_ring) result(ratio)
       class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
       integer, intent(out) :: worst                      !! ring of the largest ratio
+      real(dp), intent(out) :: local                     !! largest v_t df_n / (F_max V_t)
+      integer, intent(out) :: local_ring                 !! its ring (0: none)
       real(dp) :: x(2), xd(2), d, n(2), t(2), gt, vt, dn, dvt, dd, dfn, fn, vs, fs, r, h
       integer :: rg
-      ratio = 0.0_dp;  worst = 0
+      ratio = 0.0_dp;  worst = 0;  local = 0.0_dp;  local_ring = 0
       associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
          do rg = 1, m%n_rings
             fn = s1%fn(rg)
@@ -386,9 +428,13 @@ contains
             end associate
             vs = max(self%vt_hi(rg) - self%vt_lo(rg), self%vt_floor(rg), tiny(1.0_dp))
             fs = max(self%fn_max(rg), fn)
-            r = max(abs(dvt) / vs, abs(vt * dfn + fn * dvt) / (fs * vs))
+            r = max(abs(dvt) / vs, abs(fn * dvt) / (fs * vs))
             if (r > ratio) then
                ratio = r;  worst = rg
+            end if
+            r = abs(vt * dfn) / (fs * vs)
+            if (r > local) then
+               local = r;  local_ring = rg
             end if
          end do
       end associate
@@ -406,12 +452,21 @@ contains
       class(stepper_t), intent(inout) :: st                 !! the stepper that took the step
       integer, intent(out) :: worst                         !! output of the largest ratio
       logical :: has
+      integer :: w5
+      real(dp) :: q5
       qd = 0.0_dp;  worst = 0
-      call st%dense_error(self%eu_d, self%ev_d, has)
+      call st%dense_error(self%eu_d, self%ev_d, has, self%eu_q, self%ev_q)
       if (.not. has) return
+      ! the cubic, on what event location reads
       self%eu = self%eu_d;  self%ev = self%ev_d
-      qd = max(self%output_ratio(worst), normal_force_ratio(self)) &
-           / (block_fraction * budget_scale * self%tolerance)
+      qd = max(self%output_ratio(worst, events_only=.true.), self%wear_local, &
+               normal_force_ratio(self))
+      ! the quintic, on every watched output (and the normal forces, whose peaks are located
+      ! on it)
+      self%eu = self%eu_q;  self%ev = self%ev_q
+      q5 = max(self%output_ratio(w5), self%wear_local, normal_force_ratio(self))
+      if (q5 > qd) worst = w5
+      qd = max(qd, q5) / (block_fraction * budget_scale * self%tolerance)
    end function dense_ratio
 
    !> dense_ratio of the stepper that took the step (`on_scratch`: the scratch stepper, else
