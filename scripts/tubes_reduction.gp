@@ -18,15 +18,16 @@
 if (!exists("datafile")) datafile = 'bench_results/tubes_reduction.dat'
 if (!exists("outfile")) outfile = 'bench_results/tubes_reduction.png'
 if (!exists("cases")) cases = 'deck'
-set terminal pngcairo size (700 * words(cases) + 200),600 enhanced font 'Sans,10'
+set terminal pngcairo size (700 * words(cases) + 200),700 enhanced font 'Sans,10'
 set output outfile
 set multiplot layout 1,words(cases) title 'Tube in two baffles: normal work rate error against CPU, full and reduced models'
 set logscale xy
 set format y '10^{%L}'
 set xlabel 'CPU per simulated second [s/s]'
 set ylabel 'largest relative error of the normal work rate over the baffles'
-# (top right, where neither panel has points: bottom left hid the tightest tolerances')
-set key top right box opaque samplen 2
+# (below the panels: inside, top right hid the points near 1e-3 of the periodic case and
+# bottom left the tightest tolerances')
+set key below nobox samplen 2 width -4
 set grid
 sel(c, k) = (strcol(1) eq c && strcol(2) eq k)
 pos(x) = (x > 0 ? x : 1e-7)

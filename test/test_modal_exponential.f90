@@ -209,22 +209,26 @@ contains
             // str(re%sliding_distance(k)) // ' (' // str(rk%sliding_distance(k)) // ')')
          call check('tube, support ' // str(k) // ': the same impacts as rk45', &
                     re%n_impacts(k) == rk%n_impacts(k))
+         ! (20 x the tolerance: 2.6e-6 measured; 1.4e-4 while the controller checked the cubic
+         ! interpolant only, which the wear statistics do not read)
          call check_close('tube, support ' // str(k) // ': normal work rate as rk45', &
-                          re%normal_work_rate(k), rk%normal_work_rate(k), 1.0e-3_dp, 1.0e-12_dp)
+                          re%normal_work_rate(k), rk%normal_work_rate(k), 2.0e-5_dp, 1.0e-12_dp)
          call check_close('tube, support ' // str(k) // ': friction work rate as rk45', &
-                          re%friction_work_rate(k), rk%friction_work_rate(k), 1.0e-3_dp, &
+                          re%friction_work_rate(k), rk%friction_work_rate(k), 2.0e-5_dp, &
                           1.0e-12_dp)
+         call check_close('tube, support ' // str(k) // ': sliding distance as rk45', &
+                          re%sliding_distance(k), rk%sliding_distance(k), 2.0e-5_dp, 1.0e-12_dp)
          call check_close('tube, support ' // str(k) // ': peak force as rk45', &
                           re%peak_force(k), rk%peak_force(k), 1.0e-3_dp, 1.0e-9_dp)
       end do
       ek = imbalance(rk);  ee = imbalance(re)
       call note('tube energy imbalance (of the input work): exponential ' // str(ee) &
                 // ', rk45 ' // str(ek))
-      ! (the balance is integrated on the cubic Hermite pieces, whose accuracy the controller
-      ! watches at the outputs only: the Rayleigh dissipation of the high modes is not. It was
-      ! 1.45e-4 when the interpolant's check was the only measure of the collocation's error,
-      ! and the bound 2e-4; with the collocation's own estimate it is 3.8e-5)
-      call check_le('tube: energy balance closes to 1e-4 of the input work', abs(ee), 1.0e-4_dp)
+      ! (the balance is integrated on the quintic Hermite pieces. It was 1.45e-4 when the
+      ! cubic interpolant's check was the only measure of the collocation's error, 3.8e-5 with
+      ! the collocation's own estimate, 2.5e-6 with the quintic checked too and the step's own
+      ! end acceleration)
+      call check_le('tube: energy balance closes to 2e-5 of the input work', abs(ee), 2.0e-5_dp)
    end subroutine tube_against_rk45
 
    !> The reduced forced tube at t = 2.66 s (the forcing's phase large: sin(Omega t) carries
