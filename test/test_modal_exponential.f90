@@ -210,7 +210,7 @@ contains
             // str(re%sliding_distance(k)) // ' (' // str(rk%sliding_distance(k)) // ')')
          call check('tube, support ' // str(k) // ': the same impacts as rk45', &
                     re%n_impacts(k) == rk%n_impacts(k))
-         ! (20 x the tolerance: 2.6e-6 measured; 1.4e-4 while the controller checked the cubic
+         ! (20 x the tolerance: 1e-7 measured; 1.4e-4 while the controller checked the cubic
          ! interpolant only, which the wear statistics do not read)
          call check_close('tube, support ' // str(k) // ': normal work rate as rk45', &
                           re%normal_work_rate(k), rk%normal_work_rate(k), 2.0e-5_dp, 1.0e-12_dp)
@@ -227,7 +227,7 @@ contains
                 // ', rk45 ' // str(ek))
       ! (the balance is integrated on the quintic Hermite pieces. It was 1.45e-4 when the
       ! cubic interpolant's check was the only measure of the collocation's error, 3.8e-5 with
-      ! the collocation's own estimate, 2.5e-6 with the quintic checked too and the step's own
+      ! the collocation's own estimate, 2.7e-6 with the quintic checked too and the step's own
       ! end acceleration)
       call check_le('tube: energy balance closes to 2e-5 of the input work', abs(ee), 2.0e-5_dp)
    end subroutine tube_against_rk45

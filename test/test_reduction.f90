@@ -452,7 +452,7 @@ contains
       ! controller checked the cubic only (friction with a contact damper: the damper's force
       ! follows the interpolant's velocity, and an end acceleration with the damper's jump at
       ! an onset bent the quintic); with the quintic checked on every output and the step's
-      ! own end acceleration, 9.8e-6 (docs/methods.md).
+      ! own end acceleration, 1.9e-5 (docs/methods.md).
       call check_le('multispan tube, auto basis (exponential, 1e-4): energy imbalance below ' &
                     // '1e-4 of the input', abs(ea), 1.0e-4_dp)
       ov(3) = '&solver tolerance = 1.0e-5, transient_periods = 1, record_periods = 2 /'
