@@ -625,14 +625,14 @@ contains
       type(state_t), intent(in) :: sa, sb         !! the piece's end states
       class(piece_t), intent(inout) :: p          !! the piece
       integer :: r
-      real(dp) :: da, db, n(2), t(2), tau, gt
+      real(dp) :: da, db, n(2), t(2), gt
       p%r_mode = sa%mode;  p%r_sigma = sa%sigma;  p%r_anchor = sa%anchor
       p%fn_a = sa%fn;  p%fn_b = sb%fn
       do r = 1, model%n_rings
          p%r_onset(r) = sb%fn(r) > 0.0_dp .and. .not. sa%fn(r) > 0.0_dp
          if (.not. p%r_onset(r)) cycle
-         call ring_geometry(model, r, ring_xy(model, r, sa%u), da, n, t, tau, gt)
-         call ring_geometry(model, r, ring_xy(model, r, sb%u), db, n, t, tau, gt)
+         call ring_geometry(model, r, ring_xy(model, r, sa%u), da, n, t, gt=gt)
+         call ring_geometry(model, r, ring_xy(model, r, sb%u), db, n, t, gt=gt)
          if (da <= 0.0_dp .and. db > da) then
             p%r_onset_time(r) = p%ta + (p%tb - p%ta) * (-da) / (db - da)
          else

@@ -410,11 +410,11 @@ contains
             fn = s1%fn(rg)
             if (fn <= 0.0_dp) cycle
             if (m%r_mu(rg) > 0.0_dp .and. s0%mode(rg) /= ring_slip) cycle
-            x = s1%u(m%r_dof(:, rg));  xd = s1%v(m%r_dof(:, rg))
+            x = ring_xy(m, rg, s1%u);  xd = ring_xy(m, rg, s1%v)
             call ring_geometry(m, rg, x, d, n, t, gt=gt)
             vt = dot_product(t, xd);  dn = dot_product(n, xd)
-            dvt = dot_product(t, self%ev(m%r_dof(:, rg)))
-            dd = dot_product(n, self%eu(m%r_dof(:, rg)))
+            dvt = dot_product(t, ring_xy(m, rg, self%ev))
+            dd = dot_product(n, ring_xy(m, rg, self%eu))
             ! below the round-off of the position (and of the velocity, which an implicit
             ! step gets from the position as 2 x / h): no error to control
             h = max(s1%t - s0%t, tiny(1.0_dp))
@@ -516,11 +516,11 @@ contains
          end do
          do rg = 1, m%n_rings
             if (max(s0%fn(rg), s1%fn(rg)) <= 0.0_dp) cycle
-            x = s1%u(m%r_dof(:, rg));  xd = s1%v(m%r_dof(:, rg))
+            x = ring_xy(m, rg, s1%u);  xd = ring_xy(m, rg, s1%v)
             call ring_geometry(m, rg, x, d, n, t, gt=gt)
             dn = dot_product(n, xd)
-            dd = dot_product(n, self%eu(m%r_dof(:, rg)))
-            ddn = dot_product(n, self%ev(m%r_dof(:, rg)))
+            dd = dot_product(n, ring_xy(m, rg, self%eu))
+            ddn = dot_product(n, ring_xy(m, rg, self%ev))
             associate (law => m%laws(m%r_law(rg))%law)
                dfn = law%force(m%r_k(rg), m%r_c(rg), m%r_p(rg), max(d, 0.0_dp) + abs(dd), &
                                dn + ddn) &
@@ -639,7 +639,7 @@ contains
          do rg = 1, m%n_rings
             if (s%fn(rg) <= 0.0_dp) cycle
             call ring_geometry(m, rg, ring_xy(m, rg, s%u), d, n, t, gt=gt)
-            vt = dot_product(t, s%v(m%r_dof(:, rg)))
+            vt = dot_product(t, ring_xy(m, rg, s%v))
             self%vt_lo(rg) = min(self%vt_lo(rg), vt);  self%vt_hi(rg) = max(self%vt_hi(rg), vt)
             self%fn_max(rg) = max(self%fn_max(rg), s%fn(rg))
          end do

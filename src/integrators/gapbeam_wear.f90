@@ -308,7 +308,7 @@ contains
       real(dp), intent(inout) :: acc_f(:), acc_f2(:), acc_work(:), acc_contact(:)  !! per stop
       integer, intent(inout) :: n_impacts(:)           !! per stop
       real(dp), intent(inout) :: peak(:)               !! per stop [N]
-      real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), tau, gt, vt, dn, fe
+      real(dp) :: h, wq, t, x(2), xd(2), pr(2), fn, ft, d, n(2), tg(2), gt, vt, dn, fe
       real(dp) :: tc
       integer :: q, r, k, e
       associate (m => self%model, pw => self%rw(:, 1), ea => self%rw(:, 2), &
@@ -322,9 +322,9 @@ contains
             t = merge(p%ta, p%tb, e == 1)
             call p%state_at(t, self%u, self%v)
             do r = 1, m%n_rings
-               x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
+               x = ring_xy(m, r, self%u);  xd = ring_xy(m, r, self%v)
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
-               call ring_geometry(m, r, x, d, n, tg, tau, gt)
+               call ring_geometry(m, r, x, d, n, tg, gt=gt)
                if (e == 1) then
                   ea(r) = 0.0_dp
                   if (m%r_mu(r) > 0.0_dp) ea(r) = 0.5_dp * ft**2 / (m%r_kt(r) * gt**2)
@@ -344,10 +344,10 @@ contains
             call p%state_at(t, self%u, self%v)
             do r = 1, m%n_rings
                k = m%r_stop(r)
-               x = self%u(m%r_dof(:, r));  xd = self%v(m%r_dof(:, r))
+               x = ring_xy(m, r, self%u);  xd = ring_xy(m, r, self%v)
                call ring_force(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), x, xd, pr, fn, ft)
                fq(q, r) = fn
-               call ring_geometry(m, r, x, d, n, tg, tau, gt)
+               call ring_geometry(m, r, x, d, n, tg, gt=gt)
                vt = dot_product(tg, xd);  dn = dot_product(n, xd)
                ! the slider's travel at the contact radius rho, int rho dtau_a, by parts:
                ! rho_b (tau_a(tb) - tau_a(ta)) - int (tau_a - tau_a(ta)) rho' dt (rho' = d')
