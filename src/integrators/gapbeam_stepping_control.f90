@@ -151,8 +151,9 @@ contains
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
       real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd, ql, cap
-      logical :: ok, event, clipped, on_scratch
-      integer :: worst, dl, switches, level_d, r_worst, level_l
+      logical :: ok, event, clipped, on_scratch, dense_held
+      integer :: worst, dl, switches, level_d, r_worst, level_l, d_worst
+      real(dp) :: qd_held
       t0 = self%sub(self%ix(0))%t
       switches = 0
       cap = block_fraction * budget_scale * self%tolerance   ! one step's share of the budget
@@ -178,12 +179,14 @@ contains
          clipped = h == t_stop - t0
          call next_time(t0, h, self%t_comp, clipped, t1, comp)
          self%sub(self%ix(1))%t = t1
-         event = .false.
+         event = .false.;  dense_held = .false.
          if (ok .and. self%cfg%locate_events .and. self%model%n_contacts &
              + self%model%n_rings > 0) then
             ! events are located on this trial step's interpolant: one that fails its own
             ! check (dense_error) places none; a smaller step first (the cubic's error ~ h^4)
             qd = dense_of(self, on_scratch, level, r_worst)
+            ! held for the acceptance below while this trial step stands (ended at no event)
+            qd_held = qd;  d_worst = r_worst;  dense_held = .true.
             if (qd > 1.0_dp .and. level < self%n_levels - 1) then
                self%steps_rejected = self%steps_rejected + 1
                level = min(self%n_levels - 1, level + levels_down(qd, 4))
@@ -209,7 +212,7 @@ contains
                h = theta * h
                call next_time(t0, h, self%t_comp, .false., t1, comp)
                self%sub(self%ix(1))%t = t1
-               event = .true.;  on_scratch = .true.
+               event = .true.;  on_scratch = .true.;  dense_held = .false.
             end if
          end if
          if (ok) then
@@ -237,11 +240,18 @@ contains
                ! estimate a'' from: its velocity error is measured by two half steps
                call self%richardson(level, h, event, r, worst, err)
                if (allocated(err)) return
+               dense_held = .false.   ! (its half steps may reuse the stepper)
                q = max(q, r)
                ql = max(ql, self%wear_local / cap)
             end if
-            ! (after error_ratio: it overwrites the error arrays that error_ratio reads)
-            qd = dense_of(self, on_scratch, level, r_worst)
+            ! (after error_ratio: it overwrites the error arrays that error_ratio reads; the
+            ! value found before event location when the step is the same: no input of it
+            ! has changed since, and after it nothing reads the arrays it leaves)
+            if (dense_held) then
+               qd = qd_held;  r_worst = d_worst
+            else
+               qd = dense_of(self, on_scratch, level, r_worst)
+            end if
             if (qd > max(ql, q / cap)) worst = r_worst
          else
             q = huge(1.0_dp);  worst = 0;  qd = 0.0_dp;  ql = 0.0_dp

@@ -55,6 +55,10 @@ module gapbeam_wear
       real(dp) :: e_in = 0.0_dp, e_ray = 0.0_dp, e_damp = 0.0_dp, e_fric = 0.0_dp
       real(dp) :: e_start = 0.0_dp, e_end = 0.0_dp   !! stored energy [J]
       logical :: started = .false.         !! the first recorded piece was seen
+      !> the last piece's end state and ring regimes: its stored energy (e_end) is computed
+      !> once, at the finish, not at every piece's end
+      real(dp), allocatable :: u_end(:), v_end(:), end_sigma(:), end_anchor(:)
+      integer, allocatable :: end_mode(:)
       real(dp), allocatable :: u(:), v(:), w(:), y(:)   !! workspaces (n)
       !> flat contacts: force and penetration rate at the Gauss points of a piece, its time
       !> in contact and its work int f |d'| dt
@@ -92,7 +96,9 @@ contains
       if (.not. (self%active .or. self%energy .or. self%flat)) return
       self%model = model
       allocate(self%u(model%n), self%v(model%n), self%w(model%n), self%y(model%n), &
-               source=0.0_dp)
+               self%u_end(model%n), self%v_end(model%n), self%end_sigma(model%n_rings), &
+               self%end_anchor(model%n_rings), source=0.0_dp)
+      allocate(self%end_mode(model%n_rings), source=0)
    end subroutine meter_init
 
    !> A recorded piece: wear integrals, the impact statistics of the rings and (unless the
@@ -117,7 +123,7 @@ contains
          h = p%tb - p%ta
          if (self%energy .and. .not. self%started) then
             call p%state_at(p%ta, self%u, self%v)
-            self%e_start = self%energy_at(p, self%u, self%v)
+            self%e_start = self%energy_at(p%r_mode, p%r_sigma, p%r_anchor, self%u, self%v)
          end if
          self%started = .true.
          do q = 1, 3
@@ -142,8 +148,9 @@ contains
          if (m%n_rings > 0 .and. (self%active .or. self%energy)) &
             call self%ring_piece_stats(p, acc_f, acc_f2, acc_work, acc_contact, n_impacts, peak)
          if (self%energy) then
-            call p%state_at(p%tb, self%u, self%v)
-            self%e_end = self%energy_at(p, self%u, self%v)
+            call p%state_at(p%tb, self%u_end, self%v_end)
+            self%end_mode = p%r_mode;  self%end_sigma = p%r_sigma
+            self%end_anchor = p%r_anchor
          end if
       end associate
    end subroutine meter_piece
@@ -450,9 +457,10 @@ contains
 
    !> Stored energy at a state of a piece: kinetic, strain, contact springs and stick springs
    !> (the rings in the piece's regime) [J].
-   real(dp) function energy_at(self, p, u, v) result(e)
+   real(dp) function energy_at(self, mode, sigma, anchor, u, v) result(e)
       class(wear_meter_t), intent(inout) :: self   !! meter
-      class(piece_t), intent(in) :: p              !! the piece (ring regimes)
+      integer, intent(in) :: mode(:)               !! the rings' regimes
+      real(dp), intent(in) :: sigma(:), anchor(:)  !! their slip directions and anchors
       real(dp), intent(in) :: u(:), v(:)           !! state
       integer :: c, r
       real(dp) :: d
@@ -465,7 +473,7 @@ contains
             e = e + contact_energy(m, c, d)
          end do
          do r = 1, m%n_rings
-            e = e + ring_stored_energy(m, r, p%r_mode(r), p%r_sigma(r), p%r_anchor(r), &
+            e = e + ring_stored_energy(m, r, mode(r), sigma(r), anchor(r), &
                                        ring_xy(m, r, u), ring_xy(m, r, v))
          end do
       end associate
@@ -541,6 +549,8 @@ contains
          res%rayleigh_dissipation = self%e_ray
          res%contact_damping_dissipation = self%e_damp
          res%friction_dissipation = sum(self%fric)
+         if (self%started) self%e_end = self%energy_at(self%end_mode, self%end_sigma, &
+                                                       self%end_anchor, self%u_end, self%v_end)
          res%stored_energy_change = self%e_end - self%e_start
       end if
    end subroutine meter_finish
