@@ -150,9 +150,9 @@ contains
       real(dp), intent(in) :: t_stop                        !! do not step beyond [s]
       class(observer_t), intent(inout), optional :: obs     !! observer of the pieces
       type(error_t), allocatable, intent(out) :: err        !! failure at the smallest step
-      real(dp) :: t0, t1, h, theta, ratio, r, q, rho, coef(3), comp, qd, ql, cap
+      real(dp) :: t0, t1, h, theta, ratio, r, q, coef(3), comp, qd, ql, cap
       logical :: ok, event, clipped, on_scratch, dense_held
-      integer :: worst, dl, switches, level_d, r_worst, level_l, d_worst
+      integer :: worst, switches, r_worst, d_worst
       real(dp) :: qd_held
       t0 = self%sub(self%ix(0))%t
       switches = 0
@@ -271,6 +271,19 @@ contains
       self%t_comp = comp
       call swap_check_emit(self, t0, h, event, obs, err)
       if (allocated(err)) return
+      call next_level(self, level, h, t1, q, qd, ql, event)
+   end subroutine controlled_step
+
+   !> After an accepted step [t1 - h, t1] (its local error q, interpolants' check qd and wear
+   !> watch ql against their shares; `event`: it ends at a located event): the error history
+   !> for the next step and the next step's level.
+   subroutine next_level(self, level, h, t1, q, qd, ql, event)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      integer, intent(inout) :: level                       !! the step's level, then the next's
+      real(dp), intent(in) :: h, t1, q, qd, ql              !! the step and its ratios
+      logical, intent(in) :: event                          !! it ends at an event
+      real(dp) :: rho
+      integer :: dl, level_d, level_l
       ! a'' of the next step from this one's fda, unless the acceleration jumps here
       self%fda_prev = self%fda
       self%h_prev = merge(0.0_dp, h, event)
@@ -303,7 +316,7 @@ contains
          self%block_start = t1;  self%block_sum = 0.0_dp
       end if
       if (.not. event) level = max(level, level_d, level_l)
-   end subroutine controlled_step
+   end subroutine next_level
 
    !> Levels (steps h_max 2^(-L/2)) to go down after a rejected step whose estimate, scaling
    !> as h^power, is `ratio` of its share: at least one (one when there is no estimate).
