@@ -480,10 +480,13 @@ contains
       qd = 0.0_dp;  worst = 0
       call st%dense_error(self%eu_d, self%ev_d, has, self%eu_q, self%ev_q)
       if (.not. has) return
-      ! the cubic, on what event location reads
-      self%eu = self%eu_d;  self%ev = self%ev_d
-      qd = max(self%output_ratio(worst, events_only=.true.), self%wear_local, &
-               normal_force_ratio(self))
+      ! the cubic, on what event location reads; nothing to read where no contact can be
+      ! reached within the step (rings_clear)
+      if (.not. rings_clear(self)) then
+         self%eu = self%eu_d;  self%ev = self%ev_d
+         qd = max(self%output_ratio(worst, events_only=.true.), self%wear_local, &
+                  normal_force_ratio(self))
+      end if
       ! the quintic, on every watched output (and the normal forces, whose peaks are located
       ! on it)
       self%eu = self%eu_q;  self%ev = self%ev_q
@@ -491,6 +494,40 @@ contains
       if (q5 > qd) worst = w5
       qd = max(qd, q5) / (block_fraction * budget_scale * self%tolerance)
    end function dense_ratio
+
+   !> No ring can switch within the step ix(0) -> ix(1), whatever the cubic's error: the model
+   !> has rings only (no flat contacts), each open at both ends, and the cubic Hermite path of
+   !> its node stays inside its clearance by twice the cubic's own error there (the error
+   !> estimate at the midpoint, where a cubic's h^4 error peaks). The path lies in the convex
+   !> hull of its Bezier points x0, x0 + h x0'/3, x1 - h x1'/3, x1, and the clearance (a disk,
+   !> or the half plane of a flat ring) is convex: all four inside by the margin puts the path
+   !> there. Event location then finds nothing on any interpolant, so the cubic's check
+   !> (dense_ratio) has nothing to hold; the quintic's still holds every output. (In free
+   !> flight the cubic's check sized 8 084 of the 8 126 steps of the tube deck's open phases.)
+   logical function rings_clear(self) result(clear)
+      class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
+      real(dp) :: h, e(2), p(2, 4), d, n(2), t(2), gt, margin
+      integer :: rg, j
+      clear = .false.
+      associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
+         if (m%n_rings == 0 .or. m%n_contacts > 0) return
+         h = s1%t - s0%t
+         do rg = 1, m%n_rings
+            if (s0%mode(rg) /= ring_open .or. s0%fn(rg) > 0.0_dp .or. s1%fn(rg) > 0.0_dp) return
+            e = ring_xy(m, rg, self%eu_d)
+            margin = 2.0_dp * norm2(e)
+            p(:, 1) = ring_xy(m, rg, s0%u)
+            p(:, 2) = p(:, 1) + (h / 3.0_dp) * ring_xy(m, rg, s0%v)
+            p(:, 4) = ring_xy(m, rg, s1%u)
+            p(:, 3) = p(:, 4) - (h / 3.0_dp) * ring_xy(m, rg, s1%v)
+            do j = 1, 4
+               call ring_geometry(m, rg, p(:, j), d, n, t, gt=gt)
+               if (d > -margin) return
+            end do
+         end do
+      end associate
+      clear = .true.
+   end function rings_clear
 
    !> dense_ratio of the stepper that took the step (`on_scratch`: the scratch stepper, else
    !> the level's).
