@@ -60,6 +60,9 @@ module gapbeam_wear
       real(dp), allocatable :: u_end(:), v_end(:), end_sigma(:), end_anchor(:)
       integer, allocatable :: end_mode(:)
       real(dp), allocatable :: u(:), v(:), w(:), y(:)   !! workspaces (n)
+      !> the Rayleigh (and modal) damping matrix beta M + gamma K (+ C_modal) in one, where the
+      !> products are dense (a reduced model): one product per Gauss point instead of two
+      real(dp), allocatable :: c_ray(:, :)
       !> flat contacts: force and penetration rate at the Gauss points of a piece, its time
       !> in contact and its work int f |d'| dt
       real(dp), allocatable :: fq(:, :), dq(:, :), tin(:), wk(:)
@@ -99,6 +102,11 @@ contains
                self%u_end(model%n), self%v_end(model%n), self%end_sigma(model%n_rings), &
                self%end_anchor(model%n_rings), source=0.0_dp)
       allocate(self%end_mode(model%n_rings), source=0)
+      if (energy .and. .not. band_products(model, model%sys%m_band, model%sys%m) .and. .not. &
+          band_products(model, model%sys%k_band, model%sys%k)) then
+         self%c_ray = model%beta * model%sys%m + model%gamma * model%sys%k
+         if (has_modal_damping(model)) self%c_ray = self%c_ray + model%c_modal
+      end if
    end subroutine meter_init
 
    !> A recorded piece: wear integrals, the impact statistics of the rings and (unless the
@@ -134,10 +142,15 @@ contains
                self%w = load_factor(m, t) * m%q
                call add_extra_load(m, t, self%w)
                pv = dot_product(self%w, self%v)
-               ray = m%beta * quad(m, m%sys%m_band, m%sys%m, self%v, self%y) + m%gamma &
-                     * quad(m, m%sys%k_band, m%sys%k, self%v, self%y)
-               if (has_modal_damping(m)) ray = ray + dot_product(self%v, &
-                                                           matmul(m%c_modal, self%v))
+               if (allocated(self%c_ray)) then
+                  call dense_matvec(m%n, self%c_ray, self%v, self%y)
+                  ray = dot_product(self%v, self%y)
+               else
+                  ray = m%beta * quad(m, m%sys%m_band, m%sys%m, self%v, self%y) + m%gamma &
+                        * quad(m, m%sys%k_band, m%sys%k, self%v, self%y)
+                  if (has_modal_damping(m)) ray = ray + dot_product(self%v, &
+                                                              matmul(m%c_modal, self%v))
+               end if
                self%e_in = self%e_in + wq * pv
                self%e_ray = self%e_ray + wq * ray
             end if
@@ -486,14 +499,21 @@ contains
       real(dp), intent(in) :: ab(:, :), ad(:, :)  !! band and dense storage
       real(dp), intent(in) :: x(:)                !! vector
       real(dp), intent(inout) :: y(:)             !! workspace
-      if (size(ab, 2) == model%n .and. (4 * model%sys%kd < model%n .or. size(ad, 1) &
-          /= model%n)) then
+      if (band_products(model, ab, ad)) then
          call band_matvec(model%n, model%sys%kd, ab, x, y)
       else
          call dense_matvec(model%n, ad, x, y)
       end if
       s = dot_product(x, y)
    end function quad
+
+   !> quad takes the band product: there is a band storage and it is narrow, or no dense one.
+   pure logical function band_products(model, ab, ad) result(band)
+      type(model_t), intent(in) :: model          !! model (size, band width)
+      real(dp), intent(in) :: ab(:, :), ad(:, :)  !! band and dense storage
+      band = size(ab, 2) == model%n .and. (4 * model%sys%kd < model%n .or. size(ad, 1) &
+             /= model%n)
+   end function band_products
 
    !> Orbits, tangential and ring normal forces at a history sample (two-plane models).
    subroutine meter_sample(self, p, t, ih, res)
