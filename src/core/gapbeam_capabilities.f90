@@ -149,10 +149,10 @@ contains
          title='the embedded Runge-Kutta method rk45', parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exponential', family='exponential', summary='modal exponential: ' &
          // 'the linear modes and harmonic loads exact, the contact forces collocated', &
-         implicit=.false., order=4, estimator='embedded', control_order=4, linear_exact=.true., &
+         implicit=.false., order=5, estimator='embedded', control_order=5, linear_exact=.true., &
          controls="'auto', 'error', 'embedded'", auto_control='error', two_planes=.true., &
          point_forces=.true., rings=.true., massless=.false., carries_acceleration=.false., &
-         stages=11, lyapunov_with='newmark', auto_role='modal', loosest_tolerance=1.0e-4_dp, &
+         stages=18, lyapunov_with='newmark', auto_role='modal', loosest_tolerance=1.0e-4_dp, &
          title='the modal exponential integrator', parameters='rtol=rk_rtol atol=rk_atol'), &
       method_caps_t(name='exact', family='exact', summary='event-driven closed form of the ' &
          // 'piecewise-linear model: the accuracy reference', exact=.true., order=0, &

@@ -8,24 +8,28 @@
 !> harmonic loads L(t) (base motion in w and v, point forces: sin and cos of Omega_f t) are
 !> solved exactly by their particular solution. What is left, N = Phi' F - D_off x' (contact and
 !> ring forces with friction in the regimes of the step's start, turbulence, a non-proportional
-!> damping's off-diagonal part), is approximated over a step by the quadratic through its values
-!> at the nodes 0, h/2 and h (Lobatto collocation), and the oscillators are solved exactly under
-!> that polynomial forcing (its particular polynomial, or, when omega h < 1, the Taylor series
-!> of the forced solution, free of cancellation). The nodes' values come from Picard sweeps:
-!> N at the start held constant, then four sweeps through the quadratic (stage error h^2, h^3,
-!> h^4, h^5; the end h^5: order 4, the collocation's own). The embedded estimate is the
-!> difference of the last two sweeps: an h^5 estimate of the third sweep's error, of the order
-!> of the method's (the controller's order 4; the fourth sweep's end is kept). With three
-!> sweeps the estimate was that of an h^4 error, and the controller's order 3 took about twice
-!> the steps the error needed. The errors of the step's Hermite interpolants at its midpoint
-!> against the method's own midpoint are returned apart (dense_error): the cubic from u, v at
-!> both ends, on which events are located, and the quintic from u, v, a, which samples, states
-!> and the wear statistics read. The integrator controls them per step, since the next step
-!> starts from the method's end state, not from an interpolant: the cubic on what events read
-!> (the contact dofs, the normal forces, the wear watch), the quintic on every watched output.
-!> (The cubic checked on every output, the root strain among them, bounded 28 % of the tube
-!> deck's steps: its error, ~ (omega h)^4 / 384 of a ringing static mode against the
-!> quintic's ~ (omega h)^6 / 46080.)
+!> damping's off-diagonal part), is approximated over a step by the cubic through its values
+!> at Lobatto's four nodes 0, (5 - sqrt 5) / 10, (5 + sqrt 5) / 10 and 1 (times h), and the
+!> oscillators are solved exactly under that polynomial forcing (its particular polynomial, or,
+!> when omega h < 1, the Taylor series of the forced solution, free of cancellation). The nodes'
+!> values come from Picard sweeps: N at the start held constant, then five sweeps through the
+!> cubic (stage errors h^2 ... h^6: order 5; a sweep whose node forces repeat the previous
+!> sweep's bit for bit ends them). The error estimate has two parts: the last two sweeps'
+!> difference, and the collocation's own error, N at the check node h/2 against the cubic there
+!> (the leading, h^4 N'''' term of the cubic's error, C4 s (s - a) (s - b) (s - 1)), carried to
+!> the end by the oscillators' exact response to that quartic (the controller's order 5). The
+!> quadratic through 0, h/2, h with four sweeps (order 4) took 1.9 and 2.6 times the steps on
+!> the tube deck and its periodic case. The errors of the step's Hermite interpolants at its
+!> midpoint against the method's own midpoint are returned apart (dense_error): the cubic from
+!> u, v at both ends and
+!> the quintic from u, v, a, which samples, states and the wear statistics read, and on which
+!> the events of a ring in contact at the step's start are located (an onset keeps the cubic:
+!> a trial step that enters a ring ends with the contact's acceleration, which bends the
+!> quintic before the onset). The integrator controls them per step, since the next step starts
+!> from the method's end state, not from an interpolant: the cubic on what its events read,
+!> the quintic on every watched output. (The cubic checked on every output, the root strain
+!> among them, bounded 28 % of the tube deck's steps: its error, ~ (omega h)^4 / 384 of a
+!> ringing static mode against the quintic's ~ (omega h)^6 / 46080.)
 !>
 !> The step is taken in increment form: the oscillators give the change of each modal
 !> coordinate over the step (c - 1 by expm1, the harmonic terms' change by the product formulas
@@ -43,7 +47,7 @@
 module gapbeam_exponential
    use gapbeam_kinds, only: dp
    use gapbeam_error, only: error_t, fatal_error, str
-   use gapbeam_lapack, only: dsygv, dgemm
+   use gapbeam_lapack, only: dsygv, dgemm, dgesv
    use gapbeam_model, only: model_t
    use gapbeam_state, only: state_t
    use gapbeam_settings, only: solver_settings_t
@@ -55,10 +59,15 @@ module gapbeam_exponential
    private
    public :: exponential_t, oscillator_propagator, oscillator_cm1, expm1
 
-   integer, parameter :: n_sweeps = 4          ! Picard sweeps after the constant predictor
+   integer, parameter :: n_sweeps = 5          ! Picard sweeps after the constant predictor
    real(dp), parameter :: taylor_below = 1.0_dp   ! omega h (and 2 zeta omega h) below: Taylor
-   !> the nodes' fractions of the step: the collocation's h/2 and h, and the check node h/4
-   real(dp), parameter :: node_s(3) = [0.5_dp, 1.0_dp, 0.25_dp]
+   real(dp), parameter :: sq5 = 2.23606797749978969640917_dp
+   !> the nodes' fractions of the step: Lobatto's (5 -+ sqrt 5) / 10 and 1, and the check node 1/2
+   real(dp), parameter :: node_s(4) = [(5.0_dp - sq5) / 10.0_dp, (5.0_dp + sq5) / 10.0_dp, &
+                                       1.0_dp, 0.5_dp]
+   integer, parameter :: k_end = 3, k_mid = 4
+   !> the error shape s (s - a) (s - b) (s - 1) = s^4 - 2 s^3 + 1.2 s^2 - 0.2 s, its value at 1/2
+   real(dp), parameter :: w4_mid = 0.0125_dp
 
    !> The modal exponential stepper (see the module's description).
    type, extends(stepper_t) :: exponential_t
@@ -89,21 +98,23 @@ module gapbeam_exponential
       !> vectors (n, 9), the products with Phi (n, 11) and with Phi' M, |Phi| (n, 3)
       real(dp), allocatable :: wv(:, :), w7(:, :), p7(:, :), w2c(:, :), p2c(:, :)
       logical :: dense_n = .false.             !! N needs a whole load vector
-      real(dp), allocatable :: cn(:, :), sn(:, :)   !! propagator at h/2, h, h/4: c, s(tau)
+      real(dp) :: vinv(3, 3) = 0.0_dp               !! the cubic's coefficients from the nodes
+      real(dp), allocatable :: cn(:, :), sn(:, :)   !! propagator at the nodes: c, s(tau)
       real(dp), allocatable :: cm1(:, :)            !! c(tau) - 1 there (no cancellation)
-      !> responses from rest to the forcing s^j (s = tau / h), j = 0..2, at the nodes h/2, h:
-      !> displacement and velocity (n, 0:2, 3); node 3 is the check node h/4
+      !> responses from rest to the forcing s^j (s = tau / h), j = 0..3, at the nodes (node_s:
+      !> Lobatto's two inner nodes, the end, and the check node h/2): displacement and velocity
+      !> (n, 0:3, 4)
       real(dp), allocatable :: rx(:, :, :), ry(:, :, :)
-      real(dp), allocatable :: x(:, :), y(:, :)     !! node states (n, 0:3)
-      real(dp), allocatable :: dx(:, :), dy(:, :)   !! their changes from the start (n, 0:3)
-      real(dp), allocatable :: fx(:, :), fy(:, :)   !! the changes without N (n, 3)
-      real(dp), allocatable :: g(:, :)         !! N at the nodes (n, 0:2)
+      real(dp), allocatable :: x(:, :), y(:, :)     !! node states (n, 0:4)
+      real(dp), allocatable :: dx(:, :), dy(:, :)   !! their changes from the start (n, 0:4)
+      real(dp), allocatable :: fx(:, :), fy(:, :)   !! the changes without N (n, 4)
+      real(dp), allocatable :: g(:, :)         !! N at the nodes (n, 0:3)
       real(dp), allocatable :: z0(:), zd0(:), ua(:), va(:), ra(:), r(:)
       real(dp), allocatable :: ua0(:), va0(:)  !! the start's displacement, velocity at act
       real(dp), allocatable :: eu(:), ev(:)    !! embedded errors of the last step
       real(dp), allocatable :: iu(:), iv(:)    !! its cubic interpolant's errors at the midpoint
       real(dp), allocatable :: iq(:), ivq(:)   !! its quintic interpolant's errors there
-      !> the response from rest at h to the forcing s (s - 1/2) (s - 1) (the quadratic's error
+      !> the response from rest at h to the forcing s (s - a) (s - b) (s - 1) (the cubic's error
       !> shape through the nodes): displacement and velocity
       real(dp), allocatable :: ex(:), ey(:)
       real(dp), allocatable :: fn(:), ft(:)    !! ring forces of the last evaluation [N]
@@ -270,16 +281,28 @@ contains
                      (.not. self%harmonic .and. (any(self%ls /= 0.0_dp) .or. &
                      any(self%lc /= 0.0_dp)))
       k = size(self%act)
-      allocate(self%cn(n, 3), self%sn(n, 3), self%cm1(n, 3), self%rx(n, 0:2, 3), &
-               self%ry(n, 0:2, 3), self%x(n, 0:3), self%y(n, 0:3), self%dx(n, 0:3), &
-               self%dy(n, 0:3), self%fx(n, 3), self%fy(n, 3), self%ua0(k), self%va0(k), &
-               self%g(n, 0:2), self%z0(n), self%zd0(n), self%ua(k), self%va(k), self%ra(k), &
+      allocate(self%cn(n, 4), self%sn(n, 4), self%cm1(n, 4), self%rx(n, 0:3, 4), &
+               self%ry(n, 0:3, 4), self%x(n, 0:4), self%y(n, 0:4), self%dx(n, 0:4), &
+               self%dy(n, 0:4), self%fx(n, 4), self%fy(n, 4), self%ua0(k), self%va0(k), &
+               self%g(n, 0:3), self%z0(n), self%zd0(n), self%ua(k), self%va(k), self%ra(k), &
                self%r(n), self%eu(n), self%ev(n), self%iu(n), self%iv(n), self%ex(n), &
                self%ey(n), self%a0(n), &
                self%fn(model%n_rings), &
-               self%ft(model%n_rings), self%wv(n, 9), self%w7(n, 11), self%p7(n, 11), &
+               self%ft(model%n_rings), self%wv(n, 11), self%w7(n, 11), self%p7(n, 11), &
                self%iq(n), self%ivq(n), &
                self%w2c(n, 3), self%p2c(n, 3))
+      block
+         real(dp) :: vm(3, 3)
+         integer :: ip(3), inf, i2
+         do i2 = 1, 3
+            vm(i2, :) = [node_s(i2), node_s(i2)**2, node_s(i2)**3]
+         end do
+         self%vinv = 0.0_dp
+         do i2 = 1, 3
+            self%vinv(i2, i2) = 1.0_dp
+         end do
+         call dgesv(3, 3, vm, 3, ip, self%vinv, 3, inf)
+      end block
       self%built = .true.
    contains
       subroutine add_dof(i)
@@ -297,7 +320,7 @@ contains
       real(dp), intent(in) :: dt
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j
-      real(dp) :: tx(3), ty(3), gu(0:3)
+      real(dp) :: tx(4), ty(4), gu(0:4)
       integer :: i
       self%rtol = cfg%rk_rtol;  self%atol = cfg%rk_atol
       self%embedded = cfg%step_control == 'embedded'
@@ -305,7 +328,7 @@ contains
          call build(self, model, cfg, err)
          if (allocated(err)) return
       end if
-      do k = 1, 3
+      do k = 1, 4
          call oscillator_propagator(self%w2, self%ad, node_s(k) * dt, self%cn(:, k), &
                                     self%sn(:, k))
          self%cm1(:, k) = oscillator_cm1(self%w2, self%ad, node_s(k) * dt)
@@ -313,32 +336,34 @@ contains
       do j = 1, self%n
          if (sqrt(self%w2(j)) * dt < taylor_below .and. 2.0_dp * self%ad(j) * dt &
              < taylor_below) then
-            ! one Taylor series per forcing s^i, summed at the three nodes at once
-            do i = 0, 2
+            ! one Taylor series per forcing s^i, summed at the four nodes at once
+            do i = 0, 3
                gu = 0.0_dp;  gu(i) = 1.0_dp
                call taylor_series(self%w2(j), self%ad(j), dt, gu, node_s, tx, ty)
                self%rx(j, i, :) = tx;  self%ry(j, i, :) = ty
             end do
             cycle
          end if
-         do k = 1, 3
+         do k = 1, 4
             call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 1.0_dp, 0.0_dp, &
                                  0.0_dp, self%rx(j, 0, k), self%ry(j, 0, k))
             call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 1.0_dp, &
                                  0.0_dp, self%rx(j, 1, k), self%ry(j, 1, k))
             call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 0.0_dp, &
                                  1.0_dp, self%rx(j, 2, k), self%ry(j, 2, k))
+            call forced_response(self%w2(j), self%ad(j), dt, node_s(k), 0.0_dp, 0.0_dp, &
+                                 0.0_dp, self%rx(j, 3, k), self%ry(j, 3, k), g3=1.0_dp)
          end do
       end do
       do j = 1, self%n
-         call forced_response(self%w2(j), self%ad(j), dt, 1.0_dp, 0.0_dp, 0.5_dp, -1.5_dp, &
-                              self%ex(j), self%ey(j), g3=1.0_dp)
+         call forced_response(self%w2(j), self%ad(j), dt, 1.0_dp, 0.0_dp, -0.2_dp, 1.2_dp, &
+                              self%ex(j), self%ey(j), g3=-2.0_dp, g4=1.0_dp)
       end do
       self%dt = dt
       self%ready = .true.
    end subroutine ex_prepare
 
-   !> N(t, x, x') in modal coordinates at the node k (0, 1, 2; 3: h/4) of the step: the contact and
+   !> N(t, x, x') in modal coordinates at the node k (0..4, node_s) of the step: the contact and
    !> ring forces (rings in the regimes of s0; `hold` > 0 held open) at the start's
    !> displacements plus the node's changes, turbulence, harmonic loads when not exact,
    !> -D_off x'. Contact forces into f, ring forces into self%fn, self%ft.
@@ -401,21 +426,23 @@ contains
    end subroutine nonlinear
 
    !> The oscillators from the start's deviation (z0, zd0) from the harmonic solution, forced by
-   !> the quadratic G0 + G1 s + G2 s^2 (s = tau / h), at the nodes k_from..k_to (s = 1/2, 1,
-   !> 1/4): their changes from the start into dx, dy (the part without N from free_changes:
+   !> the cubic G0 + G1 s + G2 s^2 + G3 s^3 (s = tau / h), at the nodes k_from..k_to (node_s):
+   !> their changes from the start into dx, dy (the part without N from free_changes:
    !> the harmonic solution's change by sin a - sin b = 2 cos((a + b) / 2) sin((a - b) / 2),
    !> c - 1 from cm1: no cancellation, so a change is exact to the round-off of its own size),
    !> and the nodes' states x, y.
-   subroutine propagate(self, g0, g1, g2, k_from, k_to)
+   subroutine propagate(self, g0, g1, g2, g3, k_from, k_to)
       class(exponential_t), intent(inout) :: self
-      real(dp), intent(in) :: g0(:), g1(:), g2(:)
-      integer, intent(in) :: k_from, k_to          !! the nodes (1: h/2, 2: h, 3: h/4)
+      real(dp), intent(in) :: g0(:), g1(:), g2(:), g3(:)
+      integer, intent(in) :: k_from, k_to          !! the nodes (node_s)
       integer :: k
       do k = k_from, k_to
-         ! (an associate name of a section has lower bounds 1: the responses' j = 0..2 are 1..3)
+         ! (an associate name of a section has lower bounds 1: the responses' j = 0..3 are 1..4)
          associate (rx => self%rx(:, :, k), ry => self%ry(:, :, k))
-            self%dx(:, k) = self%fx(:, k) + g0 * rx(:, 1) + g1 * rx(:, 2) + g2 * rx(:, 3)
-            self%dy(:, k) = self%fy(:, k) + g0 * ry(:, 1) + g1 * ry(:, 2) + g2 * ry(:, 3)
+            self%dx(:, k) = self%fx(:, k) + g0 * rx(:, 1) + g1 * rx(:, 2) + g2 * rx(:, 3) &
+                            + g3 * rx(:, 4)
+            self%dy(:, k) = self%fy(:, k) + g0 * ry(:, 1) + g1 * ry(:, 2) + g2 * ry(:, 3) &
+                            + g3 * ry(:, 4)
          end associate
          self%x(:, k) = self%x(:, 0) + self%dx(:, k)
          self%y(:, k) = self%y(:, 0) + self%dy(:, k)
@@ -424,13 +451,13 @@ contains
 
    !> The changes at the nodes without N: the oscillators from the start's deviation (z0, zd0)
    !> from the harmonic solution, and that solution's own change (once per step; propagate
-   !> adds the response to N's quadratic).
+   !> adds the response to N's cubic).
    subroutine free_changes(self, t0)
       class(exponential_t), intent(inout) :: self
       real(dp), intent(in) :: t0
       real(dp) :: tau, sh, ds, dc
       integer :: k
-      do k = 1, 3
+      do k = 1, 4
          tau = node_s(k) * self%dt
          sh = 2.0_dp * sin(0.5_dp * self%wf * tau)
          ds = sh * cos(self%wf * (t0 + 0.5_dp * tau))      ! sin(wf (t0 + tau)) - sin(wf t0)
@@ -447,26 +474,29 @@ contains
    !> The response from rest of x'' + 2 a x' + w2 x = g0 + g1 s + g2 s^2 (s = tau / h) at s:
    !> by the Taylor series in s when omega h and 2 a h are below 1 (no cancellation between the
    !> homogeneous and the particular parts), else by the particular polynomial.
-   pure subroutine forced_response(w2, a, h, s, g0, g1, g2, x, v, g3)
+   pure subroutine forced_response(w2, a, h, s, g0, g1, g2, x, v, g3, g4)
       real(dp), intent(in) :: w2, a, h, s, g0, g1, g2
       real(dp), intent(out) :: x, v
-      real(dp), intent(in), optional :: g3     !! a cubic term g3 s^3
-      real(dp) :: c0, c1, c2, c3, c, sn, tau, q3, xs(1), vs(1)
-      q3 = 0.0_dp
+      real(dp), intent(in), optional :: g3, g4     !! cubic and quartic terms
+      real(dp) :: c0, c1, c2, c3, c4, c, sn, tau, q3, q4, xs(1), vs(1)
+      q3 = 0.0_dp;  q4 = 0.0_dp
       if (present(g3)) q3 = g3
+      if (present(g4)) q4 = g4
       if (sqrt(w2) * h < taylor_below .and. 2.0_dp * a * h < taylor_below) then
-         call taylor_series(w2, a, h, [g0, g1, g2, q3], [s], xs, vs)
+         call taylor_series(w2, a, h, [g0, g1, g2, q3, q4], [s], xs, vs)
          x = xs(1);  v = vs(1)
          return
       end if
       tau = s * h
-      c3 = q3 / h**3 / w2
-      c2 = (g2 / h**2 - 6.0_dp * a * c3) / w2
+      c4 = q4 / h**4 / w2
+      c3 = (q3 / h**3 - 8.0_dp * a * c4) / w2
+      c2 = (g2 / h**2 - 6.0_dp * a * c3 - 12.0_dp * c4) / w2
       c1 = (g1 / h - 4.0_dp * a * c2 - 6.0_dp * c3) / w2
       c0 = (g0 - 2.0_dp * a * c1 - 2.0_dp * c2) / w2
       call oscillator_propagator(w2, a, tau, c, sn)
-      x = -c0 * (c + a * sn) - c1 * sn + c0 + tau * (c1 + tau * (c2 + tau * c3))
-      v = -c1 * (c - a * sn) + w2 * c0 * sn + c1 + tau * (2.0_dp * c2 + 3.0_dp * tau * c3)
+      x = -c0 * (c + a * sn) - c1 * sn + c0 + tau * (c1 + tau * (c2 + tau * (c3 + tau * c4)))
+      v = -c1 * (c - a * sn) + w2 * c0 * sn + c1 + tau * (2.0_dp * c2 + tau * (3.0_dp * c3 &
+          + 4.0_dp * tau * c4))
    end subroutine forced_response
 
    !> The forced oscillator x'' + 2 a x' + w2 x = g(0) + g(1) s + g(2) s^2 + g(3) s^3
@@ -474,7 +504,7 @@ contains
    !> (omega h < 1: no cancellation between the homogeneous and the particular parts); one
    !> series for every fraction.
    pure subroutine taylor_series(w2, a, h, g, s, x, v)
-      real(dp), intent(in) :: w2, a, h, g(0:3), s(:)
+      real(dp), intent(in) :: w2, a, h, g(0:), s(:)
       real(dp), intent(out) :: x(:), v(:)
       real(dp) :: xk(0:80), gk, scale, sp(size(s))
       integer :: k
@@ -484,14 +514,14 @@ contains
       sp = s
       do k = 0, 78
          gk = 0.0_dp
-         if (k <= 3) gk = g(k)
+         if (k <= ubound(g, 1)) gk = g(k)
          xk(k + 2) = (gk * h * h - 2.0_dp * a * h * (k + 1) * xk(k + 1) - w2 * h * h * xk(k)) &
                      / real((k + 1) * (k + 2), dp)
          v = v + (k + 2) * xk(k + 2) * sp
          sp = sp * s
          x = x + xk(k + 2) * sp
          scale = max(scale, abs(xk(k + 2)))
-         if (k >= 3 .and. abs(xk(k + 2)) + abs(xk(k + 1)) <= 1.0e-18_dp * scale) exit
+         if (k >= ubound(g, 1) .and. abs(xk(k + 2)) + abs(xk(k + 1)) <= 1.0e-18_dp * scale) exit
       end do
       v = v / h
    end subroutine taylor_series
@@ -515,10 +545,10 @@ contains
       associate (dxe => self%wv(:, 1), dye => self%wv(:, 2), ge => self%wv(:, 3), &
                  g1 => self%wv(:, 4), g2 => self%wv(:, 5), zero => self%wv(:, 6), &
                  c1 => self%wv(:, 7), c2 => self%wv(:, 8), gq => self%wv(:, 9), &
+                 g3 => self%wv(:, 10), c3 => self%wv(:, 11), &
                  w7 => self%w7, p7 => self%p7, w2c => self%w2c, p2c => self%p2c)
       h = self%dt;  t0 = s0%t;  t1 = t0 + h;  ok = .true.
       s1%t = t1
-      ! (the products with Phi' M, Phi and |Phi| batched: one matrix product each)
       w2c(:, 1) = s0%u;  w2c(:, 2) = s0%v;  w2c(:, 3) = s0%a
       call dgemm('N', 'N', n, 3, n, 1.0_dp, self%phit_m, n, w2c, n, 0.0_dp, p2c, n)
       self%x(:, 0) = p2c(:, 1);  self%y(:, 0) = p2c(:, 2);  self%a0 = p2c(:, 3)
@@ -533,61 +563,65 @@ contains
       self%g(:, 0) = ge
       zero = 0.0_dp
       call free_changes(self, t0)
-      call propagate(self, ge, zero, zero, 1, 2)
+      call propagate(self, ge, zero, zero, zero, 1, k_end)
       do sweep = 1, n_sweeps
-         dxe = self%dx(:, 2);  dye = self%dy(:, 2)
-         call nonlinear(self, model, s0, t0 + 0.5_dp * h, 1, open_contact, g1, s1%f)
-         call nonlinear(self, model, s0, t1, 2, open_contact, g2, s1%f)
-         ! the sweeps have stopped changing anything: the nodes' forces are those of the
-         ! previous sweep (bitwise; in free flight, all zero from the first sweep), so every
-         ! further sweep repeats this one's quadratic and nodes; none is taken
+         dxe = self%dx(:, k_end);  dye = self%dy(:, k_end)
+         call nonlinear(self, model, s0, t0 + node_s(1) * h, 1, open_contact, g1, s1%f)
+         call nonlinear(self, model, s0, t0 + node_s(2) * h, 2, open_contact, g2, s1%f)
+         call nonlinear(self, model, s0, t1, k_end, open_contact, g3, s1%f)
          if (sweep == 1) then
-            converged = all(ge == 0.0_dp) .and. all(g1 == 0.0_dp) .and. all(g2 == 0.0_dp)
+            converged = all(ge == 0.0_dp) .and. all(g1 == 0.0_dp) .and. all(g2 == 0.0_dp) &
+                        .and. all(g3 == 0.0_dp)
          else
-            converged = all(g1 == self%g(:, 1)) .and. all(g2 == self%g(:, 2))
+            converged = all(g1 == self%g(:, 1)) .and. all(g2 == self%g(:, 2)) .and. &
+                        all(g3 == self%g(:, 3))
          end if
-         self%g(:, 1) = g1;  self%g(:, 2) = g2
-         c1 = 4.0_dp * g1 - 3.0_dp * ge - g2;  c2 = 2.0_dp * (g2 - 2.0_dp * g1 + ge)
-         call propagate(self, ge, c1, c2, 1, 2)
+         self%g(:, 1) = g1;  self%g(:, 2) = g2;  self%g(:, 3) = g3
+         g1 = g1 - ge;  g2 = g2 - ge;  g3 = g3 - ge
+         c1 = self%vinv(1, 1) * g1 + self%vinv(1, 2) * g2 + self%vinv(1, 3) * g3
+         c2 = self%vinv(2, 1) * g1 + self%vinv(2, 2) * g2 + self%vinv(2, 3) * g3
+         c3 = self%vinv(3, 1) * g1 + self%vinv(3, 2) * g2 + self%vinv(3, 3) * g3
+         call propagate(self, ge, c1, c2, c3, 1, k_end)
          if (converged) exit
       end do
-      ! the collocation's own error: N at the check node h/4 of the converged step against the
-      ! quadratic there, d = N - Q = C3 s (s - 1/2) (s - 1) at s = 1/4 (C3 = 64 d / 3: the
-      ! leading, h^3 N''', term of the quadratic's error), and its effect on the end: the
-      ! oscillators' response to that cubic (ex, ey). The sweeps' difference alone measures
-      ! only how far the sweeps have converged, not how well a quadratic follows the forces.
-      call propagate(self, ge, c1, c2, 3, 3)
-      call nonlinear(self, model, s0, t0 + 0.25_dp * h, 3, open_contact, gq, s1%f)
-      gq = gq - (ge + 0.25_dp * c1 + 0.0625_dp * c2)
+      ! the collocation's own error: N at the check node h/2 of the converged step against the
+      ! cubic there, d = N - Q = C4 s (s - a) (s - b) (s - 1) at s = 1/2 (C4 = d / 0.0125: the
+      ! leading, h^4 N'''', term of the cubic's error), and its effect on the end: the
+      ! oscillators' response to that quartic (ex, ey). The sweeps' difference alone measures
+      ! only how far the sweeps have converged, not how well a cubic follows the forces.
+      call propagate(self, ge, c1, c2, c3, k_mid, k_mid)
+      call nonlinear(self, model, s0, t0 + 0.5_dp * h, k_mid, open_contact, gq, s1%f)
+      gq = gq - (ge + 0.5_dp * c1 + 0.25_dp * c2 + 0.125_dp * c3)
       ! dxe, dye: the end of the previous sweep; the end state from the start plus its change
-      w7(:, 1) = self%dx(:, 2);  w7(:, 2) = self%dy(:, 2)
-      w7(:, 3) = self%dx(:, 2) - dxe;  w7(:, 4) = self%dy(:, 2) - dye
-      w7(:, 8) = (64.0_dp / 3.0_dp) * gq * self%ex
-      w7(:, 9) = (64.0_dp / 3.0_dp) * gq * self%ey
+      w7(:, 1) = self%dx(:, k_end);  w7(:, 2) = self%dy(:, k_end)
+      w7(:, 3) = self%dx(:, k_end) - dxe;  w7(:, 4) = self%dy(:, k_end) - dye
+      w7(:, 8) = (gq / w4_mid) * self%ex
+      w7(:, 9) = (gq / w4_mid) * self%ey
       ! the acceleration at the end in the step's regime (as rk45's last stage: a contact held
       ! open to a located onset stays open; its force, a damper's c d' jumping in there, is the
       ! next step's, from the restart at the event, and in the interpolant's check below it
       ! would be an error that no smaller step removes); the forces at the end are reported
       ! with every contact as it is
-      call nonlinear(self, model, s0, t1, 2, open_contact, ge, s1%f)
+      call nonlinear(self, model, s0, t1, k_end, open_contact, ge, s1%f)
       if (self%harmonic) ge = ge + sin(self%wf * t1) * self%fs + cos(self%wf * t1) * self%fc
-      w7(:, 5) = ge - 2.0_dp * self%ad * self%y(:, 2) - self%w2 * self%x(:, 2)
-      if (open_contact > 0) call nonlinear(self, model, s0, t1, 2, 0, ge, s1%f)
-      ! the interpolants at the midpoint against the method's own midpoint, on the changes
-      ! (all in the modes: with 3 v0 / 2 taken physical it would carry v0 - Phi Phi' M v0, the
-      ! projection's round-off, as an error). The cubic from u, v at both ends (events are
-      ! located on it): u(h/2) - (u0 + u1) / 2 - h (v0 - v1) / 8 and
+      w7(:, 5) = ge - 2.0_dp * self%ad * self%y(:, k_end) - self%w2 * self%x(:, k_end)
+      if (open_contact > 0) call nonlinear(self, model, s0, t1, k_end, 0, ge, s1%f)
+      ! the interpolants at the midpoint against the method's own midpoint (the check node
+      ! h/2), on the changes (all in the modes: with 3 v0 / 2 taken physical it would carry
+      ! v0 - Phi Phi' M v0, the projection's round-off, as an error). The cubic from u, v at
+      ! both ends: u(h/2) - (u0 + u1) / 2 - h (v0 - v1) / 8 and
       ! v(h/2) - 3 (u1 - u0) / (2 h) + (v0 + v1) / 4. The quintic from u, v, a (the piece's,
       ! which samples, states and the wear statistics read; a0 the start's acceleration, a1
       ! this step's, w7(:, 5)): u(h/2) - (u0 + u1) / 2 - 5 h (v0 - v1) / 32 - h^2 (a0 + a1) / 64
       ! and v(h/2) - 15 (u1 - u0) / (8 h) + 7 (v0 + v1) / 16 - h (a1 - a0) / 32.
-      w7(:, 6) = self%dx(:, 1) - 0.5_dp * self%dx(:, 2) + 0.125_dp * h * self%dy(:, 2)
-      w7(:, 7) = 1.5_dp * self%y(:, 0) + self%dy(:, 1) + 0.25_dp * self%dy(:, 2) &
-                 - 1.5_dp * self%dx(:, 2) / h
-      w7(:, 10) = self%dx(:, 1) - 0.5_dp * self%dx(:, 2) + (5.0_dp / 32.0_dp) * h &
-                  * self%dy(:, 2) - (h * h / 64.0_dp) * (self%a0 + w7(:, 5))
-      w7(:, 11) = 1.875_dp * self%y(:, 0) + self%dy(:, 1) + 0.4375_dp * self%dy(:, 2) &
-                  - 1.875_dp * self%dx(:, 2) / h - (h / 32.0_dp) * (w7(:, 5) - self%a0)
+      w7(:, 6) = self%dx(:, k_mid) - 0.5_dp * self%dx(:, k_end) + 0.125_dp * h &
+                 * self%dy(:, k_end)
+      w7(:, 7) = 1.5_dp * self%y(:, 0) + self%dy(:, k_mid) + 0.25_dp * self%dy(:, k_end) &
+                 - 1.5_dp * self%dx(:, k_end) / h
+      w7(:, 10) = self%dx(:, k_mid) - 0.5_dp * self%dx(:, k_end) + (5.0_dp / 32.0_dp) * h &
+                  * self%dy(:, k_end) - (h * h / 64.0_dp) * (self%a0 + w7(:, 5))
+      w7(:, 11) = 1.875_dp * self%y(:, 0) + self%dy(:, k_mid) + 0.4375_dp * self%dy(:, k_end) &
+                  - 1.875_dp * self%dx(:, k_end) / h - (h / 32.0_dp) * (w7(:, 5) - self%a0)
       ! (OpenBLAS's dgemm, dispatched to this CPU's vector unit: the compiler's inline matmul
       ! of this 30 x 30 by 9 product took a fifth of the tube deck's run)
       call dgemm('N', 'N', n, 11, n, 1.0_dp, self%phi, n, w7, n, 0.0_dp, p7, n)
@@ -595,8 +629,8 @@ contains
       self%eu = sign(abs(p7(:, 3)) + abs(p7(:, 8)), p7(:, 3))
       self%ev = sign(abs(p7(:, 4)) + abs(p7(:, 9)), p7(:, 4))
       s1%a = p7(:, 5)
-      w2c(:, 1) = abs(self%x(:, 0)) + abs(self%x(:, 2))
-      w2c(:, 2) = abs(self%y(:, 0)) + abs(self%y(:, 2))
+      w2c(:, 1) = abs(self%x(:, 0)) + abs(self%x(:, k_end))
+      w2c(:, 2) = abs(self%y(:, 0)) + abs(self%y(:, k_end))
       call dgemm('N', 'N', n, 2, n, 1.0_dp, self%phi_abs, n, w2c, n, 0.0_dp, p2c, n)
       associate (um => p7(:, 6), vm => p7(:, 7), uq => p7(:, 10), vq => p7(:, 11), &
                  ru => p2c(:, 1), rv => p2c(:, 2))

@@ -9,7 +9,7 @@ module gapbeam_hermite_piece
    use gapbeam_contact_law, only: contact_force
    implicit none
    private
-   public :: hermite_piece_t, hermite_weights
+   public :: hermite_piece_t, hermite_weights, quintic_weights
 
    !> One accepted sub-step: end values and the cubic Hermite interpolant in between.
    type, extends(piece_t) :: hermite_piece_t

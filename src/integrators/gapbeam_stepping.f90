@@ -24,7 +24,7 @@ module gapbeam_stepping
    use gapbeam_capabilities, only: method_caps
    use gapbeam_contact_law, only: contact_force, contact_releases_early, contact_jumps
    use gapbeam_observer, only: piece_t, observer_t
-   use gapbeam_hermite_piece, only: hermite_piece_t, hermite_weights
+   use gapbeam_hermite_piece, only: hermite_piece_t, hermite_weights, quintic_weights
    use gapbeam_integrator, only: integrator_t, stepper_t, equilibrium_acceleration, zero_counters, &
       make_stepper, dof_label, ring_load
    use gapbeam_ring_contact, only: ring_open, ring_stick, ring_slip, ring_indicators, &
@@ -89,6 +89,11 @@ module gapbeam_stepping
       real(dp), allocatable :: fda(:), ev(:), eu(:)   !! local error data of a step (n)
       real(dp), allocatable :: eu_d(:), ev_d(:)       !! its cubic interpolant's error (dense_error)
       real(dp), allocatable :: eu_q(:), ev_q(:)       !! its quintic interpolant's error
+      !> the events of a ring in contact at a step's start (its release, its stick-slip
+      !> switches) are located on the step's quintic (u, v, a at both ends: the piece that is
+      !> emitted and checked) instead of the cubic from u, v: set by dense_ratio when the
+      !> stepper checks its quintic and the model has no flat contacts
+      logical :: quintic_events = .false.
       real(dp), allocatable :: fda_prev(:)            !! fda of the previous accepted step
       real(dp) :: h_prev = 0.0_dp                     !! its length (0: none usable) [s]
       integer :: order = 2                            !! order of the method

@@ -482,8 +482,11 @@ contains
       if (.not. has) return
       ! the cubic, on what event location reads; nothing to read where no contact can be
       ! reached within the step (rings_clear)
+      self%quintic_events = self%model%n_contacts == 0
       if (.not. rings_clear(self)) then
          self%eu = self%eu_d;  self%ev = self%ev_d
+         ! (a ring in contact at the start has its events on the quintic: not on the cubic)
+         if (self%quintic_events) call forget_closed_rings(self)
          qd = max(self%output_ratio(worst, events_only=.true.), self%wear_local, &
                   normal_force_ratio(self))
       end if
@@ -528,6 +531,19 @@ contains
       end associate
       clear = .true.
    end function rings_clear
+
+   !> The cubic's errors at the dofs of the rings in contact at the step's start set to zero:
+   !> their events are located on the quintic, which dense_ratio checks apart.
+   subroutine forget_closed_rings(self)
+      class(stepping_integrator_t), intent(inout) :: self   !! integrator (step in ix(0))
+      integer :: rg
+      associate (m => self%model, s0 => self%sub(self%ix(0)))
+         do rg = 1, m%n_rings
+            if (s0%mode(rg) == ring_open .or. s0%fn(rg) <= 0.0_dp) cycle
+            self%eu(m%r_dof(:, rg)) = 0.0_dp;  self%ev(m%r_dof(:, rg)) = 0.0_dp
+         end do
+      end associate
+   end subroutine forget_closed_rings
 
    !> dense_ratio of the stepper that took the step (`on_scratch`: the scratch stepper, else
    !> the level's).

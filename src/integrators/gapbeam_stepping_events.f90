@@ -78,10 +78,12 @@ contains
       integer, parameter :: n_sample = 8
       integer :: r, m, it
       real(dp) :: lo, hi, mid
-      logical :: act0, val0, act
+      logical :: act0, val0, act, q5
       associate (md => self%model, s0 => self%sub(self%ix(k)), s1 => self%sub(self%ix(k + 1)))
          do r = 1, md%n_rings
-            call ring_state_at(md, s0, s1, r, h, 0.0_dp, act0, val0)
+            ! a ring in contact at the start: on the quintic when the stepper checks it
+            q5 = self%quintic_events .and. s0%mode(r) /= ring_open .and. s0%fn(r) > 0.0_dp
+            call ring_state_at(md, s0, s1, r, h, 0.0_dp, q5, act0, val0)
             ! opened at a located release, whatever force the law leaves there
             if (s0%mode(r) == ring_open .and. s0%fn(r) <= 0.0_dp) act0 = .false.
             ! closed at a located onset, whatever the round-off of the penetration there (a
@@ -91,11 +93,11 @@ contains
             do m = 1, n_sample
                hi = real(m, dp) / n_sample
                if (hi >= th) exit
-               if (ring_switched(md, s0, s1, r, h, hi, act0)) then
+               if (ring_switched(md, s0, s1, r, h, hi, q5, act0)) then
                   lo = real(m - 1, dp) / n_sample
                   do it = 1, 60
                      mid = 0.5_dp * (lo + hi)
-                     if (ring_switched(md, s0, s1, r, h, mid, act0)) then
+                     if (ring_switched(md, s0, s1, r, h, mid, q5, act0)) then
                         hi = mid
                      else
                         lo = mid
@@ -103,7 +105,7 @@ contains
                   end do
                   if (hi < th) then
                      th = hi;  self%ev_contact = md%n_contacts + r
-                     call ring_state_at(md, s0, s1, r, h, hi, act, val0)
+                     call ring_state_at(md, s0, s1, r, h, hi, q5, act, val0)
                      self%ev_onset = act .and. .not. act0
                      self%ev_friction = act .eqv. act0
                   end if
@@ -204,15 +206,40 @@ contains
    end subroutine restart_after_event
 
    !> Indicators of ring r at fraction x of the sub-step s0 -> s1 of length h: the cubic
-   !> Hermite interpolant of its node's (w, v) in the regime of s0.
-   subroutine ring_state_at(model, s0, s1, r, h, x, active, valid)
+   !> Hermite interpolant of its node's (w, v) in the regime of s0, or (`quintic`) the quintic
+   !> from (w, v), their rates and accelerations at both ends.
+   subroutine ring_state_at(model, s0, s1, r, h, x, quintic, active, valid)
       type(model_t), intent(in) :: model        !! model
       type(state_t), intent(in) :: s0, s1       !! the sub-step's ends
       integer, intent(in) :: r                  !! ring
       real(dp), intent(in) :: h, x              !! length [s], fraction [-]
+      logical, intent(in) :: quintic            !! the quintic, else the cubic
       logical, intent(out) :: active, valid     !! in contact; regime holds
       real(dp) :: h00, h10, h01, h11, g00, g10, g01, g11, xx(2), xd(2), xdd(2)
+      real(dp) :: w(6), g(6), c(6)
       integer :: j, i
+      if (quintic) then
+         call quintic_weights(x, h, w, g)
+         ! the second derivative's weights (times h^2)
+         c(1) = -60.0_dp * x + 180.0_dp * x**2 - 120.0_dp * x**3
+         c(2) = h * (-36.0_dp * x + 96.0_dp * x**2 - 60.0_dp * x**3)
+         c(3) = h**2 * (1.0_dp - 9.0_dp * x + 18.0_dp * x**2 - 10.0_dp * x**3)
+         c(4) = -c(1)
+         c(5) = h * (-24.0_dp * x + 84.0_dp * x**2 - 60.0_dp * x**3)
+         c(6) = h**2 * (3.0_dp * x - 12.0_dp * x**2 + 10.0_dp * x**3)
+         do j = 1, 2
+            i = model%r_dof(j, r)
+            xx(j) = w(1) * s0%u(i) + w(2) * s0%v(i) + w(3) * s0%a(i) + w(4) * s1%u(i) &
+                    + w(5) * s1%v(i) + w(6) * s1%a(i)
+            xd(j) = g(1) * s0%u(i) + g(2) * s0%v(i) + g(3) * s0%a(i) + g(4) * s1%u(i) &
+                    + g(5) * s1%v(i) + g(6) * s1%a(i)
+            xdd(j) = (c(1) * s0%u(i) + c(2) * s0%v(i) + c(3) * s0%a(i) + c(4) * s1%u(i) &
+                      + c(5) * s1%v(i) + c(6) * s1%a(i)) / h**2
+         end do
+         call ring_indicators(model, r, s0%mode(r), s0%sigma(r), s0%anchor(r), xx, xd, xdd, &
+                              active, valid)
+         return
+      end if
       call hermite_weights(x, h00, h10, h01, h11, g00, g10, g01, g11)
       do j = 1, 2
          i = model%r_dof(j, r)
@@ -228,14 +255,15 @@ contains
 
    !> Has ring r switched by fraction x: its activity differs from `act0`, or its friction
    !> regime no longer holds?
-   logical function ring_switched(model, s0, s1, r, h, x, act0) result(sw)
+   logical function ring_switched(model, s0, s1, r, h, x, quintic, act0) result(sw)
       type(model_t), intent(in) :: model        !! model
       type(state_t), intent(in) :: s0, s1       !! the sub-step's ends
       integer, intent(in) :: r                  !! ring
       real(dp), intent(in) :: h, x              !! length [s], fraction [-]
+      logical, intent(in) :: quintic            !! on the quintic (ring_state_at)
       logical, intent(in) :: act0               !! activity at the start
       logical :: a, v
-      call ring_state_at(model, s0, s1, r, h, x, a, v)
+      call ring_state_at(model, s0, s1, r, h, x, quintic, a, v)
       sw = (a .neqv. act0) .or. (a .and. .not. v)
    end function ring_switched
 
