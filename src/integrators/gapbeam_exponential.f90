@@ -21,13 +21,13 @@
 !> quadratic through 0, h/2, h with four sweeps (order 4) took 1.9 and 2.6 times the steps on
 !> the tube deck and its periodic case. The errors of the step's Hermite interpolants at its
 !> midpoint against the method's own midpoint are returned apart (dense_error): the cubic from
-!> u, v at both ends and
-!> the quintic from u, v, a, which samples, states and the wear statistics read, and on which
-!> the events of a ring in contact at the step's start are located (an onset keeps the cubic:
-!> a trial step that enters a ring ends with the contact's acceleration, which bends the
-!> quintic before the onset). The integrator controls them per step, since the next step starts
-!> from the method's end state, not from an interpolant: the cubic on what its events read,
-!> the quintic on every watched output. (The cubic checked on every output, the root strain
+!> u, v at both ends and the quintic from u, v, a, which samples, states and the wear
+!> statistics read, and on which the events of a ring in contact at the step's start are
+!> located, and the onset of a ring that a trial step entered, on that step redone with the
+!> ring held open (the entering step itself ends with the contact's acceleration, which bends
+!> its quintic before the onset). The integrator controls them per step, since the next step
+!> starts from the method's end state, not from an interpolant: the cubic on what its events
+!> read, the quintic on every watched output. (The cubic checked on every output, the root strain
 !> among them, bounded 28 % of the tube deck's steps: its error, ~ (omega h)^4 / 384 of a
 !> ringing static mode against the quintic's ~ (omega h)^6 / 46080.)
 !>

@@ -94,6 +94,9 @@ module gapbeam_stepping
       !> emitted and checked) instead of the cubic from u, v: set by dense_ratio when the
       !> stepper checks its quintic and the model has no flat contacts
       logical :: quintic_events = .false.
+      !> the ring that the trial step entered and that it was redone with held open (0: none):
+      !> its onset is located on that step's quintic, the free flight's (controlled_step)
+      integer :: held_ring = 0
       real(dp), allocatable :: fda_prev(:)            !! fda of the previous accepted step
       real(dp) :: h_prev = 0.0_dp                     !! its length (0: none usable) [s]
       integer :: order = 2                            !! order of the method
@@ -204,6 +207,23 @@ module gapbeam_stepping
          type(state_t), intent(in) :: s                        !! an accepted state
          logical, intent(in) :: first                          !! reset the ranges
       end subroutine track_outputs
+
+      !> No ring can switch within the step ix(0) -> ix(1), whatever the cubic's error
+      !> (stepping_events).
+      logical module function rings_clear(self) result(clear)
+         class(stepping_integrator_t), intent(in) :: self   !! integrator
+      end function rings_clear
+
+      !> The first ring that the trial step ix(0) -> ix(1) enters; 0: none (stepping_events).
+      integer module function entered_ring(self) result(re)
+         class(stepping_integrator_t), intent(in) :: self   !! integrator
+      end function entered_ring
+
+      !> The cubic's errors at the dofs of the rings whose events are on the quintic set to
+      !> zero (stepping_events).
+      module subroutine forget_closed_rings(self)
+         class(stepping_integrator_t), intent(inout) :: self   !! integrator
+      end subroutine forget_closed_rings
    end interface
 
 contains

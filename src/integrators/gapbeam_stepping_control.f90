@@ -158,7 +158,7 @@ contains
       switches = 0
       cap = block_fraction * budget_scale * self%tolerance   ! one step's share of the budget
       do
-         r = 0.0_dp
+         r = 0.0_dp;  self%held_ring = 0
          h = self%h_lev(level)
          if (t0 + h > t_stop - 1.0e-9_dp * h) then
             h = t_stop - t0
@@ -182,6 +182,19 @@ contains
          event = .false.;  dense_held = .false.
          if (ok .and. self%cfg%locate_events .and. self%model%n_contacts &
              + self%model%n_rings > 0) then
+            ! a trial step that enters a ring is redone with that ring held open: its onset
+            ! is located on the free flight's quintic, which its check holds (the cubic of the
+            ! step that entered cannot follow the contact begun inside it)
+            if (level < self%n_levels - 2) self%held_ring = entered_ring(self)
+            if (self%held_ring > 0) then
+               if (on_scratch) then
+                  call self%one_step(self%scratch, 0, self%model%n_contacts + self%held_ring, &
+                                     ok, r)
+               else
+                  call self%one_step(self%ops(level), 0, self%model%n_contacts &
+                                     + self%held_ring, ok, r)
+               end if
+            end if
             ! events are located on this trial step's interpolant: one that fails its own
             ! check (dense_error) places none; a smaller step first (the cubic's error ~ h^4)
             qd = dense_of(self, on_scratch, level, r_worst)
@@ -213,6 +226,12 @@ contains
                call next_time(t0, h, self%t_comp, .false., t1, comp)
                self%sub(self%ix(1))%t = t1
                event = .true.;  on_scratch = .true.;  dense_held = .false.
+            end if
+            if (self%held_ring > 0 .and. .not. event) then
+               ! the held ring's onset not placed inside the step: a smaller one
+               self%steps_rejected = self%steps_rejected + 1
+               level = min(self%n_levels - 1, level + 1)
+               cycle
             end if
          end if
          if (ok) then
@@ -497,53 +516,6 @@ contains
       if (q5 > qd) worst = w5
       qd = max(qd, q5) / (block_fraction * budget_scale * self%tolerance)
    end function dense_ratio
-
-   !> No ring can switch within the step ix(0) -> ix(1), whatever the cubic's error: the model
-   !> has rings only (no flat contacts), each open at both ends, and the cubic Hermite path of
-   !> its node stays inside its clearance by twice the cubic's own error there (the error
-   !> estimate at the midpoint, where a cubic's h^4 error peaks). The path lies in the convex
-   !> hull of its Bezier points x0, x0 + h x0'/3, x1 - h x1'/3, x1, and the clearance (a disk,
-   !> or the half plane of a flat ring) is convex: all four inside by the margin puts the path
-   !> there. Event location then finds nothing on any interpolant, so the cubic's check
-   !> (dense_ratio) has nothing to hold; the quintic's still holds every output. (In free
-   !> flight the cubic's check sized 8 084 of the 8 126 steps of the tube deck's open phases.)
-   logical function rings_clear(self) result(clear)
-      class(stepping_integrator_t), intent(in) :: self   !! integrator (step in ix(0), ix(1))
-      real(dp) :: h, e(2), p(2, 4), d, n(2), t(2), gt, margin
-      integer :: rg, j
-      clear = .false.
-      associate (m => self%model, s0 => self%sub(self%ix(0)), s1 => self%sub(self%ix(1)))
-         if (m%n_rings == 0 .or. m%n_contacts > 0) return
-         h = s1%t - s0%t
-         do rg = 1, m%n_rings
-            if (s0%mode(rg) /= ring_open .or. s0%fn(rg) > 0.0_dp .or. s1%fn(rg) > 0.0_dp) return
-            e = ring_xy(m, rg, self%eu_d)
-            margin = 2.0_dp * norm2(e)
-            p(:, 1) = ring_xy(m, rg, s0%u)
-            p(:, 2) = p(:, 1) + (h / 3.0_dp) * ring_xy(m, rg, s0%v)
-            p(:, 4) = ring_xy(m, rg, s1%u)
-            p(:, 3) = p(:, 4) - (h / 3.0_dp) * ring_xy(m, rg, s1%v)
-            do j = 1, 4
-               call ring_geometry(m, rg, p(:, j), d, n, t, gt=gt)
-               if (d > -margin) return
-            end do
-         end do
-      end associate
-      clear = .true.
-   end function rings_clear
-
-   !> The cubic's errors at the dofs of the rings in contact at the step's start set to zero:
-   !> their events are located on the quintic, which dense_ratio checks apart.
-   subroutine forget_closed_rings(self)
-      class(stepping_integrator_t), intent(inout) :: self   !! integrator (step in ix(0))
-      integer :: rg
-      associate (m => self%model, s0 => self%sub(self%ix(0)))
-         do rg = 1, m%n_rings
-            if (s0%mode(rg) == ring_open .or. s0%fn(rg) <= 0.0_dp) cycle
-            self%eu(m%r_dof(:, rg)) = 0.0_dp;  self%ev(m%r_dof(:, rg)) = 0.0_dp
-         end do
-      end associate
-   end subroutine forget_closed_rings
 
    !> dense_ratio of the stepper that took the step (`on_scratch`: the scratch stepper, else
    !> the level's).
