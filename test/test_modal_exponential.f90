@@ -325,7 +325,7 @@ contains
    !> cantilever tube run under the exponential integrator until a ring slides, then from that
    !> state one step of h = T/100, T/200, T/400 and its estimate (local_error: the sweeps'
    !> difference and the collocation's own error), against 256 steps of h/256 of the same
-   !> held regime (the reference's error is 256^-4 of the step's). The estimate must not fall
+   !> held regime (the reference's error is 256^-5 of the step's). The estimate must not fall
    !> below the true error by more than a factor 2, nor exceed it by more than 30 (a tight
    !> estimate gives long steps), and the true error must fall at least as h^5.5 (order 5: a
    !> local error h^6; measured h^7.0).
