@@ -9,6 +9,9 @@
 !>              deck when 0) or auto (the deck's &reduction rule)
 !>   TOLERANCE  &solver tolerance;  TRANSIENT, RECORD: forcing periods
 !> Environment: GAPBEAM_BENCH_OVERRIDE, one more namelist fragment read after the deck.
+!>   GAPBEAM_BENCH_BATCHES = K (default 1): after the run, K - 1 more records of RECORD periods,
+!>   each from the end state of the one before (no transient), one line `batch=j` each with the
+!>   supports' fields (batch means of a chaotic record: scripts/bench_tubes_batches.py)
 !>   profile    also integrate once more with an observer that sorts the accepted steps by the
 !>              contact state of the supports (all open / a support in contact) and reports
 !>              their number and mean length
@@ -41,7 +44,9 @@ program gapbeam_bench_tubes
    type(reduction_info_t) :: info
    real(dp), allocatable :: u0(:), v0(:)
    real(dp) :: cutoff, tol, t_sim, t_rec
-   integer :: n_transient, n_record, k
+   integer :: n_transient, n_record, k, n_batch, b
+   type(transient_result_t) :: rb
+   real(dp), allocatable :: ub(:), vb(:)
    character(len=:), allocatable :: line
 
    if (command_argument_count() < 6) then
@@ -79,20 +84,46 @@ program gapbeam_bench_tubes
       // num(res%cpu_seconds / t_sim) // ' steps=' // int_text(int(res%steps_accepted)) &
       // ' rejected=' // int_text(int(res%steps_rejected)) // ' events=' &
       // int_text(int(res%events)) // ' method=' // res%method
-   do k = 1, size(res%n_impacts)
-      line = line // ' impacts_' // int_text(k) // '=' // int_text(res%n_impacts(k)) &
-         // ' impact_rate_' // int_text(k) // '=' // num(res%n_impacts(k) / t_rec) &
-         // ' peak_' // int_text(k) // '=' // num(res%peak_force(k)) // ' wn_' // int_text(k) &
-         // '=' // num(res%normal_work_rate(k)) // ' wf_' // int_text(k) // '=' &
-         // num(res%friction_work_rate(k)) // ' slide_' // int_text(k) // '=' &
-         // num(res%sliding_distance(k)) // ' contact_' // int_text(k) // '=' &
-         // num(res%contact_fraction(k)) // ' stick_' // int_text(k) // '=' &
-         // num(res%stick_fraction(k))
-   end do
+   line = line // support_fields(res)
    if (command_argument_count() > 6) line = line // profile_fields()
    write(output_unit, '(a)') line
+   n_batch = 1
+   call get_environment_variable('GAPBEAM_BENCH_BATCHES', arg, env_len)
+   if (env_len > 0) read(arg, *) n_batch
+   if (n_batch > 1) write(output_unit, '(a)') 'batch=1 cpu_s=' // num(res%cpu_seconds) &
+      // support_fields(res)
+   deck%solver%transient_periods = 0
+   ub = res%u;  vb = res%v
+   do b = 2, n_batch
+      ! the next record from this one's end: a whole number of periods, so the forcing's phase
+      ! at t = 0 is the phase there (the rings' regimes start afresh from the state)
+      call integrate(model, deck%solver, deck%output, ub, vb, rb, err)
+      call stop_on(err)
+      write(output_unit, '(a)') 'batch=' // int_text(b) // ' cpu_s=' // num(rb%cpu_seconds) &
+         // support_fields(rb)
+      ub = rb%u;  vb = rb%v
+   end do
 
 contains
+
+   !> Per support: impacts, impact rate, peak normal force, normal and friction work rates,
+   !> sliding distance, contact and stick fractions of a record of t_rec.
+   function support_fields(r) result(t)
+      type(transient_result_t), intent(in) :: r
+      character(len=:), allocatable :: t
+      integer :: j
+      t = ''
+      do j = 1, size(r%n_impacts)
+         t = t // ' impacts_' // int_text(j) // '=' // int_text(r%n_impacts(j)) &
+            // ' impact_rate_' // int_text(j) // '=' // num(r%n_impacts(j) / t_rec) &
+            // ' peak_' // int_text(j) // '=' // num(r%peak_force(j)) // ' wn_' // int_text(j) &
+            // '=' // num(r%normal_work_rate(j)) // ' wf_' // int_text(j) // '=' &
+            // num(r%friction_work_rate(j)) // ' slide_' // int_text(j) // '=' &
+            // num(r%sliding_distance(j)) // ' contact_' // int_text(j) // '=' &
+            // num(r%contact_fraction(j)) // ' stick_' // int_text(j) // '=' &
+            // num(r%stick_fraction(j))
+      end do
+   end function support_fields
 
    !> Integrate once more, sorting the accepted steps by the supports' contact state.
    function profile_fields() result(t)
