@@ -3,7 +3,7 @@
 
 Usage:
     python3 scripts/bench_tubes_batches.py BENCH_EXE [--out PREFIX] [--batches K] [--starts S]
-        [--record N] [--transient N] [--deck DECK] [--from FULL REDUCED TIGHTER]
+        [--record N] [--transient N] [--deck DECK] [--cutoffs HZ,...] [--from FILES ...]
 
 The tube deck (inputs/tube_multispan.nml) is chaotic: two runs that differ in anything (the
 model, the integrator, the tolerance) part, so one record's averages of two runs differ by the
@@ -23,10 +23,11 @@ model's is stated with two standard errors of the difference:
   missed     |difference| - 2 SE > 2 %
   undecided  otherwise (more batches would tell)
 Variants: the full model (&reduction kind = 'none') and the default (reduced, 'auto') at the
-deck's tolerance, and the default at 10 x tighter (its own convergence). Serial
-(OMP_NUM_THREADS=1), under flock BENCH_LOCK when it names a lock file. --from reads the bench
-output files of earlier runs instead of running: three arguments (the full model, as shipped,
-10 x tighter), each a comma-separated list of files (one per start).
+deck's tolerance, the default at 10 x tighter (its own convergence), and reduced models with
+the cut-offs of --cutoffs (&reduction kind = 'modal', cutoff_hz; default 1500,3000) at the
+deck's tolerance. Serial (OMP_NUM_THREADS=1), under flock BENCH_LOCK when it names a lock
+file. --from reads the bench output files of earlier runs instead of running: one argument
+per variant in that order, each a comma-separated list of files (one per start).
 Writes PREFIX.txt.
 """
 import argparse
@@ -65,19 +66,20 @@ def mean_se(x):
     return m, math.sqrt(var / n)
 
 
-def run_variant(args, kind, tol, start):
+def run_variant(args, kind, cutoff, tol, start):
     env = dict(os.environ, OMP_NUM_THREADS='1', GAPBEAM_BENCH_BATCHES=str(args.batches))
     env.pop('GAPBEAM_BENCH_OVERRIDE', None)
     if start > 1:
         env['GAPBEAM_BENCH_OVERRIDE'] = PERTURB % (1.0e-3 * (start - 1))
-    cmd = [args.bench, args.deck, kind, '0', repr(tol), str(args.transient), str(args.record)]
+    cmd = [args.bench, args.deck, kind, repr(cutoff), repr(tol), str(args.transient),
+           str(args.record)]
     lock = os.environ.get('BENCH_LOCK')
     if lock:
         cmd = ['flock', lock] + cmd
     t0 = time.time()
     out = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env).stdout
-    sys.stderr.write('bench_tubes_batches: %s %g, start %d: %.0f s wall\n'
-                     % (kind, tol, start, time.time() - t0))
+    sys.stderr.write('bench_tubes_batches: %s %g Hz %g, start %d: %.0f s wall\n'
+                     % (kind, cutoff, tol, start, time.time() - t0))
     return out
 
 
@@ -106,21 +108,26 @@ def main():
     p.add_argument('--transient', type=int, default=10)
     p.add_argument('--deck', default='inputs/tube_multispan.nml')
     p.add_argument('--tolerance', type=float, default=1.0e-4)
+    p.add_argument('--cutoffs', default='1500,3000')
     p.add_argument('--from', dest='from_files', nargs='+', default=None)
     args = p.parse_args()
+    cutoffs = [float(c) for c in args.cutoffs.split(',') if c]
+    variants = [('none', 0.0, args.tolerance), ('auto', 0.0, args.tolerance),
+                ('auto', 0.0, args.tolerance / 10.0)] + [('modal', c, args.tolerance)
+                                                         for c in cutoffs]
     names = ['full model (kind none), %g' % args.tolerance,
              'reduced (kind auto, as shipped), %g' % args.tolerance,
-             'reduced (kind auto), %g' % (args.tolerance / 10.0)]
+             'reduced (kind auto), %g' % (args.tolerance / 10.0)] + [
+                 'reduced (cut-off %g Hz), %g' % (c, args.tolerance) for c in cutoffs]
+    tags = ['as shipped', '10x tighter'] + ['%g Hz' % c for c in cutoffs]
     if args.from_files:
-        if len(args.from_files) != 3:
-            sys.exit('bench_tubes_batches: --from takes three lists of files')
+        if len(args.from_files) != len(variants):
+            sys.exit('bench_tubes_batches: --from takes %d lists of files' % len(variants))
         runs = [sum((read_batches(open(f).read()) for f in group.split(',')), [])
                 for group in args.from_files]
     else:
-        variants = [('none', args.tolerance), ('auto', args.tolerance),
-                    ('auto', args.tolerance / 10.0)]
-        runs = [sum((read_batches(run_variant(args, kind, tol, j))
-                     for j in range(1, args.starts + 1)), []) for kind, tol in variants]
+        runs = [sum((read_batches(run_variant(args, kind, cut, tol, j))
+                     for j in range(1, args.starts + 1)), []) for kind, cut, tol in variants]
     for name, rows in zip(names, runs):
         if len(rows) < 2:
             sys.exit('bench_tubes_batches: %s: fewer than two batches' % name)
@@ -132,10 +139,8 @@ def main():
            'difference from the full model with two standard errors; verdict against 2 %)', '']
     for name, rows in zip(names, runs):
         cpu = sum(r['cpu_s'] for r in rows)
-        out.append('%-40s %3d batches, %8.2f s cpu' % (name, len(rows), cpu))
-    cpu_full = sum(r['cpu_s'] for r in runs[0])
-    cpu_red = sum(r['cpu_s'] for r in runs[1])
-    out.append('cpu ratio, full over reduced as shipped, side by side: %.1f' % (cpu_full / cpu_red))
+        out.append('%-40s %3d batches, %8.2f s cpu, full over it %6.1f' % (
+            name, len(rows), cpu, sum(r['cpu_s'] for r in runs[0]) / cpu))
     out.append('')
     for s in range(1, ns + 1):
         out.append('== support %d' % s)
@@ -146,13 +151,12 @@ def main():
             if mf == 0.0:
                 out.append('  %-28s never touched by the full model' % label)
                 continue
-            line = '  %-28s full %.5e +- %.1f %%' % (label, mf, 100.0 * sf / abs(mf))
-            for (m, se), tag in zip(vals[1:], ['as shipped', '10x tighter']):
+            out.append('  %-28s full %.5e +- %.1f %%' % (label, mf, 100.0 * sf / abs(mf)))
+            for (m, se), tag in zip(vals[1:], tags):
                 d = (m - mf) / mf
                 sd = math.hypot(se, sf * m / mf) / abs(mf)
-                line += ' | %s %+.2f %% +- %.2f %% (2 SE) %s' % (tag, 100.0 * d, 200.0 * sd,
-                                                                verdict(d, sd))
-            out.append(line)
+                out.append('    %-14s %+6.2f %% +- %.2f %% (2 SE)  %s' % (
+                    tag, 100.0 * d, 200.0 * sd, verdict(d, sd)))
     text = '\n'.join(out) + '\n'
     os.makedirs(os.path.dirname(args.out) or '.', exist_ok=True)
     with open(args.out + '.txt', 'w') as f:
