@@ -89,7 +89,14 @@ program gapbeam_bench_tubes
    write(output_unit, '(a)') line
    n_batch = 1
    call get_environment_variable('GAPBEAM_BENCH_BATCHES', arg, env_len)
-   if (env_len > 0) read(arg, *) n_batch
+   if (env_len > 0) then
+      read(arg, *, iostat=k) n_batch
+      if (k /= 0 .or. n_batch < 1) then
+         write(error_unit, '(a)') 'error: GAPBEAM_BENCH_BATCHES = ' // trim(arg) &
+            // ': a whole number of records, at least 1'
+         error stop 2
+      end if
+   end if
    if (n_batch > 1) write(output_unit, '(a)') 'batch=1 cpu_s=' // num(res%cpu_seconds) &
       // support_fields(res)
    deck%solver%transient_periods = 0

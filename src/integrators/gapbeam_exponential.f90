@@ -130,6 +130,9 @@ module gapbeam_exponential
       real(dp), allocatable :: pk(:, :), pp(:, :)   !! the nodes' act forces: this, last sweep
       real(dp), allocatable :: dq(:, :)             !! the last sweep's changes from the start
       real(dp), allocatable :: bu(:, :), bv(:, :)   !! the nodes' act states without N's change
+      !> the sweeps at the act dofs where they apply (else always the modal sweeps: the tests
+      !> compare the two)
+      logical :: sweep_at_act = .true.
    contains
       procedure :: prepare => ex_prepare
       procedure :: step => ex_step
@@ -763,7 +766,7 @@ contains
       self%g(:, 0) = ge
       zero = 0.0_dp
       call free_changes(self, t0)
-      if (self%dense_n .or. size(self%act) == 0) then
+      if (self%dense_n .or. size(self%act) == 0 .or. .not. self%sweep_at_act) then
          call modal_sweeps(self, model, s0, t0, open_contact, s1%f)
       else
          self%pk(:, 0) = self%ra
