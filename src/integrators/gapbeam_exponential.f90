@@ -456,7 +456,7 @@ contains
       real(dp), intent(out) :: f(:)
       integer :: c, i, rg
       integer :: ja(2)
-      real(dp) :: pr(2)
+      real(dp) :: pr(2), xa(2), xda(2)
       self%ra = 0.0_dp
       do c = 1, model%n_contacts
          i = self%ia(model%c_dof(c))
@@ -470,16 +470,20 @@ contains
             self%fn(rg) = 0.0_dp;  self%ft(rg) = 0.0_dp
             cycle
          end if
-         ja = self%ia(model%r_dof(:, rg))
+         ja(1) = self%ia(model%r_dof(1, rg));  ja(2) = self%ia(model%r_dof(2, rg))
+         ! (fixed-size copies: the sections self%ua(ja) passed on were heap temporaries, a
+         ! malloc and free at each of the step's 18 force evaluations per ring)
+         xa(1) = self%ua(ja(1));  xa(2) = self%ua(ja(2))
+         xda(1) = self%va(ja(1));  xda(2) = self%va(ja(2))
          ! a ring closed at the step's start (a located onset among them) touches whatever the
          ! round-off of its penetration, as in the restart's acceleration (restart_rings) that
          ! the step's quintic piece reads: a hair outside, the damper's c d' jumped in between
          ! the nodes (start accelerations 9 % apart on the rattling tube; at tolerance 1e-9 the
          ! quintic's check then failed at the smallest step)
-         call ring_force(model, rg, s0%mode(rg), s0%sigma(rg), s0%anchor(rg), self%ua(ja), &
-                         self%va(ja), pr, self%fn(rg), self%ft(rg), &
+         call ring_force(model, rg, s0%mode(rg), s0%sigma(rg), s0%anchor(rg), xa, xda, pr, &
+                         self%fn(rg), self%ft(rg), &
                          touching=(s0%mode(rg) /= ring_open .and. s0%fn(rg) > 0.0_dp))
-         self%ra(ja) = self%ra(ja) + pr
+         self%ra(ja(1)) = self%ra(ja(1)) + pr(1);  self%ra(ja(2)) = self%ra(ja(2)) + pr(2)
       end do
    end subroutine act_forces
 
