@@ -3,7 +3,8 @@
 
 Usage:
     python3 scripts/bench_tubes_batches.py BENCH_EXE [--out PREFIX] [--batches K] [--starts S]
-        [--record N] [--transient N] [--deck DECK] [--cutoffs HZ,...] [--from FILES ...]
+        [--record N] [--transient N] [--deck DECK] [--cutoffs HZ,...] [--first-start J]
+        [--save DIR] [--from FILES ...]
 
 The tube deck (inputs/tube_multispan.nml) is chaotic: two runs that differ in anything (the
 model, the integrator, the tolerance) part, so one record's averages of two runs differ by the
@@ -26,8 +27,11 @@ Variants: the full model (&reduction kind = 'none') and the default (reduced, 'a
 deck's tolerance, the default at 10 x tighter (its own convergence), and reduced models with
 the cut-offs of --cutoffs (&reduction kind = 'modal', cutoff_hz; default 1500,3000) at the
 deck's tolerance. Serial (OMP_NUM_THREADS=1), under flock BENCH_LOCK when it names a lock
-file. --from reads the bench output files of earlier runs instead of running: one argument
-per variant in that order, each a comma-separated list of files (one per start).
+file. --first-start J runs the starts J..S only (to add starts to an earlier run); --save DIR
+keeps each run's output as DIR/VARIANT_sJ.txt (VARIANT: full, auto, auto_tight, cutHZ).
+--from reads the bench output files of earlier runs instead of running: one argument
+per variant in that order, each a comma-separated list of files (one per start); it refuses
+two files with the same batches (a start that was not perturbed repeats the first).
 Writes PREFIX.txt.
 """
 import argparse
@@ -66,7 +70,7 @@ def mean_se(x):
     return m, math.sqrt(var / n)
 
 
-def run_variant(args, kind, cutoff, tol, start):
+def run_variant(args, kind, cutoff, tol, start, tag):
     env = dict(os.environ, OMP_NUM_THREADS='1', GAPBEAM_BENCH_BATCHES=str(args.batches))
     env.pop('GAPBEAM_BENCH_OVERRIDE', None)
     if start > 1:
@@ -80,7 +84,24 @@ def run_variant(args, kind, cutoff, tol, start):
     out = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env).stdout
     sys.stderr.write('bench_tubes_batches: %s %g Hz %g, start %d: %.0f s wall\n'
                      % (kind, cutoff, tol, start, time.time() - t0))
+    if args.save:
+        os.makedirs(args.save, exist_ok=True)
+        with open(os.path.join(args.save, '%s_s%d.txt' % (tag, start)), 'w') as f:
+            f.write(out)
     return out
+
+
+def distinct_starts(name, groups):
+    """Exit when two starts of a variant gave the same batches (a repeated trajectory would
+    count as independent and shrink the standard errors)."""
+    seen = {}
+    for f, rows in groups:
+        key = tuple(sorted((k, v) for k, v in rows[0].items() if k != 'cpu_s')) if rows \
+            else ()
+        if key in seen:
+            sys.exit('bench_tubes_batches: %s: %s repeats the batches of %s' % (name, f,
+                                                                                 seen[key]))
+        seen[key] = f
 
 
 def supports(rows):
@@ -109,8 +130,13 @@ def main():
     p.add_argument('--deck', default='inputs/tube_multispan.nml')
     p.add_argument('--tolerance', type=float, default=1.0e-4)
     p.add_argument('--cutoffs', default='1500,3000')
+    p.add_argument('--first-start', type=int, default=1)
+    p.add_argument('--save', default='')
     p.add_argument('--from', dest='from_files', nargs='+', default=None)
     args = p.parse_args()
+    if not 1 <= args.first_start <= args.starts:
+        sys.exit('bench_tubes_batches: --first-start %d: must be 1 .. --starts (%d)'
+                 % (args.first_start, args.starts))
     cutoffs = [float(c) for c in args.cutoffs.split(',') if c]
     variants = [('none', 0.0, args.tolerance), ('auto', 0.0, args.tolerance),
                 ('auto', 0.0, args.tolerance / 10.0)] + [('modal', c, args.tolerance)
@@ -120,14 +146,19 @@ def main():
              'reduced (kind auto), %g' % (args.tolerance / 10.0)] + [
                  'reduced (cut-off %g Hz), %g' % (c, args.tolerance) for c in cutoffs]
     tags = ['as shipped', '10x tighter'] + ['%g Hz' % c for c in cutoffs]
+    files = ['full', 'auto', 'auto_tight'] + ['cut%g' % c for c in cutoffs]
     if args.from_files:
         if len(args.from_files) != len(variants):
             sys.exit('bench_tubes_batches: --from takes %d lists of files' % len(variants))
-        runs = [sum((read_batches(open(f).read()) for f in group.split(',')), [])
-                for group in args.from_files]
+        groups = [[(f, read_batches(open(f).read())) for f in group.split(',')]
+                  for group in args.from_files]
     else:
-        runs = [sum((read_batches(run_variant(args, kind, cut, tol, j))
-                     for j in range(1, args.starts + 1)), []) for kind, cut, tol in variants]
+        groups = [[('start %d' % j, read_batches(run_variant(args, kind, cut, tol, j, tag)))
+                   for j in range(args.first_start, args.starts + 1)]
+                  for (kind, cut, tol), tag in zip(variants, files)]
+    for name, g in zip(names, groups):
+        distinct_starts(name, g)
+    runs = [sum((rows for _, rows in g), []) for g in groups]
     for name, rows in zip(names, runs):
         if len(rows) < 2:
             sys.exit('bench_tubes_batches: %s: fewer than two batches' % name)
