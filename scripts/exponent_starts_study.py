@@ -8,8 +8,9 @@ Usage:
                                            [--skip PART ...] [--out FILE]
 
 GAPBEAM_EXE: the release build (fpm build --profile release; `fpm run --profile release
---runner echo gapbeam` prints its path). Every run is taken under the shared CPU lock
-/tmp/gapbeam-cpu.lock, one at a time. Writes (default bench_results/exponent_starts.txt):
+--runner echo gapbeam` prints its path). Every run is taken under the shared CPU lock file
+that BENCH_LOCK names (flock; none when unset), one at a time. Writes (default
+bench_results/exponent_starts.txt):
 
 1. the reference: two runs of 100000 exponent periods (after 300 and 5300 transient
    periods), and their means over blocks of 10000 periods;
@@ -28,6 +29,7 @@ lock, run it in pieces (--starts 1, --starts 4, ...).
 """
 
 import argparse
+import os
 import subprocess
 import tempfile
 from pathlib import Path
@@ -37,7 +39,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 DECK = str(ROOT / "inputs" / "moon_shaw_9p8hz.nml")
-LOCK = "/tmp/gapbeam-cpu.lock"
+LOCK = os.environ.get("BENCH_LOCK", "")
 OFFSETS = [0, 350, -175, 175, 260, -260, -90, 85, 300, 390]
 LENGTHS = [200, 250, 300, 350, 400, 450, 500, 700, 1000, 1200]
 
@@ -45,7 +47,8 @@ LENGTHS = [200, 250, 300, 350, 400, 450, 500, 700, 1000, 1200]
 def run(exe, work, name, *overrides):
     """One run of the deck under the lock; its /diagnostics as a dict."""
     out = Path(work) / name
-    subprocess.run(["flock", LOCK, exe, DECK, "--quiet", f"&job output='{out}' /", *overrides],
+    subprocess.run((["flock", LOCK] if LOCK else []) + [exe, DECK, "--quiet",
+                                                         f"&job output='{out}' /", *overrides],
                    check=True, stdout=subprocess.DEVNULL)
     with h5py.File(f"{out}.h5") as f:
         d = {k: f["/diagnostics"][k][()] for k in f["/diagnostics"]

@@ -19,7 +19,7 @@
 # Usage:
 #   scripts/tube_map_labels.sh [OUTDIR] [PARTS]     (default results/tube_map_labels, 'row map persist')
 #   METHOD=exponential (default) | rk45 | newmark;  GAPBEAM=/path/to/gapbeam;
-#   LOCK=/tmp/gapbeam-cpu.lock (each run holds this lock when given); OMP_NUM_THREADS (default 2).
+#   LOCK=LOCKFILE (each run holds this lock file when given); OMP_NUM_THREADS (default 2).
 # Prints the summary (also OUTDIR/summary.txt). Cost (release, 2 threads, exponential): the
 # row about 6.5 CPU minutes (5.6 of them the Newmark row), the map 4, persistence 3.
 set -euo pipefail
